@@ -1,0 +1,74 @@
+#include "latsim/des/time.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+
+namespace latsim::des {
+
+Time Time::from_seconds(double seconds) {
+  if (!std::isfinite(seconds)) throw TimeOverflow("simulation time from a non-finite number of seconds");
+  const double ticks = std::nearbyint(seconds * static_cast<double>(kTicksPerSecond));
+  // 2^63 is exactly representable; anything at or beyond it does not fit.
+  if (ticks >= 9223372036854775808.0 || ticks < -9223372036854775808.0)
+    throw TimeOverflow("simulation time out of range: " + std::to_string(seconds) + " s");
+  return Time::ps(static_cast<int64_t>(ticks));
+}
+
+std::string Time::str() const {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.6f ms", to_ms());
+  return buf;
+}
+
+RationalSeconds RationalSeconds::period_of_hz(int64_t hz_num, int64_t hz_den) {
+  if (hz_num <= 0 || hz_den <= 0) throw std::invalid_argument("frequency must be positive");
+  const int64_t g = std::gcd(hz_num, hz_den);
+  return RationalSeconds{hz_den / g, hz_num / g};
+}
+
+namespace {
+
+using i128 = __int128;
+
+// floor(a / b) for b > 0.
+i128 floor_div(i128 a, i128 b) {
+  i128 q = a / b;
+  if ((a % b != 0) && (a < 0)) --q;
+  return q;
+}
+
+int64_t to_i64(i128 v) {
+  if (v > static_cast<i128>(INT64_MAX) || v < static_cast<i128>(INT64_MIN))
+    throw TimeOverflow("periodic schedule index out of the time range");
+  return static_cast<int64_t>(v);
+}
+
+}  // namespace
+
+PeriodicSchedule::PeriodicSchedule(Time t0, RationalSeconds period) : t0_(t0), period_(period) {
+  if (period.num <= 0 || period.den <= 0) throw std::invalid_argument("period must be a positive rational");
+}
+
+Time PeriodicSchedule::at(int64_t k) const {
+  const i128 offset = floor_div(static_cast<i128>(k) * period_.num * Time::kTicksPerSecond, period_.den);
+  return t0_ + Time::ps(to_i64(offset));
+}
+
+int64_t PeriodicSchedule::index_at_or_after(Time t) const {
+  // at(k) >= t  <=>  floor(k*P/den) >= d  <=>  k*P >= d*den  (d integer), P = num*1e12.
+  const i128 d = static_cast<i128>(t.ticks()) - t0_.ticks();
+  const i128 p = static_cast<i128>(period_.num) * Time::kTicksPerSecond;
+  const i128 k = -floor_div(-(d * period_.den), p);  // ceil(d*den / p)
+  return to_i64(k);
+}
+
+int64_t PeriodicSchedule::index_at_or_before(Time t) const {
+  // at(k) <= t  <=>  floor(k*P/den) <= d  <=>  k*P < (d+1)*den.
+  const i128 d = static_cast<i128>(t.ticks()) - t0_.ticks();
+  const i128 p = static_cast<i128>(period_.num) * Time::kTicksPerSecond;
+  const i128 k = floor_div((d + 1) * period_.den - 1, p);
+  return to_i64(k);
+}
+
+}  // namespace latsim::des
