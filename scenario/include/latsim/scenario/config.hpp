@@ -1,0 +1,122 @@
+// Reading scenario files: JSON with includes and overrides, read through
+// ConfigNode views that report every problem with its JSON pointer.
+#pragma once
+
+#include <filesystem>
+#include <initializer_list>
+#include <memory>
+#include <optional>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "latsim/des/time.hpp"
+
+namespace latsim::scenario {
+
+/// Bad scenario input: names the JSON pointer of the problem.
+class ScenarioError : public std::runtime_error {
+ public:
+  ScenarioError(std::string pointer, std::string message);
+  const std::string& pointer() const { return pointer_; }
+  const std::string& message() const { return message_; }
+
+ private:
+  std::string pointer_;
+  std::string message_;
+};
+
+/// Appends an escaped key to a JSON pointer ("/a" + "b/c" -> "/a/b~1c").
+std::string join_pointer(std::string_view pointer, std::string_view key);
+
+/// Shared bookkeeping of one loaded scenario: which keys were read, and the
+/// scenario as resolved (input plus every default that was applied).
+struct ReadLog {
+  std::set<std::string> read_pointers;
+  nlohmann::json resolved;
+  std::filesystem::path base_dir;
+};
+
+/// A read-only view of one JSON object in a scenario that records every key it
+/// reads (unread keys are reported as unknown) and every default it applies.
+class ConfigNode {
+ public:
+  ConfigNode(const nlohmann::json* node, std::string pointer, std::shared_ptr<ReadLog> log);
+
+  const std::string& pointer() const { return pointer_; }
+  bool has(std::string_view key) const;
+
+  ConfigNode child(std::string_view key) const;
+  std::optional<ConfigNode> optional_child(std::string_view key) const;
+  std::vector<ConfigNode> objects(std::string_view key) const;
+
+  double number(std::string_view key) const;
+  double number(std::string_view key, double def) const;
+  double positive(std::string_view key) const;
+  double positive(std::string_view key, double def) const;
+  double non_negative(std::string_view key, double def) const;
+  double number_in(std::string_view key, double def, double lo, double hi) const;
+  int64_t integer(std::string_view key, int64_t lo, int64_t hi) const;
+  int64_t integer(std::string_view key, int64_t def, int64_t lo, int64_t hi) const;
+  bool boolean(std::string_view key, bool def) const;
+  std::string string(std::string_view key) const;
+  std::string string(std::string_view key, std::string def) const;
+  std::string choice(std::string_view key, std::string def,
+                     std::initializer_list<std::string_view> allowed) const;
+  std::vector<double> numbers(std::string_view key) const;
+  std::vector<double> numbers(std::string_view key, std::vector<double> def) const;
+  std::vector<std::vector<double>> number_rows(std::string_view key) const;
+  /// A frequency in Hz, a number (60) or an exact string ("60000/1001"), as its exact period.
+  des::RationalSeconds rate_as_period(std::string_view key, std::string def_hz) const;
+  des::Time duration_ms(std::string_view key) const;
+  des::Time duration_ms(std::string_view key, double def_ms) const;
+  /// A file path, relative paths resolved against the scenario file's directory.
+  std::filesystem::path path(std::string_view key) const;
+
+  [[noreturn]] void fail(std::string_view key, const std::string& message) const;
+  /// Raw access; marks nothing as read.
+  const nlohmann::json& json() const { return *node_; }
+  /// Marks this whole subtree as read (for free-form data a model consumes itself).
+  void mark_all_read() const;
+
+ private:
+  const nlohmann::json* find(std::string_view key) const;
+  const nlohmann::json& require(std::string_view key) const;
+  void mark(std::string_view key) const;
+  void record_default(std::string_view key, nlohmann::json value) const;
+  double as_number(std::string_view key, const nlohmann::json& v) const;
+
+  const nlohmann::json* node_;
+  std::string pointer_;
+  std::shared_ptr<ReadLog> log_;
+};
+
+/// A scenario file loaded with its includes and overrides applied.
+class ScenarioDocument {
+ public:
+  /// Loads `file`; `overrides` are "/json/pointer=value" strings (value parsed
+  /// as JSON, or taken as a string when it is not valid JSON).
+  static ScenarioDocument load(const std::filesystem::path& file,
+                               const std::vector<std::string>& overrides = {});
+  static ScenarioDocument from_json(nlohmann::json doc, std::filesystem::path base_dir);
+
+  ConfigNode root() const;
+  const nlohmann::json& json() const { return doc_; }
+  /// Throws ScenarioError naming the first key (in document order) nobody read.
+  void check_unknown_keys() const;
+  /// The scenario as run: input plus every default applied.
+  const nlohmann::json& resolved() const { return log_->resolved; }
+
+ private:
+  nlohmann::json doc_;
+  std::shared_ptr<ReadLog> log_;
+};
+
+/// Applies one "/pointer=value" override to a document.
+void apply_override(nlohmann::json& doc, const std::string& assignment);
+
+}  // namespace latsim::scenario
