@@ -1,0 +1,111 @@
+// The pipeline interface: how a display strategy plugs into a latsim run.
+//
+// A run builds the shared models from the scenario (head motion, tracker,
+// transport, host mailbox, display, recorder) into a RunContext, asks the
+// registry for the pipeline named by /pipeline/type, calls start() to let it
+// schedule its events, runs the simulator, then calls finish() to let it add
+// its own figures. Pipelines present images to the display; the display and
+// the recorder turn what is lit into latency and registration figures.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "latsim/des/random.hpp"
+#include "latsim/des/simulator.hpp"
+#include "latsim/display/display.hpp"
+#include "latsim/scenario/config.hpp"
+#include "latsim/tracker/host.hpp"
+#include "latsim/tracker/motion_source.hpp"
+#include "latsim/tracker/transport.hpp"
+
+namespace latsim::pipelines {
+
+class LatencyRecorder;
+class Timeline;
+class FrameCapture;
+
+/// One image a pipeline puts in a front buffer: the pose it was computed from
+/// and when each stage ran. Registered with the recorder before presenting.
+struct ImageRecord {
+  int64_t frame = -1;                 ///< pipeline's frame (or field) number
+  int eye = 0;
+  tracker::TrackerSample sample;      ///< the sample whose pose was used (latency origin)
+  des::Time host_received;            ///< when the host could first see that sample
+  des::Time render_start;             ///< rendering latency starts here
+  des::Time render_end;
+  tracker::Pose eye_pose;             ///< the eye pose the image was rendered from
+  /// Address recalculation: orientation is taken from the newest sample at
+  /// scanout, so rotation and translation latency differ.
+  bool orientation_at_scanout = false;
+};
+
+/// Newest tracker data available to the host at any instant.
+class HostFeed {
+ public:
+  virtual ~HostFeed() = default;
+  /// Newest sample the host application can see at time t (nullopt before the first).
+  virtual std::optional<tracker::TrackerSample> newest_at(des::Time t) const = 0;
+  /// When that sample became visible to the host.
+  virtual des::Time received_at(const tracker::TrackerSample& s) const = 0;
+  /// Called whenever a new sample becomes visible to the host (async senders).
+  virtual void on_delivery(std::function<void(const tracker::TrackerSample&, des::Time)> fn) = 0;
+};
+
+/// Everything a pipeline may use during a run.
+struct RunContext {
+  des::Simulator& sim;
+  scenario::ConfigNode root;           ///< the whole scenario
+  scenario::ConfigNode pipeline;       ///< the /pipeline object (its "type" already read)
+  uint64_t seed = 1;
+  uint64_t replication = 0;
+  des::Time duration;                  ///< simulated time to run
+  const tracker::MotionSource& motion; ///< true head motion
+  HostFeed& host;
+  display::Display& display;
+  LatencyRecorder& recorder;
+  double ipd_m = 0.064;
+  bool stereo = false;
+  Timeline* timeline = nullptr;        ///< stage timeline, when the pipeline keeps one
+  FrameCapture* frames = nullptr;      ///< frame capture, only when the scenario asks for frames
+  std::filesystem::path out_dir;       ///< where result files go (already exists)
+
+  des::RandomStream stream(std::string_view name) const { return des::RandomStream(seed, name, replication); }
+  /// The eye pose of a tracker sample (mono: the head pose).
+  tracker::Pose eye_pose(const tracker::TrackerSample& s, int eye) const;
+};
+
+/// A display strategy: schedules its events in start(), reports in finish().
+class Pipeline {
+ public:
+  virtual ~Pipeline() = default;
+  virtual std::string name() const = 0;
+  /// Reads its parameters from ctx.pipeline and schedules its first events.
+  virtual void start(RunContext& ctx) = 0;
+  /// Adds pipeline-specific figures to the summary (e.g. missed fields).
+  virtual void finish(RunContext& /*ctx*/, nlohmann::json& /*figures*/) {}
+};
+
+/// Pipelines by name, as the scenario's /pipeline/type selects them.
+class PipelineRegistry {
+ public:
+  using Factory = std::function<std::unique_ptr<Pipeline>()>;
+  void add(std::string name, Factory factory);
+  std::unique_ptr<Pipeline> create(const std::string& name) const;  // nullptr if unknown
+  std::vector<std::string> names() const;
+
+ private:
+  std::map<std::string, Factory> factories_;
+};
+
+/// The registry with every pipeline latsim ships.
+PipelineRegistry builtin_pipelines();
+
+}  // namespace latsim::pipelines

@@ -1,0 +1,42 @@
+// Runs one scenario end to end and writes its self-describing results.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "latsim/scenario/config.hpp"
+
+namespace latsim::pipelines {
+
+/// How to run a scenario and what to write.
+struct RunOptions {
+  std::optional<uint64_t> seed;           ///< overrides /seed when set
+  uint64_t replication = 0;               ///< independent random streams per replication
+  std::filesystem::path out_dir;          ///< empty: write nothing, only return the summary
+  bool write_samples = false;             ///< samples.csv
+  bool write_ledger = false;              ///< frames.csv, the per-frame ledger
+  std::vector<std::string> command_line;  ///< recorded in the summary
+};
+
+/// Builds the models a scenario asks for, runs it, and returns summary.json's
+/// content; when out_dir is set, writes every result file atomically
+/// (temporary file, then rename). Throws scenario::ScenarioError on bad input
+/// before anything is written.
+nlohmann::json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& options);
+
+/// Parses and builds everything without running (for `latsim validate`).
+void validate_scenario(const scenario::ScenarioDocument& doc);
+
+/// Writes text to `file` atomically: "<file>.tmp.<pid>", flushed, then renamed.
+void write_file_atomically(const std::filesystem::path& file, const std::string& text);
+
+/// latsim's version string and the git revision it was built from.
+std::string latsim_version();
+std::string latsim_git_revision();
+
+}  // namespace latsim::pipelines

@@ -1,0 +1,37 @@
+// A stage timeline: which unit ran which stage of which frame, and when.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "latsim/des/time.hpp"
+
+namespace latsim::pipelines {
+
+/// Stage intervals of a pipeline, written as timeline.csv and as Chrome
+/// trace-event JSON (timeline.json, opens in Perfetto / chrome://tracing).
+class Timeline {
+ public:
+  struct Entry {
+    std::string stage;  ///< e.g. "SEND", "EDIT", "TRANSFORM", "RENDER", "COPY"
+    int64_t frame;
+    int eye;            ///< -1 when the stage covers both eyes
+    std::string unit;   ///< e.g. "GP3", "R1", "ring", "FB0"
+    des::Time start;
+    des::Time end;
+  };
+
+  void add(std::string stage, int64_t frame, int eye, std::string unit, des::Time start, des::Time end);
+  const std::vector<Entry>& entries() const { return entries_; }
+  /// Hash of all entries in order (for fingerprint tests).
+  uint64_t fingerprint() const;
+  void write_csv(const std::filesystem::path& file) const;
+  void write_trace_json(const std::filesystem::path& file) const;
+
+ private:
+  std::vector<Entry> entries_;
+};
+
+}  // namespace latsim::pipelines
