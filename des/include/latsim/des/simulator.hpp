@@ -1,0 +1,246 @@
+// The discrete-event kernel: a clock and a set of pending events, stepping
+// from event to event in (time, priority, insertion sequence) order.
+//
+//   Simulator sim;
+//   const KindId tick = sim.kind("display.vsync");
+//   sim.at(Time::ms(16), tick, [&] { ... });
+//   sim.run();
+//
+// Callbacks live in a slab of fixed 64-byte slots (inline storage for up to
+// 32 bytes of captures, heap beyond that) recycled through a free list, so
+// scheduling allocates nothing in the common case; the pending-event set holds
+// 16-byte entries only. Cancelling empties the slot; the entry is skipped when
+// it reaches the front.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "latsim/des/event_queue.hpp"
+#include "latsim/des/inline_function.hpp"
+#include "latsim/des/time.hpp"
+
+namespace latsim::des {
+
+/// Among events at the same time, lower priority values run first; default 0.
+using Priority = int32_t;
+/// An event kind, registered by name with Simulator::kind().
+using KindId = uint32_t;
+
+/// Names a scheduled event so it can be cancelled; value 0 is "no event".
+struct EventId {
+  uint64_t value = 0;
+  bool valid() const { return value != 0; }
+  friend bool operator==(EventId, EventId) = default;
+};
+
+/// Which pending-event set a Simulator uses (results are identical; speed differs).
+enum class QueueKind { quaternary_heap, binary_heap };
+
+class Process;
+class ProcessPromise;
+class DelayAwaitable;
+
+/// Steps simulated time from event to event and runs each event's callback.
+class Simulator {
+ public:
+  struct KindStats {
+    std::string name;
+    uint64_t events = 0;
+    double wall_s = 0.0;
+  };
+  struct ModelStats {
+    std::string model;
+    uint64_t events = 0;
+    double wall_s = 0.0;
+  };
+
+  Simulator() : Simulator(QueueKind::quaternary_heap) {}
+  explicit Simulator(QueueKind queue_kind);
+  ~Simulator();
+  Simulator(const Simulator&) = delete;
+  Simulator& operator=(const Simulator&) = delete;
+
+  Time now() const { return now_; }
+  QueueKind queue_kind() const { return queue_kind_; }
+
+  /// Registers an event kind (or returns the existing id). The text before the
+  /// first '.' names the model, e.g. "tracker.sample" belongs to "tracker".
+  KindId kind(std::string_view name);
+  const std::string& kind_name(KindId id) const;
+
+  /// Schedules fn() at absolute time t; throws std::logic_error if t < now().
+  template <class F>
+  EventId at(Time t, KindId kind, F&& fn, Priority prio = 0) {
+    if (t < now_) [[unlikely]] throw_past(t, kind);
+    if (kind >= kinds_.size()) [[unlikely]] throw_unknown_kind(kind);
+    const uint32_t s = acquire_slot();
+    Slot& slot = slots_[s];
+    try {
+      slot.fn.assign(std::forward<F>(fn));
+    } catch (...) {
+      release_slot(s);
+      throw;
+    }
+    slot.seq = next_seq_++;
+    slot.kind = kind;
+    ++live_;
+    enqueue(QueueEntry{t.ticks(), prio, s});
+    return EventId{(static_cast<uint64_t>(slot.generation) << 32) | s};
+  }
+
+  /// Schedules fn() at now() + dt; dt must not be negative.
+  template <class F>
+  EventId after(Time dt, KindId kind, F&& fn, Priority prio = 0) {
+    if (dt < Time::zero()) [[unlikely]] throw_negative_delay(dt, kind);
+    return at(now_ + dt, kind, std::forward<F>(fn), prio);
+  }
+
+  /// Cancels a pending event; returns false if it already ran, was already
+  /// cancelled, or never existed. A cancelled event never runs.
+  bool cancel(EventId id);
+
+  /// Runs events until none remain or stop() is called.
+  void run();
+  /// Runs every event with time <= end, then sets now() to end (unless
+  /// stop() ended the run earlier). Throws std::logic_error if end < now().
+  void run_until(Time end);
+  /// Ends the current run() / run_until() after the running event returns.
+  void stop() { stop_requested_ = true; }
+
+  bool empty() const { return live_ == 0; }
+  std::size_t pending() const { return live_; }
+  uint64_t events_executed() const { return executed_; }
+  /// Order-sensitive hash over (time ticks, kind-name hash) of every executed
+  /// event: equal for identical runs on any platform, different when any
+  /// event's time, kind or order changes.
+  uint64_t fingerprint() const { return fingerprint_; }
+
+  /// Per kind, in registration order.
+  std::vector<KindStats> kind_stats() const;
+  /// Per model (kind-name prefix before the first '.'), sorted by name.
+  std::vector<ModelStats> model_stats() const;
+  /// When on, wall time per event kind is measured with steady_clock.
+  void set_profiling(bool on) { profiling_ = on; }
+  bool profiling() const { return profiling_; }
+
+  // Coroutine processes (see process.hpp).
+  /// Starts p at now() (as an event of kind "process").
+  void spawn(Process p);
+  /// Starts p at now(); its start and every resumption are events of `kind`.
+  void spawn(Process p, KindId kind);
+  /// co_await sim.delay(dt): resume dt later (dt >= 0; 0 yields to events already due now).
+  DelayAwaitable delay(Time dt);
+  /// co_await sim.until(t): resume at absolute time t >= now().
+  DelayAwaitable until(Time t);
+
+ private:
+  friend class ProcessPromise;
+
+  using Callback = InlineFunction<void(), 32>;
+
+  // A callback with what the loop needs to run and order it; exactly one
+  // cache line. `fn` is empty while the slot is free or cancelled.
+  struct Slot {
+    Callback fn;
+    uint64_t seq = 0;
+    uint32_t generation = 1;
+    KindId kind = 0;
+  };
+
+  struct QueueEntry {
+    int64_t time_ticks;
+    Priority prio;
+    uint32_t slot;
+  };
+
+  // Orders entries by (time, priority, sequence); the sequence lives in the
+  // slot because ties are rare and the entries stay at 16 bytes.
+  struct EntryLess {
+    const std::vector<Slot>* slots;
+    bool operator()(const QueueEntry& a, const QueueEntry& b) const {
+      if (a.time_ticks != b.time_ticks) return a.time_ticks < b.time_ticks;
+      if (a.prio != b.prio) return a.prio < b.prio;
+      return (*slots)[a.slot].seq < (*slots)[b.slot].seq;
+    }
+  };
+
+  struct KindRecord {
+    std::string name;
+    uint64_t name_hash = 0;
+    uint64_t events = 0;
+    double wall_s = 0.0;
+  };
+
+  uint32_t acquire_slot() {
+    if (!free_slots_.empty()) {
+      const uint32_t s = free_slots_.back();
+      free_slots_.pop_back();
+      return s;
+    }
+    return grow_slots();
+  }
+  uint32_t grow_slots();
+  void release_slot(uint32_t s) {
+    Slot& slot = slots_[s];
+    slot.fn.reset();
+    if (++slot.generation == 0) slot.generation = 1;  // 0 would make EventId{0} valid
+    free_slots_.push_back(s);
+  }
+
+  void enqueue(const QueueEntry& e) {
+    if (queue_kind_ == QueueKind::quaternary_heap) {
+      if (top_consumed_) {
+        quaternary_.replace_top(e);
+        top_consumed_ = false;
+      } else {
+        quaternary_.push(e);
+      }
+    } else {
+      if (top_consumed_) {
+        binary_.replace_top(e);
+        top_consumed_ = false;
+      } else {
+        binary_.push(e);
+      }
+    }
+  }
+
+  void run_events(int64_t limit_ticks);
+  template <class Q, bool Profile>
+  void run_loop(Q& queue, int64_t limit_ticks);
+
+  [[noreturn]] void throw_past(Time t, KindId kind) const;
+  [[noreturn]] void throw_unknown_kind(KindId kind) const;
+  [[noreturn]] void throw_negative_delay(Time dt, KindId kind) const;
+
+  QueueKind queue_kind_;
+  Time now_;
+  std::vector<Slot> slots_;
+  std::vector<uint32_t> free_slots_;
+  QuaternaryHeap<QueueEntry, EntryLess> quaternary_;
+  BinaryHeap<QueueEntry, EntryLess> binary_;
+  // True while the running event's entry is still at the front of the queue:
+  // the first event it schedules replaces it in one sift (see run_loop).
+  bool top_consumed_ = false;
+  bool stop_requested_ = false;
+  bool running_ = false;
+  bool profiling_ = false;
+  uint64_t next_seq_ = 0;
+  std::size_t live_ = 0;
+  uint64_t executed_ = 0;
+  uint64_t fingerprint_ = 0;
+  std::vector<KindRecord> kinds_;
+  std::map<std::string, KindId, std::less<>> kind_ids_;
+  KindId process_kind_ = 0;
+  bool process_kind_registered_ = false;
+  ProcessPromise* live_processes_ = nullptr;  // intrusive list of unfinished coroutines
+};
+
+}  // namespace latsim::des
