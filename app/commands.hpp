@@ -1,0 +1,18 @@
+// The latsim command-line program's subcommands; each parses its own options.
+#pragma once
+
+namespace latsim::app {
+
+/// Exit codes shared by every subcommand.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFailure = 1;   ///< the run itself failed (a model error)
+inline constexpr int kExitBadInput = 2;  ///< bad scenario or command line: nothing was written
+
+int command_run(int argc, char** argv);       ///< latsim run SCENARIO [--out DIR] [--seed N] [--set P=V]...
+int command_validate(int argc, char** argv);  ///< latsim validate SCENARIO...
+int command_capacity(int argc, char** argv);  ///< latsim capacity SCENARIO: largest triangle count without a missed field
+int command_sweep(int argc, char** argv);     ///< latsim sweep SWEEP.json --out DIR [-j N]
+int command_fidelity(int argc, char** argv);  ///< latsim fidelity SCENARIO --vary P=v1,v2 --metric NAME
+int command_report(int argc, char** argv);    ///< latsim report DIR
+
+}  // namespace latsim::app
