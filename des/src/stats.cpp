@@ -36,15 +36,16 @@ void RunningStats::add(double x) {
   require_finite(x, "RunningStats::add");
   ++count_;
   if (count_ == 1) {
-    mean_ = x;
+    shift_ = x;
+    mean_ = 0.0;
     m2_ = 0.0;
     min_ = x;
     max_ = x;
     return;
   }
-  const double delta = x - mean_;
+  const double delta = (x - shift_) - mean_;
   mean_ += delta / static_cast<double>(count_);
-  m2_ += delta * (x - mean_);
+  m2_ += delta * ((x - shift_) - mean_);
   min_ = std::min(min_, x);
   max_ = std::max(max_, x);
 }
@@ -64,7 +65,8 @@ void RunningStats::merge(const RunningStats& other) {
   const double na = static_cast<double>(count_);
   const double nb = static_cast<double>(other.count_);
   const double n = na + nb;
-  const double delta = other.mean_ - mean_;
+  // Express the other's mean relative to this shift before combining.
+  const double delta = ((other.shift_ - shift_) + other.mean_) - mean_;
   mean_ += delta * (nb / n);
   m2_ += other.m2_ + delta * delta * (na * nb / n);
   count_ += other.count_;
@@ -79,9 +81,10 @@ void LogHistogram::DenseCounts::add(int32_t index, uint64_t weight) {
     offset_ = index;
     counts_.assign(1, 0);
   }
-  // Growing by half the current span at a time keeps growth amortised O(1)
-  // while the allocation stays within 1.5x the range of buckets seen.
-  const auto slack = static_cast<int32_t>(counts_.size() / 2);
+  // Each growth adds an eighth of the current span as slack, so growth is
+  // amortised O(1); unused slack can sit at both ends, which still keeps the
+  // allocation within 4/3 of the range of buckets seen (c = 1 + 2c/8).
+  const auto slack = static_cast<int32_t>(counts_.size() / 8);
   if (index < offset_) {
     const int32_t new_offset = index - slack;
     counts_.insert(counts_.begin(), static_cast<size_t>(offset_ - new_offset), 0);
@@ -162,8 +165,11 @@ double LogHistogram::quantile(double q) const {
     nearest_rank_index(q, 1);  // still reject a bad q loudly
     return 0.0;
   }
-  const double v = value_at_rank(nearest_rank_index(q, count_));
-  return std::clamp(v, min_, max_);
+  // The extreme ranks are the tracked extremes, so q = 0 and q = 1 are exact.
+  const uint64_t rank = nearest_rank_index(q, count_);
+  if (rank == 0) return min_;
+  if (rank == count_ - 1) return max_;
+  return std::clamp(value_at_rank(rank), min_, max_);
 }
 
 void LogHistogram::merge(const LogHistogram& other) {

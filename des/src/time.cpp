@@ -6,12 +6,14 @@
 
 namespace latsim::des {
 
-Time Time::from_seconds(double seconds) {
-  if (!std::isfinite(seconds)) throw TimeOverflow("simulation time from a non-finite number of seconds");
-  const double ticks = std::nearbyint(seconds * static_cast<double>(kTicksPerSecond));
+Time Time::from_scaled(double value, double ticks_per_unit, const char* unit) {
+  if (!std::isfinite(value))
+    throw TimeOverflow(std::string("simulation time from a non-finite number of ") + unit);
+  const double ticks = std::nearbyint(value * ticks_per_unit);
   // 2^63 is exactly representable; anything at or beyond it does not fit.
   if (ticks >= 9223372036854775808.0 || ticks < -9223372036854775808.0)
-    throw TimeOverflow("simulation time out of range: " + std::to_string(seconds) + " s");
+    throw TimeOverflow("simulation time out of range: " + std::to_string(value) + " " + unit +
+                       " (the int64 picosecond range is about +-106 days)");
   return Time::ps(static_cast<int64_t>(ticks));
 }
 
@@ -51,8 +53,13 @@ PeriodicSchedule::PeriodicSchedule(Time t0, RationalSeconds period) : t0_(t0), p
 }
 
 Time PeriodicSchedule::at(int64_t k) const {
-  const i128 offset = floor_div(static_cast<i128>(k) * period_.num * Time::kTicksPerSecond, period_.den);
-  return t0_ + Time::ps(to_i64(offset));
+  // |k * num * 1e12| < 2^63 * 2^63 * 2^40 could exceed 128 bits: check it.
+  i128 scaled = 0;
+  if (__builtin_mul_overflow(static_cast<i128>(k), static_cast<i128>(period_.num) * Time::kTicksPerSecond, &scaled))
+    throw TimeOverflow("periodic schedule index out of the time range");
+  // Add t0 before narrowing: an offset beyond int64 may still land in range
+  // when t0 is negative.
+  return Time::ps(to_i64(static_cast<i128>(t0_.ticks()) + floor_div(scaled, period_.den)));
 }
 
 int64_t PeriodicSchedule::index_at_or_after(Time t) const {

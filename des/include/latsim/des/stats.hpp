@@ -24,13 +24,15 @@ uint64_t nearest_rank_index(double q, uint64_t n);
 /// Count, mean, variance, min and max of a stream of values in O(1) memory.
 ///
 /// Welford's update keeps the variance accurate even for values with a large
-/// common offset (1e9 + small), where sum-of-squares formulas cancel; merge()
-/// uses the pairwise combination of Chan, Golub and LeVeque.
+/// common offset (1e9 + small), where sum-of-squares formulas cancel; it runs
+/// on values shifted by the first one, which keeps the mean's rounding error
+/// from growing with the offset too. merge() uses the pairwise combination of
+/// Chan, Golub and LeVeque.
 class RunningStats {
  public:
   void add(double x);
   uint64_t count() const { return count_; }
-  double mean() const { return mean_; }
+  double mean() const { return shift_ + mean_; }
   /// Sample variance (divisor n - 1); 0 for fewer than two values.
   double variance() const;
   double stddev() const;
@@ -38,14 +40,15 @@ class RunningStats {
   double min() const { return count_ == 0 ? 0.0 : min_; }
   double max() const { return count_ == 0 ? 0.0 : max_; }
   /// Sum of all values (mean * count).
-  double sum() const { return mean_ * static_cast<double>(count_); }
+  double sum() const { return mean() * static_cast<double>(count_); }
   /// Afterwards this equals the stats of both inputs' values together.
   void merge(const RunningStats& other);
 
  private:
   uint64_t count_ = 0;
-  double mean_ = 0.0;
-  double m2_ = 0.0;  // sum of squared deviations from the running mean
+  double shift_ = 0.0;  // the first value; moments are kept relative to it
+  double mean_ = 0.0;   // mean of (x - shift_)
+  double m2_ = 0.0;     // sum of squared deviations from the running mean
   double min_ = 0.0;
   double max_ = 0.0;
 };
@@ -58,7 +61,8 @@ class RunningStats {
 /// the bucket. Magnitudes below min_positive share one zero bucket
 /// (represented by 0); negative values use mirrored buckets. Counts live in
 /// dense arrays indexed by bucket, so memory grows with log(max/min) of the
-/// magnitudes seen (about 1400 buckets per six decades at a = 0.005), never
+/// magnitudes seen (about 1400 buckets per six decades at a = 0.005, plus at
+/// most a third for growth slack), never
 /// with the number of values. The bound holds up to floating-point rounding
 /// of the logarithm at bucket edges (a few ulps).
 class LogHistogram {
@@ -72,7 +76,7 @@ class LogHistogram {
   void add(double x, uint64_t weight);
   uint64_t count() const { return count_; }
   /// Nearest-rank quantile (see file comment), clamped to the exact [min, max]
-  /// seen; 0 when empty. Relative error <= relative_error() for values whose
+  /// seen and exactly min / max at the extreme ranks; 0 when empty. Relative error <= relative_error() for values whose
   /// magnitude is >= min_positive.
   double quantile(double q) const;
   /// Exact extremes of the values added; 0 when empty.

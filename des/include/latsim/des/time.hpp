@@ -33,9 +33,10 @@ class Time {
   static constexpr Time ms(int64_t v) { return Time(scaled(v, 1'000'000'000)); }
   static constexpr Time s(int64_t v) { return Time(scaled(v, kTicksPerSecond)); }
   /// Nearest tick to a duration in seconds; throws on NaN or out of range.
-  static Time from_seconds(double seconds);
-  static Time from_ms(double milliseconds) { return from_seconds(milliseconds * 1e-3); }
-  static Time from_us(double microseconds) { return from_seconds(microseconds * 1e-6); }
+  static Time from_seconds(double seconds) { return from_scaled(seconds, 1e12, "s"); }
+  // Scaled straight to ticks: going through seconds would round twice.
+  static Time from_ms(double milliseconds) { return from_scaled(milliseconds, 1e9, "ms"); }
+  static Time from_us(double microseconds) { return from_scaled(microseconds, 1e6, "us"); }
   static constexpr Time zero() { return Time(0); }
   static constexpr Time max() { return Time(std::numeric_limits<int64_t>::max()); }
 
@@ -55,11 +56,27 @@ class Time {
   constexpr Time& operator+=(Time o) { return *this = *this + o; }
   constexpr Time& operator-=(Time o) { return *this = *this - o; }
   /// Integer quotient of two spans (how many whole `o` fit in this).
-  constexpr int64_t operator/(Time o) const { return ticks_ / o.ticks_; }
-  constexpr Time operator%(Time o) const { return Time(ticks_ % o.ticks_); }
+  constexpr int64_t operator/(Time o) const {
+    check_divisor(o);
+    return ticks_ / o.ticks_;
+  }
+  constexpr Time operator%(Time o) const {
+    check_divisor(o);
+    return Time(ticks_ % o.ticks_);
+  }
 
  private:
   constexpr explicit Time(int64_t t) : ticks_(t) {}
+
+  static Time from_scaled(double value, double ticks_per_unit, const char* unit);
+
+  // Division by a zero span, or of the most negative time by -1 ps, has no
+  // int64 result; both are reported instead of crashing.
+  constexpr void check_divisor(Time o) const {
+    if (o.ticks_ == 0) throw std::domain_error("division of simulation time by a zero span");
+    if (o.ticks_ == -1 && ticks_ == std::numeric_limits<int64_t>::min())
+      throw TimeOverflow("simulation time overflow in division");
+  }
 
   static constexpr int64_t checked_add(int64_t a, int64_t b) {
     int64_t r = 0;
