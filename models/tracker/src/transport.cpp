@@ -1,0 +1,70 @@
+#include "latsim/tracker/transport.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+namespace latsim::tracker {
+
+namespace {
+
+void check_order(std::optional<des::Time>& last, des::Time ready_at) {
+  if (last && ready_at < *last)
+    throw std::logic_error("transport records must be delivered in order of ready time (" + ready_at.str() +
+                           " after " + last->str() + ")");
+  last = ready_at;
+}
+
+des::RationalSeconds exact_period(des::Time interval) {
+  const int64_t g = std::gcd(interval.ticks(), des::Time::kTicksPerSecond);
+  return des::RationalSeconds{interval.ticks() / g, des::Time::kTicksPerSecond / g};
+}
+
+}  // namespace
+
+des::Time DirectLink::deliver(des::Time ready_at) {
+  check_order(last_ready_at_, ready_at);
+  return ready_at;
+}
+
+SerialLink::SerialLink(SerialLinkParams params) : params_(params) {
+  if (params.record_bytes < 1) throw std::invalid_argument("serial record must be at least one byte");
+  if (params.bits_per_byte < 1) throw std::invalid_argument("serial bits per byte must be at least one");
+  if (!(params.baud > 0.0) || !std::isfinite(params.baud)) throw std::invalid_argument("baud rate must be positive");
+  if (params.per_char_interrupt_cost < des::Time::zero())
+    throw std::invalid_argument("per-character interrupt cost is negative");
+  if (params.host_mode == SerialLinkParams::Poll) {
+    if (params.poll_interval <= des::Time::zero()) throw std::invalid_argument("poll interval must be positive");
+    polls_ = des::PeriodicSchedule(params.poll_phase, exact_period(params.poll_interval));
+  }
+  character_time_ = arrival_of_character(des::Time::zero(), 1);
+  transmit_time_ = arrival_of_character(des::Time::zero(), params.record_bytes);
+}
+
+des::Time SerialLink::arrival_of_character(des::Time record_start, int64_t i) const {
+  // Character i (1-based) has fully arrived after i * bits_per_byte bit times.
+  const double bits = static_cast<double>(i) * static_cast<double>(params_.bits_per_byte);
+  return record_start + des::Time::from_seconds(bits / params_.baud);
+}
+
+des::Time SerialLink::deliver(des::Time ready_at) {
+  check_order(last_ready_at_, ready_at);
+  const des::Time start = line_free_at_ ? std::max(ready_at, *line_free_at_) : ready_at;
+  const des::Time end = arrival_of_character(start, params_.record_bytes);
+  line_free_at_ = end;
+
+  if (params_.host_mode == SerialLinkParams::Poll) return polls_.at(polls_.index_at_or_after(end));
+
+  if (params_.per_char_interrupt_cost == des::Time::zero()) return end;
+  // Each character's handler starts when the character is in and the
+  // previous handler has returned; a cost above the character time makes
+  // handlers back up, and the backlog carries over to the next record.
+  des::Time handler_done = handler_free_at_.value_or(start);
+  for (int64_t i = 1; i <= params_.record_bytes; ++i)
+    handler_done = std::max(arrival_of_character(start, i), handler_done) + params_.per_char_interrupt_cost;
+  handler_free_at_ = handler_done;
+  return handler_done;
+}
+
+}  // namespace latsim::tracker
