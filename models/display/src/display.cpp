@@ -1,0 +1,110 @@
+#include "latsim/display/display.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace latsim::display {
+
+namespace {
+// Retraces run after other events at the same instant, so a frame that
+// completes exactly at a retrace is swapped in by it.
+constexpr des::Priority kRetracePriority = 10;
+}  // namespace
+
+Display::Display(des::Simulator& sim, RasterTiming timing, int eyes, ScanoutFidelity fidelity, int pixel_stride)
+    : sim_(sim),
+      timing_(timing),
+      fidelity_(fidelity),
+      pixel_stride_(pixel_stride),
+      front_(static_cast<size_t>(eyes), -1),
+      pending_(static_cast<size_t>(eyes), -1) {
+  if (eyes < 1 || eyes > 2) throw std::invalid_argument("a display has one or two eyes");
+  if (pixel_stride < 1) throw std::invalid_argument("pixel stride must be at least 1");
+  kind_retrace_ = sim_.kind("display.retrace");
+  if (fidelity_ == ScanoutFidelity::Line) kind_line_ = sim_.kind("display.line");
+  if (fidelity_ == ScanoutFidelity::Pixel) kind_pixel_ = sim_.kind("display.pixel");
+}
+
+void Display::present_now(int eye, int64_t image_id) { front_.at(eye) = image_id; }
+
+void Display::present_at_next_retrace(int eye, int64_t image_id) { pending_.at(eye) = image_id; }
+
+void Display::on_retrace(std::function<void(int64_t, des::Time)> fn) { retrace_fns_.push_back(std::move(fn)); }
+
+void Display::add_listener(ScanoutListener* listener) { listeners_.push_back(listener); }
+
+void Display::start(des::Time end) {
+  end_ = end;
+  const int64_t first = timing_.field_at_or_after(sim_.now());
+  if (timing_.field_start(first) < end_)
+    sim_.at(timing_.field_start(first), kind_retrace_, [this, first] { retrace(first); }, kRetracePriority);
+}
+
+void Display::retrace(int64_t field) {
+  for (size_t eye = 0; eye < front_.size(); ++eye) {
+    if (pending_[eye] >= 0) {
+      front_[eye] = pending_[eye];
+      pending_[eye] = -1;
+    }
+  }
+  ++fields_shown_;
+  const des::Time now = sim_.now();
+  for (auto& fn : retrace_fns_) fn(field, now);
+  for (auto* l : listeners_)
+    for (int eye = 0; eye < eyes(); ++eye) l->on_field_start(eye, field, now);
+
+  switch (fidelity_) {
+    case ScanoutFidelity::Field:
+      // The whole field is computed now from the content at the retrace:
+      // cheap, but a swap during scanout (tearing) is not seen.
+      for (int j = 0; j < timing_.lines_per_field(); ++j)
+        for (int eye = 0; eye < eyes(); ++eye)
+          emit(eye, field, j, 0, timing_.params().width_px, timing_.line_time(field, j));
+      break;
+    case ScanoutFidelity::Line:
+      sim_.at(timing_.line_time(field, 0), kind_line_, [this, field] { scan_line(field, 0); });
+      break;
+    case ScanoutFidelity::Pixel:
+      sim_.at(timing_.pixel_time(field, 0, 0), kind_pixel_, [this, field] { scan_pixel(field, 0, 0); });
+      break;
+  }
+
+  const int64_t next = field + 1;
+  if (timing_.field_start(next) < end_)
+    sim_.at(timing_.field_start(next), kind_retrace_, [this, next] { retrace(next); }, kRetracePriority);
+}
+
+void Display::scan_line(int64_t field, int line) {
+  for (int eye = 0; eye < eyes(); ++eye) emit(eye, field, line, 0, timing_.params().width_px, sim_.now());
+  const int next = line + 1;
+  if (next < timing_.lines_per_field())
+    sim_.at(timing_.line_time(field, next), kind_line_, [this, field, next] { scan_line(field, next); });
+}
+
+void Display::scan_pixel(int64_t field, int line, int x) {
+  const int width = timing_.params().width_px;
+  const int x_end = std::min(width, x + pixel_stride_);
+  for (int eye = 0; eye < eyes(); ++eye) emit(eye, field, line, x, x_end, sim_.now());
+  int nx = x_end, nl = line;
+  if (nx >= width) {
+    nx = 0;
+    ++nl;
+  }
+  if (nl < timing_.lines_per_field())
+    sim_.at(timing_.pixel_time(field, nl, nx), kind_pixel_, [this, field, nl, nx] { scan_pixel(field, nl, nx); });
+}
+
+void Display::emit(int eye, int64_t field, int line, int x_begin, int x_end, des::Time t) {
+  ScanoutSpan span;
+  span.eye = eye;
+  span.field = field;
+  span.line = line;
+  span.row = timing_.row_of(field, line);
+  span.x_begin = x_begin;
+  span.x_end = x_end;
+  span.photon_time = t;
+  span.image_id = front_[static_cast<size_t>(eye)];
+  for (auto* l : listeners_) l->on_scanout(span);
+}
+
+}  // namespace latsim::display
