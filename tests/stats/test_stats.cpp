@@ -38,10 +38,8 @@ double exact_quantile(std::vector<double> sorted_values, double q) {
   return sorted_values[nearest_rank_index(q, sorted_values.size())];
 }
 
-const std::vector<double>& probe_quantiles() {
-  static const std::vector<double> qs{0.0,  0.001, 0.01, 0.1,   0.25, 0.5,
-                                      0.75, 0.9,   0.99, 0.999, 1.0};
-  return qs;
+std::vector<double> probe_quantiles() {
+  return {0.0, 0.001, 0.01, 0.1, 0.25, 0.5, 0.75, 0.9, 0.99, 0.999, 1.0};
 }
 
 // Checks every probe quantile of `h` against the exact sorted quantile.

@@ -14,6 +14,7 @@
 // between standard libraries.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string_view>
 #include <utility>
