@@ -130,7 +130,7 @@ TEST_CASE("jitter larger than the period never reorders samples", "[tracker]") {
   CHECK(clamped > 0);  // the clamp was exercised
 }
 
-TEST_CASE("trackers are deterministic per seed; noise does not disturb jitter", "[tracker]") {
+TEST_CASE("trackers are deterministic per seed and noise does not disturb jitter", "[tracker]") {
   TrackerParams p = ntsc_params();
   p.jitter = Time::ms(1);
   TrackerParams noisy = p;

@@ -87,7 +87,7 @@ TEST_CASE("polling delivers at the first poll at or after completion", "[transpo
   CHECK(link.deliver(Time::ms(67) - tx + Time::ps(1)) > Time::ms(67));
 }
 
-TEST_CASE("polling adds a wait uniform on [0, P) for an incommensurate tracker", "[transport]") {
+TEST_CASE("polling adds a wait uniform between 0 and the poll interval", "[transport]") {
   SerialLinkParams p = serial(SerialLinkParams::Poll);
   p.baud = 38400.0;  // transmission (8.3 ms) well under the tracker period
   p.poll_interval = Time::ms(30);
