@@ -75,13 +75,19 @@ Aabb RegionGrid::region_bounds(RegionIndex region) const {
 std::vector<RegionIndex> RegionGrid::regions_of(const Aabb& box) const {
   std::vector<RegionIndex> regions;
   if (box.empty()) return regions;
+  // The grid is closed on its far side: geometry lying on the far world boundary (a wall
+  // at x = max) belongs to the last region instead of to none.
+  const double end_x = origin_m_.x + count_x_ * region_size_m_;
+  const double end_z = origin_m_.z + count_z_ * region_size_m_;
+  if (box.max_m.x < origin_m_.x || box.max_m.z < origin_m_.z || box.min_m.x > end_x || box.min_m.z > end_z) {
+    return regions;
+  }
   auto [x0, x1] = cell_range(box.min_m.x, box.max_m.x, origin_m_.x, region_size_m_);
   auto [z0, z1] = cell_range(box.min_m.z, box.max_m.z, origin_m_.z, region_size_m_);
-  if (x1 < 0 || z1 < 0 || x0 >= count_x_ || z0 >= count_z_) return regions;
-  x0 = std::max(x0, 0);
-  z0 = std::max(z0, 0);
-  x1 = std::min(x1, count_x_ - 1);
-  z1 = std::min(z1, count_z_ - 1);
+  x0 = std::clamp(x0, 0, count_x_ - 1);
+  z0 = std::clamp(z0, 0, count_z_ - 1);
+  x1 = std::clamp(x1, x0, count_x_ - 1);
+  z1 = std::clamp(z1, z0, count_z_ - 1);
   for (int iz = z0; iz <= z1; ++iz) {
     for (int ix = x0; ix <= x1; ++ix) regions.push_back({ix, iz});
   }

@@ -33,7 +33,8 @@ class RegionGrid {
   int region_count() const { return count_x_ * count_z_; }
   double region_size_m() const { return region_size_m_; }
 
-  /// Region containing the point, not clamped (may lie outside the grid).
+  /// Region containing the point, not clamped (may lie outside the grid; a point on the
+  /// far world boundary gets index count, one past the last region).
   RegionIndex region_of(const glm::dvec3& point_m) const;
   bool contains(RegionIndex region) const;
   /// Row-major index iz * count_x + ix; throws std::out_of_range outside the grid.
@@ -42,7 +43,8 @@ class RegionGrid {
   /// The column of a region, y spanning the world bounds.
   Aabb region_bounds(RegionIndex region) const;
   /// Grid regions whose columns overlap the box (ix fastest). An extent that ends exactly
-  /// on a boundary does not reach into the next region; a box outside the grid gives none.
+  /// on an inner boundary does not reach into the next region; geometry on the far world
+  /// boundary belongs to the last region; a box outside the grid gives none.
   std::vector<RegionIndex> regions_of(const Aabb& box) const;
   /// For every region (by linear index), the ids of the scene objects whose bounds overlap it.
   std::vector<std::vector<uint32_t>> objects_per_region(const Scene& scene) const;
