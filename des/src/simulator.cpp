@@ -64,6 +64,13 @@ const std::string& Simulator::kind_name(KindId id) const {
   return kinds_[id].name;
 }
 
+void Simulator::reserve(std::size_t n) {
+  slots_.reserve(n);
+  free_slots_.reserve(n);
+  quaternary_.reserve(queue_kind_ == QueueKind::quaternary_heap ? n : 0);
+  binary_.reserve(queue_kind_ == QueueKind::binary_heap ? n : 0);
+}
+
 uint32_t Simulator::grow_slots() {
   if (slots_.size() >= UINT32_MAX) throw std::length_error("more than 2^32-1 pending events");
   slots_.emplace_back();
@@ -127,6 +134,9 @@ void Simulator::run_loop(Q& queue, int64_t limit_ticks) {
     const KindId k = slot.kind;
     if (++slot.generation == 0) slot.generation = 1;
     free_slots_.push_back(e.slot);
+    // The next event's callback is a cache miss away in a large slab: start
+    // loading the candidates now, while this event runs.
+    for (const QueueEntry& next : queue.successors()) __builtin_prefetch(&slots_[next.slot]);
     now_ = Time::ps(e.time_ticks);
     --live_;
     ++executed_;

@@ -114,6 +114,9 @@ class Simulator {
   /// Ends the current run() / run_until() after the running event returns.
   void stop() { stop_requested_ = true; }
 
+  /// Pre-sizes storage for n simultaneously pending events (optional).
+  void reserve(std::size_t n);
+
   bool empty() const { return live_ == 0; }
   std::size_t pending() const { return live_; }
   uint64_t events_executed() const { return executed_; }
@@ -146,13 +149,16 @@ class Simulator {
   using Callback = InlineFunction<void(), 32>;
 
   // A callback with what the loop needs to run and order it; exactly one
-  // cache line. `fn` is empty while the slot is free or cancelled.
-  struct Slot {
+  // cache line (aligned so, or a prefetch would fetch only half of it).
+  // `fn` is empty while the slot is free or cancelled.
+  struct alignas(64) Slot {
     Callback fn;
     uint64_t seq = 0;
     uint32_t generation = 1;
     KindId kind = 0;
   };
+
+  static_assert(sizeof(Callback) + 16 <= 64, "a slot must fit one cache line");
 
   struct QueueEntry {
     int64_t time_ticks;
