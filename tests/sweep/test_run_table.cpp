@@ -1,0 +1,158 @@
+// Tests for the result tables: results.csv rows and results.sqlite contents,
+// and the sweep directory's resume bookkeeping (temporary files, lock).
+#include <catch2/catch.hpp>
+
+#include <sqlite3.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "results_db.hpp"
+#include "run_table.hpp"
+#include "sweep_store.hpp"
+
+using latsim::app::csv_field;
+using latsim::app::find_figure;
+using latsim::app::format_number;
+using latsim::app::is_temporary_name;
+using latsim::app::results_csv;
+using latsim::app::RunRecord;
+using latsim::app::SweepStore;
+using Json = nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+Json summary_with(double mtp_mean_ms) {
+  return {{"events", 1234},
+          {"wall_s", 0.5},
+          {"fingerprint", "abc"},
+          {"figures",
+           {{"motion_to_photon_ms",
+             {{"count", 10}, {"mean", mtp_mean_ms}, {"p50", 20.0}, {"p99", 30.5}, {"max", 31.0},
+              {"histogram", {{10.0, 4}, {20.0, 6}}}}},
+            {"render_latency_ms", 16.5},
+            {"frame_rate_hz", 60},
+            {"missed_refreshes", 0},
+            {"pxpl5", {{"gp_utilisation", 0.75}}}}},
+          {"models", {{"tracker", {{"events", 600}, {"wall_s", 0.01}}}}}};
+}
+
+std::vector<RunRecord> two_records() {
+  return {RunRecord{"00000000000000aa", 0, 1, 0, {Json(60)}, summary_with(25.25)},
+          RunRecord{"00000000000000bb", 1, 1, 0, {Json("60000/1001")}, summary_with(26.0)}};
+}
+
+fs::path scratch_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+int64_t count_rows(sqlite3* db, const std::string& sql) {
+  sqlite3_stmt* stmt = nullptr;
+  REQUIRE(sqlite3_prepare_v2(db, sql.c_str(), -1, &stmt, nullptr) == SQLITE_OK);
+  REQUIRE(sqlite3_step(stmt) == SQLITE_ROW);
+  const int64_t n = sqlite3_column_int64(stmt, 0);
+  sqlite3_finalize(stmt);
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("find_figure looks under figures, then at the root; a bare distribution is its mean", "[sweep]") {
+  const Json s = summary_with(25.25);
+  CHECK(*find_figure(s, "motion_to_photon_ms.p99") == 30.5);
+  CHECK(*find_figure(s, "motion_to_photon_ms") == 25.25);
+  CHECK(*find_figure(s, "events") == 1234);
+  CHECK(*find_figure(s, "pxpl5.gp_utilisation") == 0.75);
+  CHECK_FALSE(find_figure(s, "registration_error_arcmin.mean"));
+  CHECK_FALSE(find_figure(s, "fingerprint"));
+}
+
+TEST_CASE("numbers print in their shortest exact form and CSV fields are quoted when needed", "[sweep]") {
+  CHECK(format_number(0.1) == "0.1");
+  CHECK(format_number(60) == "60");
+  CHECK(std::stod(format_number(1.0 / 3.0)) == 1.0 / 3.0);
+  CHECK(csv_field("60000/1001") == "60000/1001");
+  CHECK(csv_field("a,b") == "\"a,b\"");
+  CHECK(csv_field("say \"hi\"") == "\"say \"\"hi\"\"\"");
+}
+
+TEST_CASE("results.csv has one row per run in the given order with the headline figures", "[sweep]") {
+  const std::string csv = results_csv({"/display/refresh_hz"}, two_records());
+  std::istringstream lines(csv);
+  std::string header, first, second, extra;
+  std::getline(lines, header);
+  std::getline(lines, first);
+  std::getline(lines, second);
+  CHECK_FALSE(std::getline(lines, extra));
+  CHECK(header.rfind("run_id,point,/display/refresh_hz,seed,replication,mtp_mean_ms,mtp_p50_ms,mtp_p99_ms,mtp_max_ms,", 0) == 0);
+  CHECK_THAT(header, Catch::EndsWith(",events,wall_s"));
+  CHECK(first.rfind("00000000000000aa,0,60,1,0,25.25,20,30.5,31,16.5,", 0) == 0);
+  CHECK(second.rfind("00000000000000bb,1,60000/1001,1,0,26,", 0) == 0);
+  // Registration error is absent from these summaries: the cells stay empty.
+  CHECK_THAT(first, Catch::Contains(",60,0,,,1234,0.5"));
+}
+
+TEST_CASE("results.sqlite holds runs, figures, distributions, histograms and models", "[sweep]") {
+  const fs::path dir = scratch_dir("latsim_results_db");
+  const fs::path file = dir / "results.sqlite";
+  latsim::app::write_results_db(file, {"/display/refresh_hz"}, two_records());
+  REQUIRE(fs::exists(file));
+  for (const auto& entry : fs::directory_iterator(dir)) CHECK_FALSE(is_temporary_name(entry.path().filename().string()));
+  sqlite3* db = nullptr;
+  REQUIRE(sqlite3_open_v2(file.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK);
+  CHECK(count_rows(db, "SELECT COUNT(*) FROM runs") == 2);
+  CHECK(count_rows(db, "SELECT COUNT(*) FROM runs WHERE \"/display/refresh_hz\" = 60") == 1);
+  CHECK(count_rows(db, "SELECT COUNT(*) FROM runs WHERE \"/display/refresh_hz\" = '60000/1001'") == 1);
+  CHECK(count_rows(db, "SELECT COUNT(*) FROM figures WHERE name = 'pxpl5.gp_utilisation' AND value = 0.75") == 2);
+  CHECK(count_rows(db, "SELECT COUNT(*) FROM distributions WHERE name = 'motion_to_photon_ms' AND stat = 'p99'") == 2);
+  CHECK(count_rows(db, "SELECT COUNT(*) FROM histograms WHERE name = 'motion_to_photon_ms'") == 4);
+  CHECK(count_rows(db, "SELECT COUNT(*) FROM models WHERE model = 'tracker' AND events = 600") == 2);
+  sqlite3_close(db);
+  // Writing again replaces the file whole.
+  latsim::app::write_results_db(file, {"/display/refresh_hz"}, {two_records()[0]});
+  REQUIRE(sqlite3_open_v2(file.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK);
+  CHECK(count_rows(db, "SELECT COUNT(*) FROM runs") == 1);
+  sqlite3_close(db);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("temporary file names are recognised", "[sweep]") {
+  CHECK(is_temporary_name("summary.json.tmp.12345"));
+  CHECK(is_temporary_name("results.csv.tmp"));
+  CHECK_FALSE(is_temporary_name("summary.json"));
+  CHECK_FALSE(is_temporary_name("timeline.tmp.csv"));
+  CHECK_FALSE(is_temporary_name("x.tmp.12a"));
+  CHECK_FALSE(is_temporary_name(".tmp"));
+}
+
+TEST_CASE("a sweep directory: finished means summary.json exists; stray temporaries are removed; one writer", "[sweep]") {
+  const fs::path dir = scratch_dir("latsim_sweep_store");
+  {
+    SweepStore store(dir);
+    fs::create_directories(store.run_dir("r1"));
+    fs::create_directories(store.run_dir("r2"));
+    std::ofstream(store.summary_file("r1")) << R"({"events": 5})";
+    // r2 was killed while writing its summary: only the temporary file exists.
+    std::ofstream(store.run_dir("r2") / "summary.json.tmp.4242") << R"({"eve)";
+    std::ofstream(store.run_dir("r2") / "timeline.csv") << "stage,frame,eye,unit,start_ms,end_ms\n";
+    std::ofstream(dir / "results.csv.tmp.4242") << "run_id";
+    CHECK(store.is_finished("r1"));
+    CHECK_FALSE(store.is_finished("r2"));
+    CHECK(store.load_summary("r1")->at("events") == 5);
+    CHECK_FALSE(store.load_summary("r2"));
+    CHECK_THROWS_WITH(SweepStore(dir), Catch::Contains("another sweep is writing"));
+    CHECK(store.remove_temporaries() == 2);
+    CHECK_FALSE(fs::exists(store.run_dir("r2") / "summary.json.tmp.4242"));
+    CHECK(fs::exists(store.run_dir("r2") / "timeline.csv"));
+    CHECK(fs::exists(store.summary_file("r1")));
+  }
+  // The lock goes with the store.
+  CHECK_NOTHROW(SweepStore(dir));
+  fs::remove_all(dir);
+}

@@ -1,0 +1,185 @@
+// Tests for sweep files: expansion (cartesian, zip, ranges), run ids, and
+// errors that name the sweep file and the JSON pointer.
+#include <catch2/catch.hpp>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+
+#include "sweep_plan.hpp"
+
+using latsim::app::expand_points;
+using latsim::app::expand_range;
+using latsim::app::hash_hex;
+using latsim::app::SweepError;
+using latsim::app::SweepPlan;
+using Json = nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A scratch directory holding a small base scenario, removed at scope exit.
+struct Scratch {
+  fs::path dir;
+  Scratch() {
+    dir = fs::temp_directory_path() / ("latsim_sweep_plan_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::ofstream(dir / "base.json") << R"({"duration_s": 1, "seed": 7,
+      "display": {"refresh_hz": 60, "interlaced": false},
+      "transport": {"type": "serial", "poll_interval_ms": 0}})";
+  }
+  ~Scratch() { fs::remove_all(dir); }
+  fs::path sweep_file() const { return dir / "sweep.json"; }
+};
+
+// Stands in for the scenario reader: fills /tracker/rate_hz as a default.
+Json fake_resolve(const Json& scenario, const fs::path&) {
+  Json resolved = scenario;
+  resolved["tracker"]["rate_hz"] = 60;
+  return resolved;
+}
+
+SweepPlan plan_of(const Scratch& s, const Json& sweep) { return SweepPlan::from_json(sweep, s.sweep_file(), fake_resolve); }
+
+// The SweepError message of a sweep that must be rejected.
+std::string error_of(const Scratch& s, const Json& sweep) {
+  try {
+    (void)plan_of(s, sweep);
+  } catch (const SweepError& e) {
+    return e.what();
+  }
+  FAIL("the sweep was accepted");
+  return {};
+}
+
+}  // namespace
+
+TEST_CASE("cartesian sweeps vary the last axis fastest, replications innermost", "[sweep]") {
+  Scratch s;
+  const Json sweep = {{"base", "base.json"},
+                      {"replications", 2},
+                      {"axes", {{{"pointer", "/display/refresh_hz"}, {"values", {60, "60000/1001"}}},
+                                {{"pointer", "/transport/poll_interval_ms"}, {"range", {{"from", 0}, {"to", 30}, {"step", 10}}}}}}};
+  const SweepPlan plan = plan_of(s, sweep);
+  REQUIRE(plan.point_count() == 8);
+  REQUIRE(plan.runs().size() == 16);
+  const auto& r = plan.runs();
+  CHECK(r[0].scenario["display"]["refresh_hz"] == 60);
+  CHECK(r[0].scenario["transport"]["poll_interval_ms"] == 0);
+  CHECK(r[0].replication == 0);
+  CHECK(r[1].replication == 1);
+  CHECK(r[1].point == 0);
+  CHECK(r[2].scenario["transport"]["poll_interval_ms"] == 10);
+  CHECK(r[15].scenario["display"]["refresh_hz"] == "60000/1001");
+  CHECK(r[15].scenario["transport"]["poll_interval_ms"] == 30);
+  // The base scenario's seed is kept when the sweep names none.
+  CHECK(r[0].seed == 7);
+  std::set<std::string> ids;
+  for (const auto& run : r) ids.insert(run.run_id);
+  CHECK(ids.size() == r.size());
+  CHECK(plan.describe(r[3]) == "/display/refresh_hz=60, /transport/poll_interval_ms=10");
+}
+
+TEST_CASE("zip sweeps pair the i-th values and need equal lengths", "[sweep]") {
+  Scratch s;
+  Json sweep = {{"base", "base.json"},
+                {"mode", "zip"},
+                {"axes", {{{"pointer", "/display/refresh_hz"}, {"values", {60, 72, 90}}},
+                          {{"pointer", "/transport/poll_interval_ms"}, {"values", {1, 2, 3}}}}}};
+  const SweepPlan plan = plan_of(s, sweep);
+  REQUIRE(plan.runs().size() == 3);
+  CHECK(plan.runs()[2].scenario["display"]["refresh_hz"] == 90);
+  CHECK(plan.runs()[2].scenario["transport"]["poll_interval_ms"] == 3);
+  sweep["axes"][1]["values"] = {1, 2};
+  CHECK_THAT(error_of(s, sweep), Catch::Contains("sweep.json: /axes/1: zip mode needs axes of equal length"));
+}
+
+TEST_CASE("ranges include both ends, keep integers integral, and reject bad steps", "[sweep]") {
+  const fs::path f = "s.json";
+  auto ints = expand_range({{"from", 0}, {"to", 30}, {"step", 10}}, f, "/r");
+  REQUIRE(ints.size() == 4);
+  CHECK(ints[3].is_number_integer());
+  CHECK(ints[3] == 30);
+  auto reals = expand_range({{"from", 0.5}, {"to", 1.5}, {"step", 0.1}}, f, "/r");
+  REQUIRE(reals.size() == 11);
+  CHECK(reals[10].get<double>() == Approx(1.5));
+  auto down = expand_range({{"from", 3}, {"to", 0}, {"step", -1}}, f, "/r");
+  REQUIRE(down.size() == 4);
+  CHECK(down[3] == 0);
+  CHECK_THROWS_WITH(expand_range({{"from", 0}, {"to", 3}, {"step", 0}}, f, "/r"), Catch::Contains("/r/step"));
+  CHECK_THROWS_WITH(expand_range({{"from", 0}, {"to", 3}, {"step", -1}}, f, "/r"), Catch::Contains("never reaches"));
+  CHECK_THROWS_WITH(expand_range({{"from", 0}, {"step", 1}}, f, "/r"), Catch::Contains("/r/to"));
+}
+
+TEST_CASE("expand_points enumerates like an odometer", "[sweep]") {
+  const auto cart = expand_points({2, 3}, false);
+  REQUIRE(cart.size() == 6);
+  CHECK(cart[1] == std::vector<size_t>{0, 1});
+  CHECK(cart[3] == std::vector<size_t>{1, 0});
+  const auto zip = expand_points({3, 3}, true);
+  REQUIRE(zip.size() == 3);
+  CHECK(zip[2] == std::vector<size_t>{2, 2});
+}
+
+TEST_CASE("an axis pointer missing from the base scenario is reported with its pointer", "[sweep]") {
+  Scratch s;
+  Json sweep = {{"base", "base.json"},
+                {"axes", {{{"pointer", "/display/refresh_hz"}, {"values", {60}}},
+                          {{"pointer", "/display/no_such_key"}, {"values", {1, 2}}}}}};
+  const std::string message = error_of(s, sweep);
+  CHECK_THAT(message, Catch::Contains("sweep.json: /axes/1/pointer:"));
+  CHECK_THAT(message, Catch::Contains("/display/no_such_key"));
+  // A key the reader fills with a default is a fine axis.
+  sweep["axes"][1]["pointer"] = "/tracker/rate_hz";
+  CHECK(plan_of(s, sweep).runs().size() == 2);
+}
+
+TEST_CASE("sweep file errors name the JSON pointer", "[sweep]") {
+  Scratch s;
+  const Json axis = {{"pointer", "/display/refresh_hz"}, {"values", {60}}};
+  CHECK_THAT(error_of(s, {{"base", "missing.json"}, {"axes", {axis}}}), Catch::Contains("/base: base scenario not found"));
+  CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", Json::array()}}), Catch::Contains("/axes: expected a non-empty"));
+  CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {axis}}, {"mode", "diagonal"}}), Catch::Contains("/mode:"));
+  CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {axis}}, {"replications", 0}}), Catch::Contains("/replications:"));
+  CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {axis}}, {"colour", 1}}), Catch::Contains("/colour: unknown key"));
+  CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {{{"pointer", "display"}, {"values", {1}}}}}}),
+             Catch::Contains("/axes/0/pointer: \"display\" is not a JSON pointer"));
+  CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {{{"pointer", "/duration_s"}, {"values", {1, 2, 1}}}}}}),
+             Catch::Contains("/axes/0/values/2: value 1 appears twice"));
+  CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {axis, axis}}}), Catch::Contains("/axes/1/pointer: "));
+  CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {axis}}, {"overrides", {{"/nowhere/x", 1}}}}),
+             Catch::Contains("/overrides/~1nowhere~1x: "));
+}
+
+TEST_CASE("overrides and the sweep seed apply to every run and change its id", "[sweep]") {
+  Scratch s;
+  Json sweep = {{"base", "base.json"}, {"axes", {{{"pointer", "/display/refresh_hz"}, {"values", {60}}}}}};
+  const std::string plain_id = plan_of(s, sweep).runs()[0].run_id;
+  CHECK(plan_of(s, sweep).runs()[0].run_id == plain_id);  // deterministic
+  sweep["seed"] = 99;
+  sweep["overrides"] = {{"/duration_s", 0.25}};
+  const SweepPlan plan = plan_of(s, sweep);
+  CHECK(plan.runs()[0].seed == 99);
+  CHECK(plan.runs()[0].scenario["seed"] == 99);
+  CHECK(plan.runs()[0].scenario["duration_s"] == 0.25);
+  CHECK(plan.runs()[0].run_id != plain_id);
+}
+
+TEST_CASE("hash_hex is 64-bit FNV-1a in 16 hex digits", "[sweep]") {
+  CHECK(hash_hex("") == "cbf29ce484222325");
+  CHECK(hash_hex("a") == "af63dc4c8601ec8c");
+}
+
+TEST_CASE("plan.json lists every run with its values", "[sweep]") {
+  Scratch s;
+  const Json sweep = {{"base", "base.json"}, {"replications", 3}, {"axes", {{{"pointer", "/display/interlaced"}, {"values", {true, false}}}}}};
+  const Json j = plan_of(s, sweep).to_json();
+  REQUIRE(j["runs"].size() == 6);
+  CHECK(j["runs"][5]["values"][0] == false);
+  CHECK(j["runs"][5]["replication"] == 2);
+  CHECK(j["points"] == 2);
+}
