@@ -1,0 +1,188 @@
+"""Reading latsim result directories: a single run, a sweep, or a directory of runs.
+
+Only result files are read (summary.json, results.csv, timeline.csv); nothing
+here knows how the simulator works. Iteration is always in sorted or file
+order so that every output derived from it is reproducible.
+"""
+
+import csv
+import json
+import math
+import os
+from fractions import Fraction
+
+# Headline columns of the latency table: (column name, figure path, unit label).
+HEADLINE = [
+    ("mtp_mean_ms", "motion_to_photon_ms.mean", "MTP mean (ms)"),
+    ("mtp_p50_ms", "motion_to_photon_ms.p50", "MTP p50 (ms)"),
+    ("mtp_p99_ms", "motion_to_photon_ms.p99", "MTP p99 (ms)"),
+    ("mtp_max_ms", "motion_to_photon_ms.max", "MTP max (ms)"),
+    ("render_latency_ms", "render_latency_ms", "rendering latency (ms)"),
+    ("render_latency_fields", "render_latency_fields", "rendering latency (fields)"),
+    ("frame_rate_hz", "frame_rate_hz", "frame rate (Hz)"),
+    ("registration_error_mean_arcmin", "registration_error_arcmin.mean", "registration error mean (arcmin)"),
+    ("registration_error_p99_arcmin", "registration_error_arcmin.p99", "registration error p99 (arcmin)"),
+]
+
+
+class Row:
+    """One line of the latency table: a run, or a sweep point with its replications."""
+
+    def __init__(self, name, run_dirs, summaries, axis_values=None):
+        self.name = name
+        self.run_dirs = run_dirs
+        self.summaries = summaries
+        self.axis_values = axis_values or {}
+
+    def pipeline(self):
+        scenario = self.summaries[0].get("scenario", {}) if self.summaries else {}
+        return scenario.get("pipeline", {}).get("type", "")
+
+    def values(self, path):
+        """The figure at `path` in every replication that has it."""
+        found = [find_figure(s, path) for s in self.summaries]
+        return [v for v in found if v is not None]
+
+    def mean(self, path):
+        vals = self.values(path)
+        return sum(vals) / len(vals) if vals else None
+
+
+class Collection:
+    """The rows of one result directory and how it was laid out."""
+
+    def __init__(self, kind, directory, rows, axes=None, runs=None):
+        self.kind = kind  # "run", "runs" or "sweep"
+        self.directory = directory
+        self.rows = rows
+        self.axes = axes or []
+        self.runs = runs or []  # sweep only: one dict per results.csv line
+
+
+def find_figure(summary, path):
+    """A number by dotted path, first under "figures" then from the root; a distribution means its mean."""
+    for root in (summary.get("figures", {}), summary):
+        node = root
+        for key in path.split("."):
+            if not isinstance(node, dict) or key not in node:
+                node = None
+                break
+            node = node[key]
+        if isinstance(node, dict) and "mean" in node:
+            node = node["mean"]
+        if isinstance(node, (int, float)) and not isinstance(node, bool):
+            return float(node)
+    return None
+
+
+def read_json(path):
+    with open(path, encoding="utf-8") as f:
+        return json.load(f)
+
+
+def as_number(text):
+    """A swept value as a number when it is one ("60", "0.5", "60000/1001"), else None."""
+    if isinstance(text, (int, float)) and not isinstance(text, bool):
+        return float(text)
+    try:
+        value = float(Fraction(str(text)))
+    except (ValueError, ZeroDivisionError):
+        return None
+    return value if math.isfinite(value) else None
+
+
+def short_axis_name(pointer, pointers):
+    """The last component of a pointer, or the whole pointer when that would be ambiguous."""
+    last = pointer.rsplit("/", 1)[-1]
+    clashes = [p for p in pointers if p.rsplit("/", 1)[-1] == last]
+    return last if len(clashes) == 1 else pointer.strip("/").replace("/", ".")
+
+
+def load(directory):
+    """Reads a run directory, a sweep directory, or a directory of run directories."""
+    if os.path.isfile(os.path.join(directory, "results.csv")) and os.path.isdir(os.path.join(directory, "runs")):
+        return _load_sweep(directory)
+    if os.path.isfile(os.path.join(directory, "summary.json")):
+        summary = read_json(os.path.join(directory, "summary.json"))
+        name = os.path.basename(os.path.normpath(directory))
+        return Collection("run", directory, [Row(name, [directory], [summary])])
+    rows = []
+    for entry in sorted(os.listdir(directory)):
+        run_dir = os.path.join(directory, entry)
+        summary_file = os.path.join(run_dir, "summary.json")
+        if os.path.isfile(summary_file):
+            rows.append(Row(entry, [run_dir], [read_json(summary_file)]))
+    if not rows:
+        raise ValueError(f"{directory}: no summary.json, results.csv or run subdirectories found")
+    return Collection("runs", directory, rows)
+
+
+def _load_sweep(directory):
+    with open(os.path.join(directory, "results.csv"), encoding="utf-8", newline="") as f:
+        runs = list(csv.DictReader(f))
+    if not runs:
+        raise ValueError(f"{directory}/results.csv: no finished runs")
+    axes = [c for c in runs[0].keys() if c.startswith("/")]
+    by_point = {}
+    for run in runs:
+        by_point.setdefault(int(run["point"]), []).append(run)
+    rows = []
+    for point in sorted(by_point):
+        members = sorted(by_point[point], key=lambda r: int(r["replication"]))
+        dirs = [os.path.join(directory, "runs", r["run_id"]) for r in members]
+        summaries = [read_json(os.path.join(d, "summary.json")) for d in dirs]
+        values = {a: members[0][a] for a in axes}
+        name = ", ".join(f"{short_axis_name(a, axes)}={values[a]}" for a in axes)
+        rows.append(Row(name, dirs, summaries, values))
+    return Collection("sweep", directory, rows, axes, runs)
+
+
+def histogram_edges(distribution):
+    """(edges, counts) of a distribution's histogram: len(edges) == len(counts) + 1.
+
+    Buckets are [lower edge, count]; each bucket ends where the next begins and
+    the last ends at the distribution's max (or one bucket width on).
+    """
+    buckets = distribution.get("histogram") or []
+    if not buckets:
+        return [], []
+    lowers = [float(b[0]) for b in buckets]
+    counts = [float(b[1]) for b in buckets]
+    width = lowers[-1] - lowers[-2] if len(lowers) > 1 else 0.0
+    last = max(float(distribution.get("max", lowers[-1])), lowers[-1] + width)
+    if last <= lowers[-1]:
+        last = lowers[-1] + 1e-9
+    return lowers + [last], counts
+
+
+# Two-sided 95 % quantiles of Student's t by degrees of freedom.
+_T975 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306, 9: 2.262,
+         10: 2.228, 11: 2.201, 12: 2.179, 13: 2.160, 14: 2.145, 15: 2.131, 16: 2.120, 17: 2.110,
+         18: 2.101, 19: 2.093, 20: 2.086, 21: 2.080, 22: 2.074, 23: 2.069, 24: 2.064, 25: 2.060,
+         26: 2.056, 27: 2.052, 28: 2.048, 29: 2.045, 30: 2.042, 40: 2.021, 60: 2.000, 120: 1.980}
+
+
+def t975(df):
+    """Student's t 97.5 % quantile; between tabulated points, linear in 1/df (exact to 3 decimals)."""
+    if df in _T975:
+        return _T975[df]
+    keys = sorted(_T975)
+    if df > keys[-1]:
+        lo, hi, t_lo, t_hi = keys[-1], math.inf, _T975[keys[-1]], 1.960
+    else:
+        hi = next(k for k in keys if k > df)
+        lo = max(k for k in keys if k < df)
+        t_lo, t_hi = _T975[lo], _T975[hi]
+    inv = lambda d: 0.0 if math.isinf(d) else 1.0 / d
+    frac = (inv(lo) - inv(df)) / (inv(lo) - inv(hi))
+    return t_lo + frac * (t_hi - t_lo)
+
+
+def mean_ci95(values):
+    """(mean, half width of the 95 % t-interval); the half width is 0 for fewer than two values."""
+    n = len(values)
+    mean = sum(values) / n
+    if n < 2:
+        return mean, 0.0
+    var = sum((v - mean) ** 2 for v in values) / (n - 1)
+    return mean, t975(n - 1) * math.sqrt(var / n)

@@ -1,0 +1,157 @@
+"""The Python report renders all three layouts of result directory, from a
+fixture this script generates, and renders them reproducibly.
+
+Usage: test_report.py SOURCE_DIR SCRATCH_DIR
+"""
+
+import csv
+import hashlib
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+SOURCE_DIR, SCRATCH = sys.argv[1], sys.argv[2]
+REPORT = os.path.join(SOURCE_DIR, "analysis", "report.py")
+sys.path.insert(0, os.path.join(SOURCE_DIR, "analysis"))
+
+import latsim_results  # noqa: E402
+
+failures = []
+checked = []
+
+
+def check(condition, message):
+    checked.append(message)
+    if not condition:
+        failures.append(message)
+        print("FAILED:", message)
+
+
+def summary(pipeline, mtp_mean_ms, refresh_hz=60):
+    lower = [mtp_mean_ms - 8 + 2 * i for i in range(8)]
+    return {
+        "latsim": {"version": "0.1.0", "git_revision": "fixture"},
+        "scenario": {"pipeline": {"type": pipeline}, "display": {"refresh_hz": refresh_hz}},
+        "figures": {
+            "motion_to_photon_ms": {"count": 100, "mean": mtp_mean_ms, "p50": mtp_mean_ms, "p99": mtp_mean_ms + 7,
+                                    "max": mtp_mean_ms + 8, "histogram": [[e, 5 + (i % 3) * 10] for i, e in enumerate(lower)]},
+            "render_latency_ms": {"count": 10, "mean": 16.7},
+            "render_latency_fields": {"count": 10, "mean": 1.0},
+            "registration_error_arcmin": {"count": 100, "mean": mtp_mean_ms / 10, "p99": mtp_mean_ms / 5},
+            "frame_rate_hz": 60, "missed_refreshes": 0,
+        },
+        "events": 1000, "wall_s": 0.01,
+    }
+
+
+def write_run(run_dir, s, timeline=True):
+    os.makedirs(run_dir, exist_ok=True)
+    with open(os.path.join(run_dir, "summary.json"), "w") as f:
+        json.dump(s, f)
+    if timeline:
+        with open(os.path.join(run_dir, "timeline.csv"), "w") as f:
+            f.write("stage,frame,eye,unit,start_ms,end_ms\n")
+            for frame in range(8):
+                t = frame * 16.683
+                f.write(f"TRANSFORM,{frame},-1,GP,{t:.3f},{t + 5:.3f}\n")
+                f.write(f"RENDER,{frame},0,R1,{t + 5:.3f},{t + 12:.3f}\n")
+                f.write(f"RENDER,{frame},1,R2,{t + 5:.3f},{t + 12.5:.3f}\n")
+                f.write(f"SCANOUT,{frame},-1,display,{t + 16.683:.3f},{t + 33.366:.3f}\n")
+
+
+def make_sweep(root):
+    """Two axes (refresh 60 / 60000/1001, poll 0/10/20), 3 replications."""
+    axes = ["/display/refresh_hz", "/transport/poll_interval_ms"]
+    rows, point = [], 0
+    for refresh in ["60", "60000/1001"]:
+        for poll in [0, 10, 20]:
+            for rep in range(3):
+                run_id = f"{point:08x}{rep:08x}"
+                mean = 30 + poll / 2 + rep * 0.5 + (0.1 if refresh == "60" else 0)
+                write_run(os.path.join(root, "runs", run_id), summary("double_buffer", mean, refresh), timeline=point == 0)
+                rows.append([run_id, point, refresh, poll, 1, rep, mean])
+            point += 1
+    with open(os.path.join(root, "results.csv"), "w", newline="") as f:
+        w = csv.writer(f, lineterminator="\n")
+        w.writerow(["run_id", "point"] + axes + ["seed", "replication", "mtp_mean_ms"])
+        w.writerows(rows)
+
+
+def run_report(directory):
+    proc = subprocess.run([sys.executable, REPORT, directory], capture_output=True, text=True)
+    check(proc.returncode == 0, f"report.py {directory} exited {proc.returncode}: {proc.stderr}")
+
+
+def digest(directory):
+    """Hashes of every output file under directory, by relative path."""
+    out = {}
+    for base, _, files in sorted(os.walk(directory)):
+        for name in sorted(files):
+            if name.endswith((".png", ".svg", ".md")) or name == "latency_table.csv":
+                path = os.path.join(base, name)
+                with open(path, "rb") as f:
+                    out[os.path.relpath(path, directory)] = hashlib.sha256(f.read()).hexdigest()
+    return out
+
+
+shutil.rmtree(SCRATCH, ignore_errors=True)
+sweep_dir, runs_dir, single_dir = (os.path.join(SCRATCH, n) for n in ("sweep", "runs", "single"))
+make_sweep(sweep_dir)
+for name, pipeline, mean in [("hmd_double_buffer", "double_buffer", 45.0), ("pxpl5_slats", "pxpl5_slats", 25.0)]:
+    write_run(os.path.join(runs_dir, name), summary(pipeline, mean))
+os.makedirs(os.path.join(runs_dir, "not_a_run"))
+write_run(single_dir, summary("arp", 12.0))
+
+for d in (sweep_dir, runs_dir, single_dir):
+    run_report(d)
+    for name in ("report.md", "latency_table.csv", "mtp_cdf.png", "mtp_cdf.svg", "mtp_histogram.png", "mtp_histogram.svg"):
+        check(os.path.isfile(os.path.join(d, name)), f"{d}: {name} missing")
+
+# Sweep: one plot per axis; the latency table averages replications per point.
+for name in ("sweep_refresh_hz.png", "sweep_refresh_hz.svg", "sweep_poll_interval_ms.png"):
+    check(os.path.isfile(os.path.join(sweep_dir, name)), f"sweep: {name} missing")
+with open(os.path.join(sweep_dir, "latency_table.csv")) as f:
+    table = list(csv.DictReader(f))
+check(len(table) == 6, f"sweep table has {len(table)} rows, expected 6 points")
+check(table[1]["/transport/poll_interval_ms"] == "10" and table[1]["replications"] == "3", "sweep table row 1 axis values")
+check(abs(float(table[1]["mtp_mean_ms"]) - 35.6) < 1e-9, f"sweep point 1 mean {table[1]['mtp_mean_ms']} != 35.6")
+check(os.path.isfile(os.path.join(sweep_dir, "runs", "0000000000000000", "gantt.png")), "sweep: Gantt chart missing")
+
+# Directory of runs: one row per subdirectory with a summary, sorted by name.
+with open(os.path.join(runs_dir, "latency_table.csv")) as f:
+    table = list(csv.DictReader(f))
+check([r["name"] for r in table] == ["hmd_double_buffer", "pxpl5_slats"], f"runs table names {[r['name'] for r in table]}")
+check(table[1]["pipeline"] == "pxpl5_slats" and table[1]["mtp_p99_ms"] == "32", "runs table figures")
+for name in ("hmd_double_buffer", "pxpl5_slats"):
+    check(os.path.isfile(os.path.join(runs_dir, name, "gantt.svg")), f"{name}: gantt.svg missing")
+with open(os.path.join(runs_dir, "report.md")) as f:
+    md = f.read()
+check("| pxpl5_slats | pxpl5_slats |" in md and "hmd_double_buffer/gantt.png" in md, "runs report.md content")
+
+# Reproducible: a second rendering is byte-identical.
+before = digest(SCRATCH)
+for d in (sweep_dir, runs_dir, single_dir):
+    run_report(d)
+after = digest(SCRATCH)
+changed = sorted(k for k in before if before[k] != after.get(k))
+check(not changed, f"outputs differ between two renderings: {changed}")
+check(len(before) >= 25, f"only {len(before)} output files")
+
+# Statistics helpers.
+check(abs(latsim_results.t975(2) - 4.303) < 1e-9, "t975(2)")
+check(abs(latsim_results.t975(35) - 2.030) < 0.002, f"t975(35) = {latsim_results.t975(35)}")
+check(abs(latsim_results.t975(10 ** 6) - 1.960) < 0.001, "t975(large)")
+mean, half = latsim_results.mean_ci95([1.0, 2.0, 3.0])
+check(mean == 2.0 and abs(half - 4.303 / 3 ** 0.5) < 1e-9, f"mean_ci95 {mean} {half}")
+check(latsim_results.as_number("60000/1001") == 60000 / 1001 and latsim_results.as_number("serial") is None, "as_number")
+
+# A directory with nothing in it is bad input.
+empty = os.path.join(SCRATCH, "empty")
+os.makedirs(empty)
+proc = subprocess.run([sys.executable, REPORT, empty], capture_output=True, text=True)
+check(proc.returncode == 2 and "no summary.json" in proc.stderr, f"empty dir: exit {proc.returncode} {proc.stderr}")
+
+print(f"report fixture: {len(checked) - len(failures)} checks passed, {len(failures)} failed")
+sys.exit(1 if failures else 0)
