@@ -123,7 +123,7 @@ TEST_CASE("Scanline rendering casts each row from its own pose") {
   CHECK_THROWS_AS(caster.render_scanlines(camera, poses, RowSet::all(60), scan, options), std::invalid_argument);
 }
 
-TEST_CASE("Frameless pixels each use their own pose; a later request wins") {
+TEST_CASE("Frameless pixels each use their own pose and a later request wins") {
   const RayCaster caster(make_room());
   const Camera camera(75.0, 40, 30);
   std::vector<PixelRequest> requests;

@@ -63,7 +63,7 @@ TEST_CASE("OBJ index forms with texture and normal indices use the vertex index"
   }
 }
 
-TEST_CASE("OBJ vertex colours, default colour, objects and ignored statements") {
+TEST_CASE("OBJ vertex colours and default colour and objects and ignored statements") {
   const Scene scene = parse(
       "# comment line\n"
       "mtllib x.mtl\n"
@@ -89,7 +89,7 @@ TEST_CASE("OBJ vertex colours, default colour, objects and ignored statements") 
   CHECK(scene.triangles()[1].colour[2] == glm::vec3(0.5f));
 }
 
-TEST_CASE("Malformed OBJ input names file, line and reason") {
+TEST_CASE("Malformed OBJ input names file and line and reason") {
   CHECK(error_of(std::string(kSquare) + "f 1 2 7\n") == "test.obj:5: bad vertex index 7 (4 vertices defined so far)");
   CHECK(error_of(std::string(kSquare) + "f 1 2 -5\n") == "test.obj:5: bad vertex index -5 (4 vertices defined so far)");
   CHECK(error_of(std::string(kSquare) + "f 0 1 2\n") == "test.obj:5: bad vertex index 0 (4 vertices defined so far)");

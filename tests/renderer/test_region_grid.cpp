@@ -32,7 +32,7 @@ TEST_CASE("Region grid covers the world with whole regions") {
   CHECK_THROWS_AS(RegionGrid(Aabb{}, 1.0), std::invalid_argument);
 }
 
-TEST_CASE("Points map to half-open regions; y does not matter") {
+TEST_CASE("Points map to half-open regions whatever their height") {
   const RegionGrid g = grid5();
   CHECK(g.region_of({-10, 0, -10}) == RegionIndex{0, 0});
   CHECK(g.region_of({-5, 100, 0}) == RegionIndex{1, 2});

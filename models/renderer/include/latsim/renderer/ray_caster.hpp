@@ -85,7 +85,8 @@ class RayCaster {
 
   const Scene& scene() const;
 
-  /// One rtcIntersect1 query from origin along dir (normalised internally).
+  /// One rtcIntersect1 query from origin along dir (normalised internally); a miss has
+  /// black colour (the batch paths use RenderOptions::background instead).
   Hit cast(const glm::dvec3& origin_m, const glm::dvec3& dir) const;
   Hit cast(const glm::dvec3& origin_m, const glm::dvec3& dir, const ObjectMask& mask) const;
   /// Casts rays[i] into hits[i] in parallel chunks; spans must have equal sizes.
