@@ -4,12 +4,12 @@
 #include <deque>
 #include <map>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
+#include "latsim/des/simulator.hpp"
 #include "latsim/des/stats.hpp"
 #include "latsim/display/display.hpp"
 #include "latsim/pipelines/pipeline.hpp"
@@ -28,8 +28,8 @@ struct ProbeSet {
 /// named samples through add().
 class LatencyRecorder : public display::ScanoutListener {
  public:
-  LatencyRecorder(const tracker::MotionSource& motion, const HostFeed& host, const display::RasterTiming& timing,
-                  ProbeSet probes, double ipd_m, bool stereo, bool keep_samples);
+  LatencyRecorder(const des::Simulator& sim, const tracker::MotionSource& motion, const HostFeed& host,
+                  const display::RasterTiming& timing, ProbeSet probes, double ipd_m, bool stereo, bool keep_samples);
 
   /// Registers an image and returns the id to present to the display.
   int64_t register_image(const ImageRecord& record);
@@ -56,9 +56,14 @@ class LatencyRecorder : public display::ScanoutListener {
   const std::vector<LoggedSample>& sample_log() const { return sample_log_; }
 
  private:
-  void record_probes(const display::ScanoutSpan& span, const ImageRecord& img, const tracker::Pose& drawn);
-  void first_shown(int64_t id, const ImageRecord& img, const display::ScanoutSpan& span);
+  struct ProbeHit { int row; double x_px; size_t probe; };
+  struct ProbeCache { int64_t image_id = -2; int64_t field = -1; int64_t sample_index = -1; std::vector<ProbeHit> hits; };
+  void record_probes(const display::ScanoutSpan& span, const tracker::Pose& drawn, int64_t sample_index,
+                     int64_t image_id);
+  void first_shown(const ImageRecord& img, const display::ScanoutSpan& span);
+  void prune(int64_t below_id);
 
+  const des::Simulator& sim_;
   const tracker::MotionSource& motion_;
   const HostFeed& host_;
   const display::RasterTiming& timing_;
@@ -66,8 +71,11 @@ class LatencyRecorder : public display::ScanoutListener {
   double ipd_m_;
   bool stereo_;
   bool keep_samples_;
-  std::unordered_map<int64_t, ImageRecord> images_;
-  std::unordered_map<int64_t, bool> shown_;
+  struct Held { ImageRecord record; bool shown = false; };
+  std::map<int64_t, Held> images_;
+  ProbeCache probe_cache_[2];
+  double rad_per_px_ = 0.0;
+  double tan_half_h_ = 1.0, tan_half_v_ = 1.0;
   int64_t next_id_ = 0;
   std::map<std::string, des::Distribution> dists_;
   std::map<std::string, int64_t> counters_;
@@ -75,7 +83,6 @@ class LatencyRecorder : public display::ScanoutListener {
   std::vector<nlohmann::json> ledger_;
   bool sample_log_on_ = false;
   std::vector<LoggedSample> sample_log_;
-  des::Time current_photon_;
 };
 
 }  // namespace latsim::pipelines

@@ -47,6 +47,10 @@ struct ImageRecord {
   bool orientation_at_scanout = false;
 };
 
+/// The pose of one eye of a head: stereo eyes sit ipd/2 either side along the
+/// head's x axis (eye 0 = left); mono returns the head pose.
+tracker::Pose eye_pose_of(const tracker::Pose& head, int eye, double ipd_m, bool stereo);
+
 /// Newest tracker data available to the host at any instant.
 class HostFeed {
  public:

@@ -23,6 +23,9 @@ class Timeline {
     des::Time end;
   };
 
+  /// Keeps at most `max_entries` (0 = no limit); later entries are counted, not kept.
+  void set_max_entries(size_t max_entries) { max_entries_ = max_entries; }
+  size_t dropped() const { return dropped_; }
   void add(std::string stage, int64_t frame, int eye, std::string unit, des::Time start, des::Time end);
   const std::vector<Entry>& entries() const { return entries_; }
   /// Hash of all entries in order (for fingerprint tests).
@@ -32,6 +35,8 @@ class Timeline {
 
  private:
   std::vector<Entry> entries_;
+  size_t max_entries_ = 0;
+  size_t dropped_ = 0;
 };
 
 }  // namespace latsim::pipelines

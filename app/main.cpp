@@ -1,0 +1,54 @@
+// latsim: the command-line program. Parses, runs, writes; the work is in the libraries.
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "commands.hpp"
+
+namespace {
+
+void print_usage(std::FILE* out) {
+  std::fputs(
+      "latsim - discrete-event simulation of motion-to-photon latency in HMD graphics pipelines\n"
+      "\n"
+      "usage: latsim <command> [options]    (latsim <command> --help for each command's options)\n"
+      "\n"
+      "commands:\n"
+      "  run SCENARIO.json       run one scenario, write DIR/summary.json and friends\n"
+      "  validate SCENARIO.json  check scenario files without running them\n"
+      "  capacity SCENARIO.json  largest triangle count that never misses a field\n"
+      "  sweep SWEEP.json        run a parameter sweep (parallel, resumable)\n"
+      "  fidelity SCENARIO.json  what each step of simulation fidelity changes and costs\n"
+      "  report DIR              tables and plots from a run or a sweep\n"
+      "\n"
+      "exit codes: 0 success, 1 run failure, 2 bad input (nothing written)\n",
+      out);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace latsim::app;
+  if (argc < 2) {
+    print_usage(stderr);
+    return kExitBadInput;
+  }
+  const std::string cmd = argv[1];
+  if (cmd == "--help" || cmd == "-h" || cmd == "help") {
+    print_usage(stdout);
+    return kExitOk;
+  }
+  if (cmd == "--version") {
+    std::puts("latsim " LATSIM_VERSION_TEXT);
+    return kExitOk;
+  }
+  // Each command sees its own name as argv[0].
+  if (cmd == "run") return command_run(argc - 1, argv + 1);
+  if (cmd == "validate") return command_validate(argc - 1, argv + 1);
+  if (cmd == "capacity") return command_capacity(argc - 1, argv + 1);
+  if (cmd == "sweep") return command_sweep(argc - 1, argv + 1);
+  if (cmd == "fidelity") return command_fidelity(argc - 1, argv + 1);
+  if (cmd == "report") return command_report(argc - 1, argv + 1);
+  std::fprintf(stderr, "latsim: unknown command \"%s\" (try latsim --help)\n", cmd.c_str());
+  return kExitBadInput;
+}

@@ -1,0 +1,164 @@
+// latsim run / validate / capacity.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "latsim/pipelines/runner.hpp"
+#include "latsim/scenario/config.hpp"
+
+namespace latsim::app {
+
+namespace {
+
+std::vector<std::string> command_line_of(int argc, char** argv) {
+  std::vector<std::string> out{"latsim"};
+  for (int i = 0; i < argc; ++i) out.emplace_back(argv[i]);
+  return out;
+}
+
+// One line on stderr: the file, the JSON pointer and what is wrong.
+int bad_input(const std::string& file, const scenario::ScenarioError& e) {
+  std::fprintf(stderr, "%s: %s\n", file.c_str(), e.what());
+  return kExitBadInput;
+}
+
+}  // namespace
+
+int command_run(int argc, char** argv) {
+  CLI::App app{"Run one scenario and write its results (summary.json, figures.json, timeline, ledger, samples)",
+               "latsim run"};
+  std::string file, out_dir = "out/run";
+  std::vector<std::string> sets;
+  uint64_t seed = 0;
+  uint64_t replication = 0;
+  bool samples = false, ledger = false, quiet = false;
+  app.add_option("scenario", file, "scenario JSON file")->required();
+  app.add_option("--out,-o", out_dir, "output directory")->capture_default_str();
+  auto* seed_opt = app.add_option("--seed", seed, "run seed (overrides the scenario's /seed)");
+  app.add_option("--replication", replication, "replication index (independent random streams)");
+  app.add_option("--set", sets, "override a value: /json/pointer=value (repeatable)");
+  app.add_flag("--samples", samples, "also write samples.csv (every recorded sample)");
+  app.add_flag("--ledger", ledger, "also write frames.csv (every stage timestamp of every frame)");
+  app.add_flag("--quiet,-q", quiet, "print nothing on success");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? kExitOk : kExitBadInput;
+  }
+  pipelines::RunOptions opt;
+  if (*seed_opt) opt.seed = seed;
+  opt.replication = replication;
+  opt.out_dir = out_dir;
+  opt.write_samples = samples;
+  opt.write_ledger = ledger;
+  opt.command_line = command_line_of(argc, argv);
+  nlohmann::json summary;
+  try {
+    const auto doc = scenario::ScenarioDocument::load(file, sets);
+    // Validate fully before touching the output directory: bad input writes nothing.
+    pipelines::validate_scenario(doc);
+    summary = pipelines::run_scenario(doc, opt);
+  } catch (const scenario::ScenarioError& e) {
+    return bad_input(file, e);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: run failed: %s\n", file.c_str(), e.what());
+    return kExitFailure;
+  }
+  if (!quiet) {
+    const auto& f = summary["figures"];
+    std::printf("%s -> %s/summary.json\n", file.c_str(), out_dir.c_str());
+    if (f.contains("motion_to_photon_ms")) {
+      const auto& m = f["motion_to_photon_ms"];
+      std::printf("  motion-to-photon ms: mean %.3f  p50 %.3f  p99 %.3f  max %.3f  (%llu samples)\n",
+                  m["mean"].get<double>(), m["p50"].get<double>(), m["p99"].get<double>(), m["max"].get<double>(),
+                  static_cast<unsigned long long>(m["count"].get<uint64_t>()));
+    }
+    std::printf("  events %llu, wall %.3f s\n", static_cast<unsigned long long>(summary["events"].get<uint64_t>()),
+                summary["wall_s"].get<double>());
+  }
+  return kExitOk;
+}
+
+int command_validate(int argc, char** argv) {
+  CLI::App app{"Check scenario files without running them", "latsim validate"};
+  std::vector<std::string> files;
+  std::vector<std::string> sets;
+  app.add_option("scenarios", files, "scenario JSON files")->required();
+  app.add_option("--set", sets, "override a value: /json/pointer=value (repeatable)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? kExitOk : kExitBadInput;
+  }
+  int rc = kExitOk;
+  for (const auto& file : files) {
+    try {
+      pipelines::validate_scenario(scenario::ScenarioDocument::load(file, sets));
+      std::printf("%s: ok\n", file.c_str());
+    } catch (const scenario::ScenarioError& e) {
+      rc = bad_input(file, e);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "%s: %s\n", file.c_str(), e.what());
+      rc = kExitBadInput;
+    }
+  }
+  return rc;
+}
+
+int command_capacity(int argc, char** argv) {
+  CLI::App app{"Bisect for the largest triangle count that never misses a field", "latsim capacity"};
+  std::string file, pointer = "/scene/triangles", metric = "missed_fields";
+  std::vector<std::string> sets;
+  int64_t lo = 0, hi = 100000;
+  app.add_option("scenario", file, "scenario JSON file")->required();
+  app.add_option("--pointer", pointer, "the JSON pointer of the count to vary")->capture_default_str();
+  app.add_option("--metric", metric, "figure that must stay zero")->capture_default_str();
+  app.add_option("--max", hi, "upper bound of the search")->capture_default_str();
+  app.add_option("--set", sets, "override a value: /json/pointer=value (repeatable)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? kExitOk : kExitBadInput;
+  }
+  try {
+    auto misses_at = [&](int64_t n) {
+      std::vector<std::string> s = sets;
+      s.push_back(pointer + "=" + std::to_string(n));
+      const auto summary = pipelines::run_scenario(scenario::ScenarioDocument::load(file, s), pipelines::RunOptions{});
+      const auto& f = summary["figures"];
+      if (!f.contains(metric)) throw scenario::ScenarioError(pointer, "this pipeline reports no \"" + metric + "\"");
+      return f[metric].get<double>();
+    };
+    if (misses_at(lo) > 0) {
+      std::printf("%s: misses fields even at %s=%lld\n", file.c_str(), pointer.c_str(), static_cast<long long>(lo));
+      std::printf("max_triangles_per_field=-1\n");
+      return kExitOk;
+    }
+    if (misses_at(hi) == 0) {
+      std::printf("max_triangles_per_field>=%lld (raise --max)\n", static_cast<long long>(hi));
+      return kExitOk;
+    }
+    // Invariant: lo never misses, hi misses.
+    while (hi - lo > 1) {
+      const int64_t mid = lo + (hi - lo) / 2;
+      (misses_at(mid) > 0 ? hi : lo) = mid;
+    }
+    std::printf("max_triangles_per_field=%lld\n", static_cast<long long>(lo));
+  } catch (const scenario::ScenarioError& e) {
+    return bad_input(file, e);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", file.c_str(), e.what());
+    return kExitFailure;
+  }
+  return kExitOk;
+}
+
+}  // namespace latsim::app

@@ -1,0 +1,34 @@
+#include <stdexcept>
+
+#include "latsim/pipelines/double_buffer.hpp"
+#include "latsim/pipelines/pipeline.hpp"
+
+namespace latsim::pipelines {
+
+void PipelineRegistry::add(std::string name, Factory factory) {
+  if (!factories_.emplace(name, std::move(factory)).second)
+    throw std::logic_error("pipeline \"" + name + "\" registered twice");
+}
+
+std::unique_ptr<Pipeline> PipelineRegistry::create(const std::string& name) const {
+  auto it = factories_.find(name);
+  return it == factories_.end() ? nullptr : it->second();
+}
+
+std::vector<std::string> PipelineRegistry::names() const {
+  std::vector<std::string> out;
+  for (const auto& [name, f] : factories_) out.push_back(name);
+  return out;
+}
+
+PipelineRegistry builtin_pipelines() {
+  PipelineRegistry r;
+  r.add("double_buffer", make_double_buffer_pipeline);
+  return r;
+}
+
+tracker::Pose RunContext::eye_pose(const tracker::TrackerSample& s, int eye) const {
+  return eye_pose_of(s.pose, eye, ipd_m, stereo);
+}
+
+}  // namespace latsim::pipelines
