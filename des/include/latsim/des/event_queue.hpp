@@ -20,10 +20,10 @@
 // | BinaryHeap      | O(log n)  | O(log n)  | O(1) | O(log n)    | n entries    |
 // | QuaternaryHeap  | O(log4 n) | O(log n)* | O(1) | O(log n)*   | n entries    |
 //
-// (*) a 4-ary sift-down does log4(n) levels of 3 comparisons each (Floyd's
-// bottom-up variant, plus a short sift-up); with the four children in one
-// cache line that is half the misses of a binary heap's log2(n) levels.
-// Pushes sift up over half as many levels as in a binary heap.
+// (*) a 4-ary sift-down does log4(n) levels of 4 comparisons each (as many
+// as a binary heap's log2(n) levels of 2), but with the four children in one
+// cache line it takes half the cache misses, which is what counts once the
+// heap outgrows L1. Pushes sift up over half as many levels.
 #pragma once
 
 #include <concepts>
@@ -97,7 +97,7 @@ class BinaryHeap {
     for (;;) {
       std::size_t child = 2 * i + 1;
       if (child >= n) break;
-      if (child + 1 < n && less_(items_[child + 1], items_[child])) ++child;
+      if (child + 1 < n) child += static_cast<std::size_t>(less_(items_[child + 1], items_[child]));
       if (!less_(items_[child], e)) break;
       items_[i] = items_[child];
       i = child;
@@ -175,12 +175,9 @@ class QuaternaryHeap {
  private:
   static constexpr std::size_t kPad = 3;
 
-  // Floyd's variant: move the hole at the root down to a leaf along the
-  // smallest children (3 comparisons per level), then sift `e` up from there.
-  // The entry that refills the root is usually a late one (the heap's last
-  // entry, or a new event past most pending ones), so it would sink to the
-  // bottom anyway and the sift-up is short; this saves the fourth comparison
-  // per level of the classic sift-down.
+  // Moves the hole at the root down along the smallest children until `e`
+  // fits. (Floyd's bottom-up variant, which skips the comparison with `e`,
+  // measured no faster here: a PHOLD event lands mid-heap, not at a leaf.)
   void sift_down(const Entry& e) {
     const std::size_t n = size();
     Entry* a = items_.data() + kPad;
@@ -189,10 +186,13 @@ class QuaternaryHeap {
       const std::size_t first = 4 * i + 1;
       std::size_t best;
       if (first + 3 < n) {
-        // Full family: a small tournament keeps the comparisons independent.
-        const std::size_t l = less_(a[first + 1], a[first]) ? first + 1 : first;
-        const std::size_t r = less_(a[first + 3], a[first + 2]) ? first + 3 : first + 2;
-        best = less_(a[r], a[l]) ? r : l;
+        // Full family: a small tournament keeps the comparisons independent,
+        // and index arithmetic instead of ?: keeps the compiler from turning
+        // the (unpredictable) outcomes into branches.
+        const std::size_t l = first + static_cast<std::size_t>(less_(a[first + 1], a[first]));
+        const std::size_t r = first + 2 + static_cast<std::size_t>(less_(a[first + 3], a[first + 2]));
+        const std::size_t take_r = 0 - static_cast<std::size_t>(less_(a[r], a[l]));
+        best = l ^ ((l ^ r) & take_r);
       } else if (first < n) {
         best = first;
         for (std::size_t c = first + 1; c < n; ++c)
@@ -200,14 +200,9 @@ class QuaternaryHeap {
       } else {
         break;
       }
+      if (!less_(a[best], e)) break;
       a[i] = a[best];
       i = best;
-    }
-    while (i > 0) {
-      const std::size_t parent = (i - 1) / 4;
-      if (!less_(e, a[parent])) break;
-      a[i] = a[parent];
-      i = parent;
     }
     a[i] = e;
   }

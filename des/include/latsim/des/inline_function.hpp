@@ -62,6 +62,12 @@ class InlineFunction<R(Args...), InlineBytes> {
     emplace<std::decay_t<F>>(std::forward<F>(f));
   }
 
+  /// Constructs f in place; this must be empty (cheaper than assign()).
+  template <class F>
+  void construct(F&& f) {
+    emplace<std::decay_t<F>>(std::forward<F>(f));
+  }
+
   /// Destroys the held callable (and whatever it captured); leaves this empty.
   void reset() noexcept {
     if (manage_ != nullptr) manage_(Op::destroy, buffer_, nullptr);

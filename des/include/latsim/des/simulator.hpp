@@ -83,7 +83,7 @@ class Simulator {
     const uint32_t s = acquire_slot();
     Slot& slot = slots_[s];
     try {
-      slot.fn.assign(std::forward<F>(fn));
+      slot.fn.construct(std::forward<F>(fn));  // free slots hold no callable
     } catch (...) {
       release_slot(s);
       throw;
@@ -119,7 +119,7 @@ class Simulator {
 
   bool empty() const { return live_ == 0; }
   std::size_t pending() const { return live_; }
-  uint64_t events_executed() const { return executed_; }
+  uint64_t events_executed() const;
   /// Order-sensitive hash over (time ticks, kind-name hash) of every executed
   /// event: equal for identical runs on any platform, different when any
   /// event's time, kind or order changes.
@@ -171,7 +171,11 @@ class Simulator {
   struct EntryLess {
     const std::vector<Slot>* slots;
     bool operator()(const QueueEntry& a, const QueueEntry& b) const {
-      if (a.time_ticks != b.time_ticks) return a.time_ticks < b.time_ticks;
+      if (a.time_ticks != b.time_ticks) [[likely]] return a.time_ticks < b.time_ticks;
+      return tie_less(a, b);
+    }
+    // Out of line so the common case above compiles to a compare and a flag.
+    [[gnu::noinline]] bool tie_less(const QueueEntry& a, const QueueEntry& b) const {
       if (a.prio != b.prio) return a.prio < b.prio;
       return (*slots)[a.slot].seq < (*slots)[b.slot].seq;
     }
@@ -184,10 +188,14 @@ class Simulator {
     double wall_s = 0.0;
   };
 
+  // Free slots form a LIFO list threaded through their `seq` fields (unused
+  // while free): the slot freed by the running event is the one its
+  // successor gets, still in cache.
+  static constexpr uint32_t kNoSlot = UINT32_MAX;
   uint32_t acquire_slot() {
-    if (!free_slots_.empty()) {
-      const uint32_t s = free_slots_.back();
-      free_slots_.pop_back();
+    if (free_head_ != kNoSlot) [[likely]] {
+      const uint32_t s = free_head_;
+      free_head_ = static_cast<uint32_t>(slots_[s].seq);
       return s;
     }
     return grow_slots();
@@ -196,8 +204,13 @@ class Simulator {
   void release_slot(uint32_t s) {
     Slot& slot = slots_[s];
     slot.fn.reset();
+    free_slot(s);
+  }
+  void free_slot(uint32_t s) {
+    Slot& slot = slots_[s];
     if (++slot.generation == 0) slot.generation = 1;  // 0 would make EventId{0} valid
-    free_slots_.push_back(s);
+    slot.seq = free_head_;
+    free_head_ = s;
   }
 
   void enqueue(const QueueEntry& e) {
@@ -229,7 +242,7 @@ class Simulator {
   QueueKind queue_kind_;
   Time now_;
   std::vector<Slot> slots_;
-  std::vector<uint32_t> free_slots_;
+  uint32_t free_head_ = kNoSlot;
   QuaternaryHeap<QueueEntry, EntryLess> quaternary_;
   BinaryHeap<QueueEntry, EntryLess> binary_;
   // True while the running event's entry is still at the front of the queue:
@@ -240,7 +253,6 @@ class Simulator {
   bool profiling_ = false;
   uint64_t next_seq_ = 0;
   std::size_t live_ = 0;
-  uint64_t executed_ = 0;
   uint64_t fingerprint_ = 0;
   std::vector<KindRecord> kinds_;
   std::map<std::string, KindId, std::less<>> kind_ids_;
