@@ -1,0 +1,117 @@
+// Rendering Control, the standard Pixel-Planes 5 pipeline (SPEC.md section 4).
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <vector>
+
+#include "latsim/des/process.hpp"
+#include "latsim/des/random.hpp"
+#include "latsim/des/resource.hpp"
+#include "latsim/des/signal.hpp"
+#include "latsim/des/simulator.hpp"
+#include "latsim/pxpl5/engine_hooks.hpp"
+#include "latsim/pxpl5/field_timing.hpp"
+#include "latsim/pxpl5/hardware.hpp"
+#include "latsim/pxpl5/workload.hpp"
+
+namespace latsim::pxpl5 {
+
+/// Costs of the RC stages on top of the shared hardware figures.
+struct RcParams {
+  HardwareParams hw;
+  bool stereo = true;
+  int graphics_processors = 13;                               ///< one master plus the slaves
+  des::Time send_time = des::Time::us(500);                   ///< host: edits and viewing transforms
+  int send_words = 256;                                       ///< edit commands on the ring per frame
+  des::Time edit_time = des::Time::us(200);                   ///< SGPs apply edits to display lists
+  des::Time transform_overhead = des::Time::us(100);          ///< per SGP and eye: matrices, bin reset
+  des::Time transform_time_per_triangle = des::Time::from_us(37.5);  ///< one eye, i860 at 40 MHz
+  des::Time binitize_time_per_bin = des::Time::us(5);         ///< one command into one region's bin
+  des::Time token_hop_time = des::Time::us(5);                ///< a region token from one GP to the next
+  des::Time region_shade_time = des::Time::us(300);           ///< end-of-frame (deferred shading) commands
+  int end_of_frame_words = 32;
+
+  int slaves() const { return graphics_processors - 1; }
+  int eyes() const { return stereo ? 2 : 1; }
+  /// Reads the RC keys of /pipeline (the shared hardware keys included).
+  static RcParams read(const scenario::ConfigNode& pipeline, bool stereo);
+};
+
+/// Runs SEND, EDIT, TRANSFORM, RENDER and COPY as processes with exactly the
+/// start conditions of SPEC.md section 4, counting eyes for RENDER and COPY
+/// in stereo (eye sequence n = frame * eyes + eye).
+class RcEngine {
+ public:
+  RcEngine(des::Simulator& sim, RcParams params, FieldTiming timing, RegionGrid grid, const Workload& workload,
+           des::RandomStream stream, EngineHooks hooks);
+  RcEngine(const RcEngine&) = delete;
+  RcEngine& operator=(const RcEngine&) = delete;
+
+  /// Spawns the stage processes; no new frame is sent at or after `end`.
+  void start(des::Time end);
+  Utilisation utilisation(des::Time elapsed) const;
+  int64_t frames_completed() const { return frames_completed_; }
+  const RcParams& params() const { return p_; }
+
+ private:
+  struct FrameState {
+    explicit FrameState(des::Simulator& sim) : send_done(sim), edit_done(sim) {}
+    des::Signal send_done, edit_done;
+    int64_t sample_token = -1;
+    des::Time sample_read_at;
+    des::Time copy_start;
+    int64_t swap_field = 0;
+    des::Time swap_at;
+  };
+  struct EyeState {
+    explicit EyeState(des::Simulator& sim) : transform_done(sim), render_done(sim), copy_done(sim), rendered(sim) {}
+    des::Signal transform_done, render_done, copy_done;
+    des::Signal rendered;  // pulsed whenever one more region is rendered
+    std::vector<int> render_order;
+    bool render_started = false;
+    des::Time transform_start, render_start, render_end, copy_start, copy_end;
+  };
+  struct RegionTask {
+    int64_t eye_seq;
+    int region;
+  };
+
+  FrameState& frame(int64_t i);
+  EyeState& eye(int64_t n);
+  // Done-signals of earlier eyes, skipping those before the first. Awaited
+  // one by one: each is triggered once and never reset, so order is immaterial.
+  std::vector<des::Signal*> eye_conditions(int64_t render_n, int64_t copy_n, int64_t transform_n);
+  void stage(const char* name, int64_t frame, int eye, std::string unit, des::Time start, des::Time end);
+  void sample(const std::string& name, double value);
+  void finish_frame(int64_t i);
+
+  des::Process send_process();
+  des::Process edit_process();
+  des::Process transform_process();
+  des::Process renderer_process(int renderer);
+  des::Process copy_process();
+
+  des::Simulator& sim_;
+  RcParams p_;
+  FieldTiming timing_;
+  RegionGrid grid_;
+  std::vector<BinCounts> bins_;  // per eye; a static scene bins the same every frame
+  EngineHooks hooks_;
+  des::Time end_;
+
+  std::deque<FrameState> frames_;
+  std::deque<EyeState> eyes_;
+  std::deque<RegionTask> unrendered_;  // the MGP's list, busiest region first per eye
+  des::Signal work_available_;         // pulsed when regions join the list
+
+  des::Resource ring_;
+  std::vector<std::unique_ptr<des::Resource>> sgp_ports_;
+  std::vector<std::unique_ptr<des::Resource>> fb_ports_;
+  std::vector<des::Time> sgp_busy_;
+  std::vector<des::Time> renderer_busy_;
+  int64_t frames_completed_ = 0;
+};
+
+}  // namespace latsim::pxpl5

@@ -1,0 +1,42 @@
+// Runs the Pixel-Planes 5 engines on a bare simulator and keeps what they report.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "latsim/des/stats.hpp"
+#include "latsim/pxpl5/rc_engine.hpp"
+#include "latsim/pxpl5/slats_engine.hpp"
+
+namespace latsim::pxpl5::testing {
+
+/// Everything one engine run reported.
+struct RunRecord {
+  std::vector<StageInterval> stages;
+  std::map<std::string, des::Distribution> samples;
+  std::vector<FrameReady> frames;
+  Utilisation utilisation;
+  int64_t missed_fields = 0;
+  int64_t torn_fields = 0;
+  uint64_t sim_fingerprint = 0;
+  double field_ms = 0.0;
+
+  const des::Distribution& dist(const std::string& name) const;
+  /// Order-sensitive hash of every stage interval (stage, frame, eye, unit, times).
+  uint64_t stage_fingerprint() const;
+};
+
+/// 640 x 480 interlaced NTSC timing at exactly 60 Hz, retraces from t = 0.
+FieldTiming ntsc_timing();
+RegionGrid ntsc_grid();
+
+/// A tracker feeding the host a new sample token every tracker period.
+RunRecord run_rc(const RcParams& params, const Workload& workload, des::Time duration, uint64_t seed = 1);
+RunRecord run_slats(const SlatsParams& params, int64_t triangles, des::Time duration);
+
+/// RC with every TRANSFORM and RENDER cost set to zero except the copy.
+RcParams trivial_rc_params();
+
+}  // namespace latsim::pxpl5::testing
