@@ -1,0 +1,55 @@
+// The two Pixel-Planes 5 pipelines, "pxpl5_rc" (Rendering Control) and
+// "pxpl5_slats" (Slats), and the wiring they share between the pxpl5 engines
+// and a run.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "latsim/des/stats.hpp"
+#include "latsim/pipelines/pipeline.hpp"
+#include "latsim/pxpl5/engine_hooks.hpp"
+#include "latsim/pxpl5/field_timing.hpp"
+#include "latsim/pxpl5/hardware.hpp"
+
+namespace latsim::pipelines {
+
+/// Adds "pxpl5_rc" and "pxpl5_slats" to the registry.
+void register_pxpl5_pipelines(PipelineRegistry& registry);
+/// A new "pxpl5_slats" pipeline (defined with it in pxpl5_slats.cpp).
+std::unique_ptr<Pipeline> make_pxpl5_slats_pipeline();
+
+/// Connects a pxpl5 engine to a run: host samples in, images to the recorder
+/// and display, stage intervals to the timeline, named samples to figures.
+class Pxpl5Wiring {
+ public:
+  explicit Pxpl5Wiring(RunContext& ctx);
+  Pxpl5Wiring(const Pxpl5Wiring&) = delete;
+  Pxpl5Wiring& operator=(const Pxpl5Wiring&) = delete;
+
+  /// The display's retraces and beam, as the engines see them.
+  pxpl5::FieldTiming field_timing() const;
+  /// The display's screen in 128 x 128 renderer regions.
+  pxpl5::RegionGrid grid() const;
+  /// Hooks that feed this wiring; valid while it lives.
+  pxpl5::EngineHooks hooks();
+  /// Remembers a sample the host delivered and returns its token.
+  int64_t remember(const tracker::TrackerSample& sample);
+  /// Writes the collected distributions and the given counts into `figures`.
+  void add_figures(nlohmann::json& figures, const pxpl5::Utilisation& utilisation, int64_t missed_fields,
+                   int64_t torn_fields, int64_t frames_completed) const;
+
+ private:
+  void present(const pxpl5::FrameReady& frame);
+
+  RunContext* ctx_;
+  std::map<int64_t, tracker::TrackerSample> samples_;  // by tracker index, recent ones only
+  std::map<std::string, des::Distribution> samples_by_name_;
+  int64_t images_without_sample_ = 0;
+};
+
+}  // namespace latsim::pipelines
