@@ -53,10 +53,19 @@ const ImageRecord* LatencyRecorder::image(int64_t id) const {
   return it == images_.end() ? nullptr : &it->second.record;
 }
 
-void LatencyRecorder::add(const std::string& name, double value) {
+des::Distribution& LatencyRecorder::distribution_ref(const std::string& name) {
   auto it = dists_.find(name);
   if (it == dists_.end()) it = dists_.emplace(name, des::Distribution(0.005, keep_samples_)).first;
-  it->second.add(value);
+  return it->second;
+}
+
+void LatencyRecorder::add(const std::string& name, double value) {
+  distribution_ref(name).add(value);
+  if (sample_log_on_) sample_log_.push_back({sim_.now().to_ms(), name, value});
+}
+
+void LatencyRecorder::add_to(des::Distribution* d, const char* name, double value) {
+  d->add(value);
   if (sample_log_on_) sample_log_.push_back({sim_.now().to_ms(), name, value});
 }
 
@@ -109,13 +118,23 @@ void LatencyRecorder::on_scanout(const display::ScanoutSpan& span) {
       const tracker::Pose head = newest->pose;
       drawn.orientation = eye_pose_of(head, span.eye, ipd_m_, stereo_).orientation;
       sample_index = newest->index;
-      add("rotation_latency_ms", (photon - newest->measured_at).to_ms());
-      add("translation_latency_ms", (photon - img.sample.measured_at).to_ms());
+      if (!rotation_) rotation_ = &distribution_ref("rotation_latency_ms");
+      if (!translation_) translation_ = &distribution_ref("translation_latency_ms");
+      add_to(rotation_, "rotation_latency_ms", (photon - newest->measured_at).to_ms());
+      add_to(translation_, "translation_latency_ms", (photon - img.sample.measured_at).to_ms());
       origin = newest->measured_at;
     }
   }
-  add("motion_to_photon_ms", (photon - origin).to_ms());
-  add("display_ms", (photon - timing_.scanout_start(span.field)).to_ms());
+  if (!mtp_) {
+    mtp_ = &distribution_ref("motion_to_photon_ms");
+    display_ms_ = &distribution_ref("display_ms");
+  }
+  add_to(mtp_, "motion_to_photon_ms", (photon - origin).to_ms());
+  if (span.field != scan_field_) {
+    scan_field_ = span.field;
+    scan_start_ = timing_.scanout_start(span.field);
+  }
+  add_to(display_ms_, "display_ms", (photon - scan_start_).to_ms());
   if (!probes_.points_m.empty()) record_probes(span, drawn, sample_index, span.image_id);
 }
 
@@ -159,16 +178,17 @@ void LatencyRecorder::record_probes(const display::ScanoutSpan& span, const trac
       const double u = (d.x / -d.z) / tan_half_h_, v = (d.y / -d.z) / tan_half_v_;
       const double x = (u + 1.0) * 0.5 * w, y = (1.0 - v) * 0.5 * h;
       if (x < 0 || x >= w || y < 0 || y >= h) continue;
-      cache.hits.push_back({static_cast<int>(std::floor(y)), x, i});
+      // Interlaced: a probe is lit by the nearest row of this field's parity.
+      const int row = static_cast<int>(std::floor(y));
+      int line = timing_.line_of_row(span.field, row);
+      if (line < 0) line = timing_.line_of_row(span.field, row + 1 < h ? row + 1 : row - 1);
+      cache.hits.push_back({line, x, i});
     }
+    std::stable_sort(cache.hits.begin(), cache.hits.end());
   }
-  for (const ProbeHit& hit : cache.hits) {
-    // Interlaced: a probe is lit by the nearest row of this field's parity.
-    const int line = timing_.line_of_row(span.field, hit.row) >= 0
-                         ? timing_.line_of_row(span.field, hit.row)
-                         : timing_.line_of_row(span.field, hit.row + 1 < timing_.params().height_px ? hit.row + 1
-                                                                                                     : hit.row - 1);
-    if (line != span.line) continue;
+  const auto [first, last] = std::equal_range(cache.hits.begin(), cache.hits.end(), ProbeHit{span.line, 0.0, 0});
+  for (auto h = first; h != last; ++h) {
+    const ProbeHit& hit = *h;
     const int xi = static_cast<int>(hit.x_px);
     if (xi < span.x_begin || xi >= span.x_end) continue;
     const des::Time t = timing_.pixel_time(span.field, span.line, xi);
@@ -178,8 +198,12 @@ void LatencyRecorder::record_probes(const display::ScanoutSpan& span, const trac
     const glm::dvec3 seen = truth.orientation * drawn_head_dir;
     const glm::dvec3 should = glm::normalize(p - truth.position_m);
     const double angle = angle_between_dirs(seen, should);
-    add("registration_error_arcmin", angle * 180.0 / kPi * 60.0);
-    add("registration_error_px", angle / rad_per_px_);
+    if (!reg_arcmin_) {
+      reg_arcmin_ = &distribution_ref("registration_error_arcmin");
+      reg_px_ = &distribution_ref("registration_error_px");
+    }
+    add_to(reg_arcmin_, "registration_error_arcmin", angle * 180.0 / kPi * 60.0);
+    add_to(reg_px_, "registration_error_px", angle / rad_per_px_);
   }
 }
 

@@ -332,9 +332,13 @@ Json parse_file(const std::filesystem::path& file) {
   }
 }
 
-// Objects merge key by key; anything else in `over` replaces `base`.
+// Objects merge key by key; anything else in `over` replaces `base`. An
+// object whose "type" differs from the base's is a different thing altogether
+// (a trace instead of a sinusoid) and replaces it whole.
 void deep_merge(Json& base, const Json& over) {
-  if (!base.is_object() || !over.is_object()) {
+  const bool retyped = base.is_object() && over.is_object() && base.contains("type") && over.contains("type") &&
+                       base["type"] != over["type"];
+  if (!base.is_object() || !over.is_object() || retyped) {
     base = over;
     return;
   }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <deque>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -37,6 +38,9 @@ class LatencyRecorder : public display::ScanoutListener {
 
   /// Adds one sample to the named distribution (created on first use).
   void add(const std::string& name, double value);
+  /// The named distribution, created on first use; the reference stays valid
+  /// for the recorder's lifetime (hot paths keep it instead of the name).
+  des::Distribution& distribution_ref(const std::string& name);
   /// Adds to a named counter.
   void count(const std::string& name, int64_t n = 1);
   const des::Distribution* distribution(const std::string& name) const;
@@ -56,7 +60,7 @@ class LatencyRecorder : public display::ScanoutListener {
   const std::vector<LoggedSample>& sample_log() const { return sample_log_; }
 
  private:
-  struct ProbeHit { int row; double x_px; size_t probe; };
+  struct ProbeHit { int line; double x_px; size_t probe; bool operator<(const ProbeHit& o) const { return line < o.line; } };
   struct ProbeCache { int64_t image_id = -2; int64_t field = -1; int64_t sample_index = -1; std::vector<ProbeHit> hits; };
   void record_probes(const display::ScanoutSpan& span, const tracker::Pose& drawn, int64_t sample_index,
                      int64_t image_id);
@@ -75,9 +79,18 @@ class LatencyRecorder : public display::ScanoutListener {
   std::map<int64_t, Held> images_;
   ProbeCache probe_cache_[2];
   double rad_per_px_ = 0.0;
+  int64_t scan_field_ = INT64_MIN;  // field whose scanout start is cached
+  des::Time scan_start_;
   double tan_half_h_ = 1.0, tan_half_v_ = 1.0;
   int64_t next_id_ = 0;
   std::map<std::string, des::Distribution> dists_;
+  des::Distribution* mtp_ = nullptr;
+  des::Distribution* display_ms_ = nullptr;
+  des::Distribution* rotation_ = nullptr;
+  des::Distribution* translation_ = nullptr;
+  des::Distribution* reg_arcmin_ = nullptr;
+  des::Distribution* reg_px_ = nullptr;
+  void add_to(des::Distribution* d, const char* name, double value);
   std::map<std::string, int64_t> counters_;
   bool ledger_on_ = false;
   std::vector<nlohmann::json> ledger_;

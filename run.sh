@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# The main job: set up, build, run the default scenario set (every pipeline
+# side by side) into out/, and write the report (tables, plots, frames).
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")"
+scripts/setup.sh
+OUT=${OUT:-out}
+rm -rf "$OUT.partial"
+mkdir -p "$OUT.partial"
+while read -r scenario; do
+  case "$scenario" in ''|'#'*) continue ;; esac
+  name=$(basename "$scenario" .json)
+  build/latsim run "scenarios/$scenario" --out "$OUT.partial/$name" --ledger
+done < scenarios/default_set.txt
+build/latsim report "$OUT.partial"
+# Replace the previous results only once everything succeeded.
+rm -rf "$OUT"
+mv "$OUT.partial" "$OUT"
+echo "results: $OUT/report.md"
