@@ -42,8 +42,8 @@ class ArpPipeline final : public Pipeline {
     threads_ = static_cast<int>(p.integer("frame_threads", 1, 1, 256));
     scene_node_ = ctx.root.optional_child("scene");
     if (scene_node_) object_count_ = arp::scene_from_config(*scene_node_).object_count();
-    const auto display = ctx.root.child("display");
-    hfov_deg_ = display.number("hfov_deg", 90.0);
+    // The display's field of view, read where the runner reads it.
+    if (const auto display = ctx.root.optional_child("display")) hfov_deg_ = display->number("hfov_deg", 90.0);
     schedule_ = des::PeriodicSchedule(des::Time::zero(), period);
     kind_render_ = ctx.sim.kind("arp.render");
     kind_frame_ = ctx.sim.kind("arp.frame");

@@ -35,7 +35,9 @@ class PriorityPipeline final : public Pipeline {
     const renderer::Scene scene = arp::scene_from_config(ctx.root.child("scene"));
     std::vector<arp::PriorityObject> objects;
     for (const auto& obj : scene.objects()) objects.push_back({obj.bounds, 0.0, glm::dvec3(0.0)});
-    for (const auto& a : p.objects("animated")) {
+    const std::vector<scenario::ConfigNode> animated =
+        p.has("animated") ? p.objects("animated") : std::vector<scenario::ConfigNode>{};
+    for (const auto& a : animated) {
       const std::string object = a.string("object");
       const double validity_s = a.positive("validity_s");
       try {

@@ -71,8 +71,8 @@ class RegionPriorityPipeline final : public Pipeline {
     background_ = glm::vec3(static_cast<float>(bg[0]), static_cast<float>(bg[1]), static_cast<float>(bg[2]));
     frame_times_s_ = p.numbers("frame_times_s", {});
     threads_ = static_cast<int>(p.integer("frame_threads", 1, 1, 256));
-    const auto display = ctx.root.child("display");
-    hfov_deg_ = display.number("hfov_deg", 90.0);
+    // The display's field of view, read where the runner reads it.
+    if (const auto display = ctx.root.optional_child("display")) hfov_deg_ = display->number("hfov_deg", 90.0);
 
     scene_ = arp::scene_from_config(ctx.root.child("scene"));
     grid_.emplace(scene_.bounds(), region_size_m);
