@@ -67,7 +67,9 @@ class ArpPipeline final : public Pipeline {
   }
 
  private:
-  bool wants_frames() const { return (ctx_->frames != nullptr || !frame_times_s_.empty()) && scene_node_.has_value(); }
+  bool wants_frames() const {
+    return (ctx_->frames != nullptr || !frame_times_s_.empty()) && scene_node_.has_value() && !ctx_->out_dir.empty();
+  }
 
   void schedule_render(int64_t k) {
     const des::Time at = schedule_.at(k);

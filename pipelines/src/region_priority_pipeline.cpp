@@ -92,7 +92,7 @@ class RegionPriorityPipeline final : public Pipeline {
     kind_frame_ = ctx.sim.kind("arp.frame");
     schedule_tick(0);
     ctx.display.on_retrace([this](int64_t field, des::Time) { record_memory_ages(field); });
-    if (ctx.frames != nullptr || !frame_times_s_.empty()) {
+    if ((ctx.frames != nullptr || !frame_times_s_.empty()) && !ctx.out_dir.empty()) {
       for (double t : frame_times_s_) {
         const des::Time at = des::Time::from_seconds(t);
         if (at >= des::Time::zero() && at < ctx.duration) ctx.sim.at(at, kind_frame_, [this] { write_frames(); }, 10);

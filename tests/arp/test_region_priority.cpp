@@ -127,3 +127,14 @@ TEST_CASE("with warping, shared vertices of neighbouring memories coincide on sc
   CHECK(max_gap(true) < 1e-3);
   CHECK(max_gap(false) > 1.0);
 }
+
+TEST_CASE("walking parallel to a boundary, within the margin of it, still swaps across the boundaries crossed") {
+  Gallery g;
+  arp::RegionPriorityModel model(g.cut, g.grid, params(false, 0.5));
+  // z = -8.2 lies 0.2 m from the boundary z = -8, closer than the margin.
+  const auto path = walk({{-8.5, 1.6, -8.2}, {9.5, 1.6, -8.2}});
+  for (int64_t k = 0; k < 60 * 19; ++k) model.tick(tick_time(k), path.pose_at(tick_time(k)).position_m);
+  CHECK(model.map().home().ix == 9);
+  CHECK(model.map().home().iz == 0);
+  CHECK(model.swaps() >= 8);
+}

@@ -86,16 +86,21 @@ RegionIndex HomeRegionTracker::clamped_region(const glm::dvec3& point_m) const {
 bool HomeRegionTracker::wants_swap(RegionIndex home, const glm::dvec3& user_m, RegionIndex& target) const {
   const RegionIndex here = clamped_region(user_m);
   if (here == home) return false;
-  // Depth inside the region, counting grid edges as infinitely deep so a user
-  // who walks off the grid still belongs to the edge region.
+  // Each axis follows the user only once the user is past that axis's
+  // boundary by the margin; grid edges count as infinitely deep so a user who
+  // walks off the grid still belongs to the edge region. Walking along a
+  // boundary of the other axis does not hold the swap back.
   const renderer::Aabb box = grid_.region_bounds(here);
-  double depth = std::numeric_limits<double>::infinity();
-  if (here.ix > 0) depth = std::min(depth, user_m.x - box.min_m.x);
-  if (here.ix < grid_.count_x() - 1) depth = std::min(depth, box.max_m.x - user_m.x);
-  if (here.iz > 0) depth = std::min(depth, user_m.z - box.min_m.z);
-  if (here.iz < grid_.count_z() - 1) depth = std::min(depth, box.max_m.z - user_m.z);
-  if (depth < margin_m_) return false;
-  target = here;
+  const double inf = std::numeric_limits<double>::infinity();
+  const double depth_x = std::min(here.ix > 0 ? user_m.x - box.min_m.x : inf,
+                                  here.ix < grid_.count_x() - 1 ? box.max_m.x - user_m.x : inf);
+  const double depth_z = std::min(here.iz > 0 ? user_m.z - box.min_m.z : inf,
+                                  here.iz < grid_.count_z() - 1 ? box.max_m.z - user_m.z : inf);
+  RegionIndex next = home;
+  if (here.ix != home.ix && depth_x >= margin_m_) next.ix = here.ix;
+  if (here.iz != home.iz && depth_z >= margin_m_) next.iz = here.iz;
+  if (next == home) return false;
+  target = next;
   return true;
 }
 

@@ -46,13 +46,13 @@ class RegionMemoryMap {
   std::vector<std::vector<int>> regions_;
 };
 
-/// Decides when the home region may change: only once the user stands inside
-/// another grid region by at least the margin, so a path along a boundary
-/// never makes the home region flip back and forth.
+/// Decides when the home region may change: along each axis, only once the
+/// user is past the crossed boundary by at least the margin, so a path along
+/// a boundary never makes the home region flip back and forth.
 class HomeRegionTracker {
  public:
   HomeRegionTracker(const renderer::RegionGrid& grid, double margin_m);
-  /// The region the user has entered by the margin, if it differs from `home`.
+  /// The home region the user has moved into by the margin, if it differs from `home`.
   bool wants_swap(renderer::RegionIndex home, const glm::dvec3& user_m, renderer::RegionIndex& target) const;
   /// Grid region of a point, clamped onto the grid.
   renderer::RegionIndex clamped_region(const glm::dvec3& point_m) const;
