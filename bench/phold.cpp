@@ -37,6 +37,7 @@ constexpr double kTicksPerUnit = 1e9;
 
 uint64_t to_ticks(double units) { return static_cast<uint64_t>(units * kTicksPerUnit + 0.5); }
 
+// The peers' command-line parameters, plus the choice of pending-event set.
 struct Options {
   uint32_t lps = 1024;
   uint32_t epl = 16;

@@ -134,7 +134,7 @@ void Simulator::run_loop(Q& queue, int64_t limit_ticks) {
     free_slot(e.slot);
     // The next event's callback is a cache miss away in a large slab: start
     // loading the candidates now, while this event runs.
-    for (const QueueEntry& next : queue.successors()) __builtin_prefetch(&slots_[next.slot]);
+    for (const QueueEntry& next : queue.successors()) __builtin_prefetch(slots_.data() + next.slot);
     now_ = Time::ps(e.time_ticks);
     --live_;
     KindRecord& record = kinds_[k];

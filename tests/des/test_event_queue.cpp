@@ -10,6 +10,7 @@
 
 namespace {
 
+// A queue entry shaped like the simulator's, but carrying its own sequence.
 struct Entry {
   int64_t time;
   int32_t prio;
@@ -17,6 +18,7 @@ struct Entry {
   friend bool operator==(const Entry&, const Entry&) = default;
 };
 
+// The simulator's order: time, then priority, then insertion sequence.
 struct EntryLess {
   bool operator()(const Entry& a, const Entry& b) const {
     if (a.time != b.time) return a.time < b.time;

@@ -13,6 +13,7 @@ using latsim::des::Time;
 
 namespace {
 
+// Lines of "<ms>ms <what>" in the order processes wrote them.
 struct Log {
   std::vector<std::string> lines;
   void add(const Simulator& sim, const std::string& what) {

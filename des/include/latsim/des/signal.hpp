@@ -84,6 +84,7 @@ class Signal {
 /// Awaiter for all_of / any_of over several signals.
 class SignalSetAwaiter final : public SignalWaiter {
  public:
+  /// Whether every signal or the first one ends the wait.
   enum class Mode { all, any };
   SignalSetAwaiter(Mode mode, std::vector<Signal*> signals) : mode_(mode), signals_(std::move(signals)) {}
   SignalSetAwaiter(const SignalSetAwaiter&) = delete;  // registered by address

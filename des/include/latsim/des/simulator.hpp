@@ -50,11 +50,13 @@ class DelayAwaitable;
 /// Steps simulated time from event to event and runs each event's callback.
 class Simulator {
  public:
+  /// Events run and (when profiling) wall time spent for one event kind.
   struct KindStats {
     std::string name;
     uint64_t events = 0;
     double wall_s = 0.0;
   };
+  /// KindStats summed over the kinds of one model.
   struct ModelStats {
     std::string model;
     uint64_t events = 0;
@@ -160,6 +162,7 @@ class Simulator {
 
   static_assert(sizeof(Callback) + 16 <= 64, "a slot must fit one cache line");
 
+  // What the pending-event set orders: when, at which priority, which slot.
   struct QueueEntry {
     int64_t time_ticks;
     Priority prio;
@@ -181,6 +184,7 @@ class Simulator {
     }
   };
 
+  // A registered kind: its name, the name's stable hash and its counters.
   struct KindRecord {
     std::string name;
     uint64_t name_hash = 0;
