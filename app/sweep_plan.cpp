@@ -169,15 +169,15 @@ std::vector<std::vector<size_t>> expand_points(const std::vector<size_t>& axis_s
   }
 }
 
-std::string hash_hex(const std::string& text) {
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(des::fnv1a64(text)));
-  return buf;
-}
-
 std::string run_id_of(const Json& scenario, uint64_t seed, uint64_t replication) {
   // nlohmann::json keeps object keys sorted, so equal scenarios dump equally.
-  return hash_hex(scenario.dump() + "\nseed=" + std::to_string(seed) + "\nreplication=" + std::to_string(replication));
+  // FNV-1a alone barely changes the high bits when only the last byte differs
+  // (replications); the splitmix64 finaliser spreads every bit over the id.
+  const std::string text =
+      scenario.dump() + "\nseed=" + std::to_string(seed) + "\nreplication=" + std::to_string(replication);
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(des::mix64(des::fnv1a64(text))));
+  return buf;
 }
 
 std::string value_text(const Json& value) {

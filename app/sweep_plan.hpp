@@ -84,10 +84,8 @@ std::vector<nlohmann::json> expand_range(const nlohmann::json& range, const std:
 /// varies fastest) or zip (the i-th value of every axis).
 std::vector<std::vector<size_t>> expand_points(const std::vector<size_t>& axis_sizes, bool zip);
 
-/// 64-bit FNV-1a of `text`, as 16 lower-case hex digits.
-std::string hash_hex(const std::string& text);
-
-/// The run id: a hash of the scenario as run (keys sorted), the seed and the replication.
+/// The run id: a 64-bit hash (FNV-1a, then the splitmix64 finaliser) of the
+/// scenario as run (keys sorted), the seed and the replication, in 16 hex digits.
 std::string run_id_of(const nlohmann::json& scenario, uint64_t seed, uint64_t replication);
 
 /// A value as it appears in tables: strings bare, numbers and booleans as JSON.

@@ -13,7 +13,7 @@
 
 using latsim::app::expand_points;
 using latsim::app::expand_range;
-using latsim::app::hash_hex;
+using latsim::app::run_id_of;
 using latsim::app::SweepError;
 using latsim::app::SweepPlan;
 using Json = nlohmann::json;
@@ -169,9 +169,16 @@ TEST_CASE("overrides and the sweep seed apply to every run and change its id", "
   CHECK(plan.runs()[0].run_id != plain_id);
 }
 
-TEST_CASE("hash_hex is 64-bit FNV-1a in 16 hex digits", "[sweep]") {
-  CHECK(hash_hex("") == "cbf29ce484222325");
-  CHECK(hash_hex("a") == "af63dc4c8601ec8c");
+TEST_CASE("run ids are 16 hex digits that differ widely between replications", "[sweep]") {
+  const Json scenario = {{"duration_s", 1}};
+  const std::string a = run_id_of(scenario, 1, 0), b = run_id_of(scenario, 1, 1);
+  REQUIRE(a.size() == 16);
+  CHECK(a.find_first_not_of("0123456789abcdef") == std::string::npos);
+  CHECK(a == run_id_of(Json{{"duration_s", 1}}, 1, 0));
+  CHECK(a != run_id_of(scenario, 2, 0));
+  int differing = 0;
+  for (size_t i = 0; i < a.size(); ++i) differing += a[i] != b[i];
+  CHECK(differing >= 8);
 }
 
 TEST_CASE("plan.json lists every run with its values", "[sweep]") {

@@ -1,0 +1,164 @@
+// latsim fidelity: what one step of a fidelity knob changes in a figure and
+// what it costs in wall time, events and memory.
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "child_process.hpp"
+#include "commands.hpp"
+#include "fidelity_table.hpp"
+#include "latsim/pipelines/runner.hpp"
+#include "latsim/scenario/config.hpp"
+#include "run_table.hpp"
+
+namespace latsim::app {
+
+namespace {
+
+using Json = nlohmann::json;
+namespace fs = std::filesystem;
+
+/// What `latsim fidelity` was asked to do.
+struct FidelityRequest {
+  std::string scenario_file;
+  std::string vary;
+  std::string metric;
+  std::string out_dir = "out/fidelity";
+  std::vector<std::string> sets;
+  std::optional<uint64_t> seed;
+};
+
+Json read_summary(const fs::path& file) {
+  std::ifstream in(file);
+  std::stringstream buf;
+  buf << in.rdbuf();
+  return Json::parse(buf.str());
+}
+
+// Every figure name a metric could be, for the error message when it is not found.
+std::string figure_names(const Json& summary) {
+  const FlatFigures flat = flatten_figures(summary.value("figures", Json::object()));
+  std::string names;
+  for (const auto& f : flat.scalars) names += " " + f.name;
+  std::string last;
+  for (const auto& s : flat.stats)
+    if (s.name != last) names += " " + (last = s.name) + ".{mean,p50,p99,max,...}";
+  return names + " events wall_s";
+}
+
+// Runs one level in its own process, so its peak memory is its own.
+FidelityLevel run_level(const FidelityRequest& request, const std::string& assignment, const std::string& value,
+                        const fs::path& level_dir) {
+  std::vector<std::string> argv{self_executable().string(), "run", request.scenario_file, "--out", level_dir.string(),
+                                "--quiet", "--set", assignment};
+  for (const auto& s : request.sets) argv.insert(argv.end(), {"--set", s});
+  if (request.seed) argv.insert(argv.end(), {"--seed", std::to_string(*request.seed)});
+  const ChildResult child = run_child(argv);
+  if (child.exit_code != 0)
+    throw std::runtime_error("the run at " + assignment + " failed with exit status " + std::to_string(child.exit_code));
+  const Json summary = read_summary(level_dir / "summary.json");
+  const auto metric = find_figure(summary, request.metric);
+  if (!metric)
+    throw std::invalid_argument("metric \"" + request.metric + "\" is not in the summary; figures are:" +
+                                figure_names(summary));
+  FidelityLevel level;
+  level.value = value;
+  level.metric = *metric;
+  level.wall_s = summary.value("wall_s", child.wall_s);
+  level.events = summary.value("events", uint64_t{0});
+  level.peak_rss_mb = child.peak_rss_mb;
+  return level;
+}
+
+int plot(const fs::path& out_dir) {
+  const ChildResult child =
+      run_child({python_interpreter(), analysis_script("fidelity_plot.py").string(), out_dir.string()});
+  return child.exit_code;
+}
+
+}  // namespace
+
+int command_fidelity(int argc, char** argv) {
+  CLI::App app{"Runs a scenario at each level of a fidelity knob and tabulates a metric's error against the finest "
+               "level (the last value) together with wall time, events and peak memory",
+               "latsim fidelity"};
+  FidelityRequest request;
+  uint64_t seed = 0;
+  app.add_option("scenario", request.scenario_file, "scenario JSON file")->required();
+  app.add_option("--vary", request.vary, "the knob and its levels, coarsest first: /json/pointer=v1,v2,...")->required();
+  app.add_option("--metric", request.metric, "a figure such as motion_to_photon_ms.mean, or a dotted summary path")
+      ->required();
+  app.add_option("--out,-o", request.out_dir, "output directory")->capture_default_str();
+  app.add_option("--set", request.sets, "override a value for every level: /json/pointer=value (repeatable)");
+  auto* seed_option = app.add_option("--seed", seed, "run seed (overrides the scenario's /seed)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? kExitOk : kExitBadInput;
+  }
+  if (*seed_option) request.seed = seed;
+
+  FidelityAxis axis;
+  try {
+    axis = parse_vary(request.vary);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "fidelity: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  // Every level must be a valid scenario before anything runs or is written.
+  for (const auto& value : axis.values) {
+    std::vector<std::string> overrides = request.sets;
+    overrides.push_back(axis.pointer + "=" + value);
+    try {
+      pipelines::validate_scenario(scenario::ScenarioDocument::load(request.scenario_file, overrides));
+    } catch (const scenario::ScenarioError& e) {
+      std::cerr << request.scenario_file << ": " << e.pointer() << ": " << e.message() << " (at " << axis.pointer
+                << "=" << value << ")\n";
+      return kExitBadInput;
+    }
+  }
+
+  const fs::path out_dir = request.out_dir;
+  std::vector<FidelityLevel> levels;
+  try {
+    fs::create_directories(out_dir / "levels");
+    for (size_t i = 0; i < axis.values.size(); ++i) {
+      const fs::path level_dir = out_dir / "levels" / level_dir_name(i, axis.values[i]);
+      levels.push_back(run_level(request, axis.pointer + "=" + axis.values[i], axis.values[i], level_dir));
+      std::fprintf(stderr, "fidelity: %s=%s: %s = %.6g, %llu events, %.3f s\n", axis.pointer.c_str(),
+                   axis.values[i].c_str(), request.metric.c_str(), levels.back().metric,
+                   static_cast<unsigned long long>(levels.back().events), levels.back().wall_s);
+    }
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "fidelity: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "fidelity: " << e.what() << "\n";
+    return kExitFailure;
+  }
+  compute_errors(levels);
+  const std::string markdown = fidelity_markdown(axis, request.metric, levels);
+  std::fputs(markdown.c_str(), stdout);
+  try {
+    pipelines::write_file_atomically(out_dir / "fidelity.csv", fidelity_csv(axis, request.metric, levels));
+    pipelines::write_file_atomically(out_dir / "fidelity.md", markdown);
+    if (plot(out_dir) != 0) {
+      std::cerr << "fidelity: the plot could not be drawn (python3 with matplotlib is needed); the tables are written\n";
+      return kExitFailure;
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "fidelity: " << e.what() << "\n";
+    return kExitFailure;
+  }
+  std::fflush(stdout);
+  std::fprintf(stderr, "fidelity: wrote %s, fidelity.md and fidelity.png/svg\n", (out_dir / "fidelity.csv").c_str());
+  return kExitOk;
+}
+
+}  // namespace latsim::app

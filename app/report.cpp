@@ -1,0 +1,46 @@
+// latsim report: tables and plots from a result directory, drawn by the
+// Python analysis (which reads only result files).
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "child_process.hpp"
+#include "commands.hpp"
+
+namespace latsim::app {
+
+int command_report(int argc, char** argv) {
+  CLI::App app{"Writes report.md, latency_table.csv and plots (CDF, histogram, sweep axes, Gantt charts) for a run "
+               "directory, a sweep directory or a directory of run directories",
+               "latsim report"};
+  std::string dir;
+  int gantt_limit = -1;
+  app.add_option("dir", dir, "result directory")->required();
+  app.add_option("--gantt-limit", gantt_limit, "draw at most this many Gantt charts (default: all)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? kExitOk : kExitBadInput;
+  }
+  if (!std::filesystem::is_directory(dir)) {
+    std::cerr << dir << ": not a directory\n";
+    return kExitBadInput;
+  }
+  try {
+    std::vector<std::string> command{python_interpreter(), analysis_script("report.py").string(), dir};
+    if (gantt_limit >= 0) command.insert(command.end(), {"--gantt-limit", std::to_string(gantt_limit)});
+    const ChildResult child = run_child(command);
+    // The script's own codes already follow the program's: 0 ok, 2 bad input.
+    if (child.exit_code == kExitOk || child.exit_code == kExitBadInput) return child.exit_code;
+    std::cerr << "report: the analysis script failed (exit status " << child.exit_code << ")\n";
+    return kExitFailure;
+  } catch (const std::exception& e) {
+    std::cerr << "report: " << e.what() << "\n";
+    return kExitFailure;
+  }
+}
+
+}  // namespace latsim::app
