@@ -27,6 +27,8 @@ class DoubleBufferPipeline final : public Pipeline {
     std::optional<scenario::ConfigNode> scene = ctx.root.optional_child("scene");
     cost_ = RenderCost::from_config(render, scene ? &*scene : nullptr, ctx.display.timing().params().width_px,
                                     ctx.display.timing().params().height_px, ctx.display.eyes());
+    if (!vsync_ && cost_.nominal_frame_time() == des::Time::zero())
+      p.fail("vsync", "without vsync the renderer runs back to back, so frames need a render time above zero");
     stream_ = std::make_unique<des::RandomStream>(ctx.stream("renderer"));
     kind_frame_ = ctx.sim.kind("renderer.frame");
     if (vsync_) ctx.display.on_retrace([this](int64_t field, des::Time t) { retrace(field, t); });

@@ -135,6 +135,9 @@ void LatencyRecorder::on_scanout(const display::ScanoutSpan& span) {
     scan_start_ = timing_.scanout_start(span.field);
   }
   add_to(display_ms_, "display_ms", (photon - scan_start_).to_ms());
+  // Age of the shown image's input when the field starts to light up, once
+  // per field and eye: the "update interval" view of latency.
+  if (span.line == 0 && span.x_begin == 0) add("image_age_ms", (scan_start_ - origin).to_ms());
   if (!probes_.points_m.empty()) record_probes(span, drawn, sample_index, span.image_id);
 }
 

@@ -1,0 +1,178 @@
+// Analytic checks of the conventional pipeline: each test states the value
+// the model must produce and why, then runs the simulation.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "latsim/display/raster_timing.hpp"
+#include "run_helpers.hpp"
+
+using latsim::testing::base_scenario;
+using latsim::testing::fig;
+using latsim::testing::run;
+using Json = nlohmann::json;
+
+namespace {
+
+latsim::display::RasterTiming timing_60hz() {
+  latsim::display::RasterParams p;
+  p.field_period = latsim::des::RationalSeconds{1, 60};
+  return latsim::display::RasterTiming(p);
+}
+
+}  // namespace
+
+TEST_CASE("a still head has zero registration error whatever the latency", "[double_buffer]") {
+  Json s = base_scenario();
+  s["motion"] = {{"type", "still"}};
+  s["transport"] = {{"type", "serial"}, {"record_bytes", 32}, {"baud", 9600}, {"host", "poll"}, {"poll_interval_ms", 30}};
+  s["pipeline"]["render"]["fixed_ms"] = 40;
+  const Json out = run(s);
+  CHECK(fig(out, "motion_to_photon_ms")["mean"].get<double>() > 50.0);  // plenty of latency
+  REQUIRE(fig(out, "registration_error_arcmin")["count"].get<int64_t>() > 100);
+  CHECK(fig(out, "registration_error_arcmin")["max"].get<double>() < 1e-6);
+  CHECK(fig(out, "registration_error_px")["max"].get<double>() < 1e-6);
+}
+
+TEST_CASE("direct tracker and instant rendering: latency is one field plus each line's scanout delay",
+          "[double_buffer]") {
+  // The sample taken at retrace k is rendered at once and swapped in at
+  // retrace k+1, so every line of field k+1 is exactly one field plus its own
+  // scanout delay old.
+  const Json out = run(base_scenario());
+  const auto t = timing_60hz();
+  const double field_ms = t.field_period_ms();
+  const double first_line_ms = (t.line_time(1, 0) - t.field_start(1)).to_ms();
+  const double last_line_ms = (t.line_time(1, t.lines_per_field() - 1) - t.field_start(1)).to_ms();
+  const auto& mtp = fig(out, "motion_to_photon_ms");
+  CHECK(mtp["min"].get<double>() == Approx(field_ms + first_line_ms).margin(1e-6));
+  CHECK(mtp["max"].get<double>() == Approx(field_ms + last_line_ms).margin(1e-6));
+  const auto& disp = fig(out, "display_ms");
+  CHECK(mtp["max"].get<double>() - mtp["min"].get<double>() ==
+        Approx(disp["max"].get<double>() - disp["min"].get<double>()).margin(1e-6));
+  CHECK(fig(out, "image_age_ms")["min"].get<double>() == Approx(field_ms + first_line_ms).margin(1e-6));
+  CHECK(fig(out, "image_age_ms")["max"].get<double>() == Approx(field_ms + first_line_ms).margin(1e-6));
+  CHECK(fig(out, "frame_rate_hz").get<double>() == Approx(60.0).epsilon(0.02));
+}
+
+TEST_CASE("serial polling at P adds a delay uniform on [0, P)", "[double_buffer][transport]") {
+  Json s = base_scenario();
+  s["duration_s"] = 60;
+  s["tracker"]["rate_hz"] = "60000/1001";  // incommensurate with the 30 ms poll
+  s["transport"] = {{"type", "serial"}, {"record_bytes", 32}, {"baud", 19200}, {"host", "poll"}, {"poll_interval_ms", 30}};
+  s["display"]["height_px"] = 8;  // the display does not matter here: keep it cheap
+  const Json out = run(s);
+  const double transmit_ms = 32 * 10 / 19200.0 * 1e3;
+  const auto& d = fig(out, "tracker_to_host_ms");
+  REQUIRE(d["count"].get<int64_t>() > 3000);
+  CHECK(d["min"].get<double>() >= transmit_ms - 1e-9);
+  CHECK(d["max"].get<double>() < transmit_ms + 30.0);
+  CHECK(d["mean"].get<double>() == Approx(transmit_ms + 15.0).margin(0.5));
+  // A uniform distribution on [0, 30) has standard deviation 30/sqrt(12).
+  CHECK(d["stddev"].get<double>() == Approx(30.0 / std::sqrt(12.0)).epsilon(0.05));
+}
+
+TEST_CASE("interrupt per character removes the poll wait", "[double_buffer][transport]") {
+  Json s = base_scenario();
+  s["transport"] = {{"type", "serial"}, {"record_bytes", 32}, {"baud", 19200}, {"host", "interrupt"}};
+  s["display"]["height_px"] = 8;
+  const Json out = run(s);
+  const double transmit_ms = 32 * 10 / 19200.0 * 1e3;
+  CHECK(fig(out, "tracker_to_host_ms")["max"].get<double>() == Approx(transmit_ms).margin(1e-6));
+}
+
+TEST_CASE("double buffering at update interval T shows images aged T to 2T plus scanout", "[double_buffer]") {
+  Json s = base_scenario();
+  s["duration_s"] = 5;
+  s["tracker"]["rate_hz"] = 1000;                // input at most 1 ms stale
+  s["pipeline"]["render"]["fixed_ms"] = 25;      // 1.5 fields: a new image every T = 2 fields
+  const Json out = run(s);
+  const auto t = timing_60hz();
+  const double T = 2 * t.field_period_ms();
+  const double vblank_ms = (t.line_time(1, 0) - t.field_start(1)).to_ms();
+  CHECK(fig(out, "frame_rate_hz").get<double>() == Approx(30.0).epsilon(0.02));
+  const auto& age = fig(out, "image_age_ms");
+  CHECK(age["min"].get<double>() >= T + vblank_ms - 1e-6);
+  CHECK(age["max"].get<double>() <= 1.5 * T + vblank_ms + 1.0 + 1e-6);
+  const auto& mtp = fig(out, "motion_to_photon_ms");
+  CHECK(mtp["min"].get<double>() >= T - 1e-6);
+  CHECK(mtp["max"].get<double>() <= 2 * T + t.field_period_ms() + 1.0);
+  CHECK(fig(out, "missed_refreshes").get<int64_t>() > 0);
+}
+
+TEST_CASE("constant yaw rate w gives registration error w times latency", "[double_buffer][registration]") {
+  // Probes on the horizon are drawn on the centre row; with the aligned
+  // tracker and instant rendering their latency is one field plus the centre
+  // row's scanout delay, so the error is w times that.
+  Json s = base_scenario();
+  const double w_deg_s = 30.0;
+  Json ring = Json::array();
+  for (int i = 0; i < 36; ++i) {
+    const double a = i * 10.0 * M_PI / 180.0;
+    ring.push_back({-2.0 * std::sin(a), 0.0, -2.0 * std::cos(a)});
+  }
+  s["probes"] = {{"points_m", ring}};
+  const Json out = run(s);
+  const auto t = timing_60hz();
+  const double latency_s = (t.field_period_ms() + (t.line_time(1, 240) - t.field_start(1)).to_ms()) * 1e-3;
+  const double expected_arcmin = w_deg_s * latency_s * 60.0;
+  const auto& e = fig(out, "registration_error_arcmin");
+  REQUIRE(e["count"].get<int64_t>() > 50);
+  CHECK(e["mean"].get<double>() == Approx(expected_arcmin).epsilon(0.01));
+  CHECK(e["min"].get<double>() == Approx(expected_arcmin).epsilon(0.01));
+  CHECK(e["max"].get<double>() == Approx(expected_arcmin).epsilon(0.01));
+}
+
+TEST_CASE("rendering ahead with queued frames costs latency", "[double_buffer]") {
+  Json s = base_scenario();
+  s["pipeline"]["render"]["fixed_ms"] = 5;
+  const double plain = fig(run(s), "motion_to_photon_ms")["mean"].get<double>();
+  s["pipeline"]["queued_frames"] = 2;
+  const double ahead = fig(run(s), "motion_to_photon_ms")["mean"].get<double>();
+  // Two more queued frames: two more refreshes of waiting.
+  CHECK(ahead - plain == Approx(2 * 1000.0 / 60.0).margin(0.5));
+}
+
+TEST_CASE("without vsync a new image replaces the front buffer mid-scan and lowers latency", "[double_buffer]") {
+  Json s = base_scenario();
+  s["pipeline"]["render"]["fixed_ms"] = 5;
+  s["display"]["scanout"] = "line";
+  const double vsync = fig(run(s), "motion_to_photon_ms")["mean"].get<double>();
+  s["pipeline"]["vsync"] = false;
+  const Json torn = run(s);
+  CHECK(fig(torn, "motion_to_photon_ms")["mean"].get<double>() < vsync - 5.0);
+  CHECK(fig(torn, "frame_rate_hz").get<double>() > 150.0);
+}
+
+TEST_CASE("same scenario and seed give identical figures; another seed with jitter differs", "[double_buffer][determinism]") {
+  Json s = base_scenario();
+  s["tracker"]["jitter_ms"] = 2;
+  s["pipeline"]["render"] = {{"fixed_ms", 5}, {"variation", "normal"}, {"variation_fraction", 0.2}};
+  const Json a = run(s), b = run(s);
+  CHECK(a["figures"].dump() == b["figures"].dump());
+  CHECK(a["fingerprint"] == b["fingerprint"]);
+  s["seed"] = 8;
+  const Json c = run(s);
+  CHECK(a["fingerprint"] != c["fingerprint"]);
+}
+
+TEST_CASE("hours of simulated time at 59.94 Hz stay exact", "[double_buffer][long_time]") {
+  // With the tracker locked to the 60000/1001 Hz refresh, latency per line is
+  // the same in the third hour as in the first second: no drift, no rounding creep.
+  Json s = base_scenario();
+  s["tracker"]["rate_hz"] = "60000/1001";
+  s["display"]["refresh_hz"] = "60000/1001";
+  s["display"]["height_px"] = 4;
+  s["display"]["vblank_lines"] = 1;
+  s["probes"] = {{"points_m", Json::array({{0.0, 0.0, -2.0}})}};
+  s["duration_s"] = 1;
+  const Json short_run = run(s);
+  s["duration_s"] = 3 * 3600;
+  const Json long_run = run(s);
+  const auto& a = fig(short_run, "motion_to_photon_ms");
+  const auto& b = fig(long_run, "motion_to_photon_ms");
+  CHECK(b["min"].get<double>() == a["min"].get<double>());
+  CHECK(b["max"].get<double>() == a["max"].get<double>());
+  CHECK(std::isfinite(fig(long_run, "registration_error_arcmin")["max"].get<double>()));
+  CHECK(fig(long_run, "fields").get<int64_t>() == 647353);  // retraces k with k·1001/60000 s < 10800 s: k = 0 … 647352
+}
