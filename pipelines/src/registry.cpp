@@ -1,6 +1,9 @@
 #include <stdexcept>
 
+#include "latsim/pipelines/arp.hpp"
 #include "latsim/pipelines/double_buffer.hpp"
+#include "latsim/pipelines/pxpl5.hpp"
+#include "latsim/pipelines/frameless.hpp"
 #include "latsim/pipelines/pipeline.hpp"
 
 namespace latsim::pipelines {
@@ -24,6 +27,9 @@ std::vector<std::string> PipelineRegistry::names() const {
 PipelineRegistry builtin_pipelines() {
   PipelineRegistry r;
   r.add("double_buffer", make_double_buffer_pipeline);
+  register_pxpl5_pipelines(r);
+  register_arp_pipelines(r);
+  r.add("frameless", make_frameless_pipeline);
   return r;
 }
 

@@ -11,6 +11,7 @@
 
 #include "latsim/des/simulator.hpp"
 #include "latsim/display/config.hpp"
+#include "latsim/pipelines/frame_capture.hpp"
 #include "latsim/pipelines/latency_recorder.hpp"
 #include "latsim/pipelines/timeline.hpp"
 #include "latsim/pipelines/tracker_host.hpp"
@@ -70,6 +71,7 @@ struct Run {
   display::DisplayConfig display_config;
   std::unique_ptr<display::Display> display;
   std::unique_ptr<LatencyRecorder> recorder;
+  std::unique_ptr<FrameCapture> frames;  // only when the scenario asks for frames
   Timeline timeline;
   std::unique_ptr<Pipeline> pipeline;
   std::unique_ptr<RunContext> ctx;
@@ -128,6 +130,12 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
   run.recorder->enable_ledger(options.write_ledger);
   run.recorder->enable_sample_log(options.write_samples);
   run.display->add_listener(run.recorder.get());
+  if (auto fr = root.optional_child("frames")) {
+    run.frames = make_frame_capture(*fr, root, FrameCaptureInputs{*run.recorder, *run.host, *run.motion,
+                                                                  run.display->timing(), run.display_config.hfov_deg,
+                                                                  ipd_m, stereo, options.out_dir});
+    run.display->add_listener(run.frames.get());
+  }
   LatencyRecorder* rec = run.recorder.get();
   run.host->on_measured([rec](const tracker::TrackerSample& s, des::Time delivered) {
     rec->add("tracker_to_host_ms", (delivered - s.measured_at).to_ms());
@@ -144,7 +152,7 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
   run.ctx = std::unique_ptr<RunContext>(new RunContext{run.sim, root, pipeline_node, run.seed, options.replication,
                                                        run.duration, *run.motion, *run.host, *run.display,
                                                        *run.recorder, ipd_m, stereo,
-                                                       run.keep_timeline ? &run.timeline : nullptr, nullptr,
+                                                       run.keep_timeline ? &run.timeline : nullptr, run.frames.get(),
                                                        options.out_dir});
   run.timeline.set_max_entries(static_cast<size_t>(run.timeline_max_entries));
   run.pipeline->start(*run.ctx);
@@ -162,6 +170,7 @@ Json figures_of(Run& run) {
   for (const auto& [name, v] : run.recorder->counters()) f["counts"][name] = v;
   f["tracker_samples"] = run.host->samples_measured();
   run.pipeline->finish(*run.ctx, f);
+  if (run.frames) run.frames->finish(f);
   return f;
 }
 
@@ -204,6 +213,8 @@ void validate_scenario(const scenario::ScenarioDocument& doc) {
 Json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& options) {
   Run run;
   build(run, doc, options);
+  // The scenario is valid: from here on pipelines may write files of their own.
+  if (!options.out_dir.empty()) std::filesystem::create_directories(options.out_dir);
   run.sim.set_profiling(true);
   const auto t0 = std::chrono::steady_clock::now();
   run.host->start(run.duration);
