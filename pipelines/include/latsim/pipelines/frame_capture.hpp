@@ -1,0 +1,96 @@
+// Actual images next to the numbers: ray-casts what the display shows in
+// chosen fields, the ground truth at each row's photon time, their difference
+// and the age of every pixel, and writes them as PNG files.
+//
+// Only built when a scenario has a /frames section: without one no scene is
+// loaded and nothing is ray-cast. Renderer types stay in the .cpp file, so
+// this header costs its users nothing of the renderer.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <span>
+
+#include <nlohmann/json.hpp>
+
+#include "latsim/des/time.hpp"
+#include "latsim/display/display.hpp"
+#include "latsim/display/raster_timing.hpp"
+#include "latsim/pipelines/pipeline.hpp"
+#include "latsim/scenario/config.hpp"
+#include "latsim/tracker/motion_source.hpp"
+
+namespace latsim::pipelines {
+
+class LatencyRecorder;
+
+/// What one displayed pixel shows when a pipeline computes pixels itself.
+struct ShownPixel {
+  bool lit = false;           ///< false: nothing computed there yet (background)
+  tracker::Pose eye_pose;     ///< the eye pose its colour was computed from
+  des::Time measured_at;      ///< when that pose was measured (origin of the pixel's age)
+  int source_x = 0;           ///< the pixel whose ray gave the colour: the pixel itself,
+  int source_y = 0;           ///< or its block's sample pixel at reduced resolution
+};
+
+/// A pipeline that writes pixels into the displayed buffer one by one (frameless
+/// rendering) and can say, at any instant, what each displayed pixel shows.
+class PixelSource {
+ public:
+  virtual ~PixelSource() = default;
+  /// Fills out[i] for pixel (x_begin + i, row) of `eye` as it is shown now;
+  /// out.size() == x_end - x_begin.
+  virtual void shown_pixels(int eye, int row, int x_begin, std::span<ShownPixel> out) const = 0;
+};
+
+/// Everything a capture needs from the run besides its configuration.
+struct FrameCaptureInputs {
+  const LatencyRecorder& recorder;        ///< image ids -> the pose each image was rendered from
+  const HostFeed& host;                   ///< newest orientation for address-recalculation images
+  const tracker::MotionSource& motion;    ///< the true head pose (ground truth)
+  const display::RasterTiming& timing;    ///< rows and photon times
+  double hfov_deg = 90.0;
+  double ipd_m = 0.064;
+  bool stereo = false;
+  std::filesystem::path out_dir;          ///< empty: cast and measure, write no files
+};
+
+/// Listens to scanout and, for each captured field of one eye, collects per
+/// row (or pixel span) the image shown and its photon time; when the field is
+/// complete it ray-casts the displayed image (persistent across fields, so an
+/// interlaced field shows only its rows and tears show), the truth, the
+/// enhanced difference and the pixel-age heat map into <out_dir>/frames/.
+class FrameCapture final : public display::ScanoutListener {
+ public:
+  /// Reads /frames (at_s, every_nth_refresh, max_captures, eye, threads,
+  /// background, diff_gain, age_scale_ms) and /scene (type, file, gallery
+  /// sizes); throws scenario::ScenarioError on bad values. Loads nothing yet.
+  FrameCapture(const scenario::ConfigNode& frames, const scenario::ConfigNode* scene, FrameCaptureInputs inputs);
+  ~FrameCapture() override;
+  FrameCapture(const FrameCapture&) = delete;
+  FrameCapture& operator=(const FrameCapture&) = delete;
+
+  /// Pixels come from `source` instead of whole images (nullptr: back to images).
+  void set_pixel_source(const PixelSource* source);
+
+  void on_field_start(int eye, int64_t field, des::Time retrace) override;
+  void on_scanout(const display::ScanoutSpan& span) override;
+
+  /// Casts a field still being collected, then adds figures["frames"] (one
+  /// entry per capture) and figures["frames_mean_image_error"].
+  void finish(nlohmann::json& figures);
+
+  /// How many ray casters were built (0 until the first field is cast).
+  int64_t renderers_built() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// The capture the runner registers with the display when /frames exists.
+std::unique_ptr<FrameCapture> make_frame_capture(const scenario::ConfigNode& frames, const scenario::ConfigNode& root,
+                                                 FrameCaptureInputs inputs);
+
+}  // namespace latsim::pipelines

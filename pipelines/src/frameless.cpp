@@ -1,0 +1,437 @@
+// Frameless rendering and double buffering on one pixel budget (SPEC section 6).
+//
+// Both strategies spend the same number of pixel computations per second;
+// pixel k of the run's computation stream occupies [at(k), at(k+1)) on an
+// exact periodic schedule. Frameless writes each pixel at once, from the
+// newest pose when its computation starts, and the display latches what has
+// been written at every retrace. Double buffering spends width x height x eyes
+// consecutive pixels on one image from one pose and swaps it in at the next
+// retrace. Pixels are simulated exactly but handled in chunks, one event per
+// chunk, so the event count stays far below one per pixel.
+#include "latsim/pipelines/frameless.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <optional>
+
+#include "latsim/pipelines/frame_capture.hpp"
+#include "latsim/pipelines/latency_recorder.hpp"
+#include "latsim/pipelines/timeline.hpp"
+#include "latsim/renderer/camera.hpp"
+
+namespace latsim::pipelines {
+
+FramelessOrder::FramelessOrder(int32_t pixel_count, des::RandomStream stream) {
+  if (pixel_count < 1) throw std::invalid_argument("frameless order: needs at least one pixel");
+  table_.resize(static_cast<size_t>(pixel_count));
+  for (int32_t i = 0; i < pixel_count; ++i) table_[static_cast<size_t>(i)] = i;
+  stream.shuffle(table_);
+}
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// What one buffer pixel holds: the sample its colour was computed from (a
+/// slot in the pipeline's sample list; -1 = never computed) and the pixel,
+/// within its eye, whose ray gave the colour (itself, or its block's sample
+/// pixel at reduced resolution).
+struct PixelState {
+  int64_t slot = -1;
+  int32_t source = 0;
+};
+
+/// What the pipeline does with its next unit of pixel budget.
+enum class Mode { Normal, LowResolution, DoubleBufferFallback };
+
+/// Both strategies of SPEC section 6 on one pixel budget; frameless also
+/// supplies its per-pixel poses to a frame capture.
+class FramelessPipeline final : public Pipeline, public display::ScanoutListener, public PixelSource {
+ public:
+  std::string name() const override { return "frameless"; }
+
+  void start(RunContext& ctx) override {
+    ctx_ = &ctx;
+    read_parameters(ctx);
+    kind_chunk_ = ctx.sim.kind("frameless.chunk");
+    kind_image_ = ctx.sim.kind("frameless.image");
+    schedule_ = des::PeriodicSchedule(ctx.sim.now(), des::RationalSeconds{1, budget_px_s_});
+    pick_sampled_pixels(ctx.stream("frameless.samples"));
+    ctx.display.add_listener(this);
+    ctx.display.on_retrace([this](int64_t field, des::Time t) { retrace(field, t); });
+    if (double_buffer_) {
+      ctx.sim.at(schedule_.at(0), kind_image_, [this] { image_done(-1); });
+      return;
+    }
+    order_.emplace(pixels_, ctx.stream("frameless"));
+    computed_.assign(static_cast<size_t>(pixels_), PixelState{});
+    visible_ = computed_;
+    stamp_.assign(static_cast<size_t>(pixels_), -1);
+    if (fallback_ == Mode::LowResolution) make_blocks(ctx.stream("frameless.blocks"));
+    if (fallback_ != Mode::Normal)
+      ctx.host.on_delivery([this](const tracker::TrackerSample& s, des::Time t) { delivered(s, t); });
+    if (ctx.frames) ctx.frames->set_pixel_source(this);
+    schedule_chunk();
+  }
+
+  void finish(RunContext& ctx, nlohmann::json& figures) override {
+    if (ctx.frames) ctx.frames->set_pixel_source(nullptr);
+    const double cycle_ms = static_cast<double>(pixels_) / static_cast<double>(budget_px_s_) * 1e3;
+    figures["frameless"] = {{"strategy", double_buffer_ ? "double_buffer" : "frameless"},
+                            {"pixels_per_s", budget_px_s_},
+                            {"pixels_per_cycle", pixels_},
+                            {"cycle_ms", cycle_ms},
+                            {"pixels_computed", computed_units_},
+                            {"images_rendered", images_},
+                            {"fallbacks", fallbacks_},
+                            {"sampled_pixels", sampled_count_},
+                            {"chunk_pixels", chunk_px_}};
+  }
+
+  void on_scanout(const display::ScanoutSpan& span) override {
+    const auto& xs = sampled_[static_cast<size_t>(span.eye) * static_cast<size_t>(height_) + static_cast<size_t>(span.row)];
+    if (xs.empty()) return;
+    const ImageRecord* image = double_buffer_ ? ctx_->recorder.image(span.image_id) : nullptr;
+    if (double_buffer_ && image == nullptr) return;
+    for (auto it = std::lower_bound(xs.begin(), xs.end(), span.x_begin); it != xs.end() && *it < span.x_end; ++it) {
+      const des::Time photon = ctx_->display.timing().pixel_time(span.field, span.line, *it);
+      if (image != nullptr) {
+        ctx_->recorder.add("pixel_age_ms", (photon - image->sample.measured_at).to_ms());
+        continue;
+      }
+      const PixelState& st = visible_[pixel_id(span.eye, *it, span.row)];
+      if (st.slot < 0) continue;
+      const tracker::TrackerSample& s = sample_of(st.slot);
+      const double age_ms = (photon - s.measured_at).to_ms();
+      ctx_->recorder.add("pixel_age_ms", age_ms);
+      ctx_->recorder.add("motion_to_photon_ms", age_ms);
+      registration(span.eye, *it, span.row, st, s, photon);
+    }
+  }
+
+  void shown_pixels(int eye, int row, int x_begin, std::span<ShownPixel> out) const override {
+    for (size_t i = 0; i < out.size(); ++i) {
+      const PixelState& st = visible_[pixel_id(eye, x_begin + static_cast<int>(i), row)];
+      ShownPixel& p = out[i];
+      p.lit = st.slot >= 0;
+      if (!p.lit) continue;
+      const tracker::TrackerSample& s = sample_of(st.slot);
+      p.eye_pose = ctx_->eye_pose(s, eye);
+      p.measured_at = s.measured_at;
+      p.source_x = st.source % width_;
+      p.source_y = st.source / width_;
+    }
+  }
+
+ private:
+  void read_parameters(RunContext& ctx) {
+    const auto& p = ctx.pipeline;
+    double_buffer_ = p.choice("strategy", "frameless", {"frameless", "double_buffer"}) == "double_buffer";
+    width_ = ctx.display.timing().params().width_px;
+    height_ = ctx.display.timing().params().height_px;
+    eyes_ = ctx.display.eyes();
+    const int64_t pixels = int64_t{width_} * height_ * eyes_;
+    if (pixels > int64_t{1} << 30) p.fail("type", "frameless rendering supports at most 2^30 pixels (all eyes)");
+    pixels_ = static_cast<int32_t>(pixels);
+    double budget = 0.0;
+    if (p.has("pixels_per_s")) {
+      if (p.has("full_images_per_s")) p.fail("pixels_per_s", "give pixels_per_s or full_images_per_s, not both");
+      budget = p.positive("pixels_per_s");
+    } else {
+      budget = p.positive("full_images_per_s", 5.0) * static_cast<double>(pixels_);
+    }
+    // Whole pixels per second keep the pixel schedule an exact rational period.
+    budget_px_s_ = std::llround(budget);
+    if (budget_px_s_ < 1 || budget > 1e12)
+      p.fail(p.has("pixels_per_s") ? "pixels_per_s" : "full_images_per_s",
+             "the pixel budget must lie between 1 and 1e12 pixels per second");
+    chunk_px_ = p.integer("chunk_pixels", 2048, 1, int64_t{1} << 30);
+    sampled_count_ = static_cast<int32_t>(std::min<int64_t>(p.integer("sample_pixels", 1024, 0, 1 << 30), pixels_));
+    depth_m_ = p.positive("registration_depth_m", 2.0);
+    const double hfov_deg = ctx.root.child("display").number_in("hfov_deg", 90.0, 1.0, 179.0);
+    camera_.emplace(hfov_deg, width_, height_);
+    rad_per_px_ = 2.0 * std::tan(hfov_deg * kPi / 360.0) / width_;
+    fallback_ = Mode::Normal;
+    if (auto f = p.optional_child("fallback")) {
+      const std::string kind = f->choice("kind", "low_resolution", {"none", "low_resolution", "double_buffer"});
+      fallback_ = kind == "low_resolution" ? Mode::LowResolution
+                  : kind == "double_buffer" ? Mode::DoubleBufferFallback
+                                            : Mode::Normal;
+      trigger_deg_ = f->positive("trigger_deg", 20.0);
+      trigger_m_ = f->positive("trigger_m", 0.5);
+      block_px_ = static_cast<int>(f->integer("block_px", 4, 2, 256));
+      if (double_buffer_ && fallback_ != Mode::Normal)
+        f->fail("kind", "the double_buffer strategy has no fallback; use \"kind\": \"none\" or strategy frameless");
+    }
+  }
+
+  size_t pixel_id(int eye, int x, int row) const {
+    return (static_cast<size_t>(eye) * static_cast<size_t>(height_) + static_cast<size_t>(row)) *
+               static_cast<size_t>(width_) + static_cast<size_t>(x);
+  }
+
+  // A fixed random subset of pixels, the same for both strategies, where
+  // ages and registration are sampled at every refresh.
+  void pick_sampled_pixels(des::RandomStream stream) {
+    sampled_.assign(static_cast<size_t>(eyes_) * static_cast<size_t>(height_), {});
+    const FramelessOrder pick(pixels_, std::move(stream));
+    for (int32_t i = 0; i < sampled_count_; ++i) {
+      const int32_t p = pick.pixel_of(i);
+      sampled_[static_cast<size_t>(p / width_)].push_back(p % width_);
+    }
+    for (auto& xs : sampled_) std::sort(xs.begin(), xs.end());
+  }
+
+  void make_blocks(des::RandomStream stream) {
+    blocks_x_ = (width_ + block_px_ - 1) / block_px_;
+    blocks_y_ = (height_ + block_px_ - 1) / block_px_;
+    block_order_.emplace(blocks_x_ * blocks_y_ * eyes_, std::move(stream));
+  }
+
+  const tracker::TrackerSample& sample_of(int64_t slot) const { return samples_[static_cast<size_t>(slot - slot_base_)]; }
+
+  int64_t slot_for(const tracker::TrackerSample& s) {
+    // Pixels are computed in time order, so the samples they use never go back.
+    if (samples_.empty() || samples_.back().index != s.index) samples_.push_back(s);
+    return slot_base_ + static_cast<int64_t>(samples_.size()) - 1;
+  }
+
+  // ---- frameless: the pixel stream -------------------------------------
+
+  void schedule_chunk() {
+    const des::Time t = schedule_.at(next_unit_ + chunk_px_);
+    if (t < ctx_->duration) ctx_->sim.at(t, kind_chunk_, [this] { chunk(); });
+  }
+
+  void chunk() {
+    advance_to(ctx_->sim.now());
+    schedule_chunk();
+  }
+
+  /// Computes every pixel whose computation ends at or before t.
+  void advance_to(des::Time t) {
+    const int64_t end = schedule_.index_at_or_before(t);
+    while (next_unit_ < end) {
+      while (!triggers_.empty() && triggers_.front() <= next_unit_) {
+        triggers_.pop_front();
+        begin_fallback(next_unit_);
+      }
+      compute(next_unit_, end);
+      ++next_unit_;
+    }
+  }
+
+  /// The newest sample when unit k starts; a cache holds it for the units
+  /// after k that still see it (found by bisection: newest_at only moves on).
+  std::optional<tracker::TrackerSample> newest_for(int64_t k, int64_t end) {
+    if (k <= cached_until_) return cached_;
+    cached_ = ctx_->host.newest_at(schedule_.at(k));
+    const int64_t index = cached_ ? cached_->index : -1;
+    int64_t lo = k, hi = end - 1;
+    while (lo < hi) {
+      const int64_t mid = lo + (hi - lo + 1) / 2;
+      const auto s = ctx_->host.newest_at(schedule_.at(mid));
+      if ((s ? s->index : -1) == index) lo = mid;
+      else hi = mid - 1;
+    }
+    cached_until_ = lo;
+    return cached_;
+  }
+
+  void compute(int64_t k, int64_t end) {
+    ++computed_units_;
+    if (mode_ == Mode::LowResolution) {
+      const auto s = newest_for(k, end);
+      const int32_t b = block_order_->pixel_of(block_cursor_++);
+      if (block_cursor_ == block_order_->pixel_count()) mode_ = Mode::Normal;
+      if (s) write_block(b, slot_for(*s));
+      return;
+    }
+    const int32_t p = order_->pixel_of(cursor_++);
+    if (cursor_ % pixels_ == 0) prune_samples();
+    if (mode_ == Mode::DoubleBufferFallback) {
+      // One image from one pose, held back from the display until complete.
+      write(p, fallback_slot_, p % (width_ * height_));
+      if (--fallback_left_ == 0) mode_ = Mode::Normal;
+      return;
+    }
+    if (const auto s = newest_for(k, end)) write(p, slot_for(*s), p % (width_ * height_));
+  }
+
+  void write(int32_t p, int64_t slot, int32_t source) {
+    computed_[static_cast<size_t>(p)] = PixelState{slot, source};
+    if (stamp_[static_cast<size_t>(p)] != generation_) {
+      stamp_[static_cast<size_t>(p)] = generation_;
+      dirty_.push_back(p);
+    }
+  }
+
+  void write_block(int32_t b, int64_t slot) {
+    const int per_eye = blocks_x_ * blocks_y_;
+    const int eye = b / per_eye, bx = (b % per_eye) % blocks_x_, by = (b % per_eye) / blocks_x_;
+    const int x0 = bx * block_px_, y0 = by * block_px_;
+    const int x1 = std::min(width_, x0 + block_px_), y1 = std::min(height_, y0 + block_px_);
+    // The block's colour is the ray through its middle pixel.
+    const int32_t source = ((y0 + y1) / 2) * width_ + (x0 + x1) / 2;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) write(static_cast<int32_t>(pixel_id(eye, x, y)), slot, source);
+  }
+
+  void delivered(const tracker::TrackerSample& s, des::Time t) {
+    if (last_delivered_) {
+      const double angle_deg = tracker::angle_between(last_delivered_->orientation, s.pose.orientation) * 180.0 / kPi;
+      const double moved_m = glm::length(s.pose.position_m - last_delivered_->position_m);
+      // Units that start at or after the delivery fall back; earlier ones are unchanged.
+      if (angle_deg > trigger_deg_ || moved_m > trigger_m_) triggers_.push_back(schedule_.index_at_or_after(t));
+    }
+    last_delivered_ = s.pose;
+  }
+
+  void begin_fallback(int64_t k) {
+    ++fallbacks_;
+    ctx_->recorder.count("frameless_fallbacks");
+    if (fallback_ == Mode::LowResolution) {
+      mode_ = Mode::LowResolution;
+      block_cursor_ = 0;
+      return;
+    }
+    const auto s = ctx_->host.newest_at(schedule_.at(k));
+    if (!s) return;
+    mode_ = Mode::DoubleBufferFallback;
+    fallback_slot_ = slot_for(*s);
+    fallback_left_ = pixels_;
+  }
+
+  // Drops samples no pixel refers to any more (checked once per cycle).
+  void prune_samples() {
+    int64_t oldest = slot_base_ + static_cast<int64_t>(samples_.size());
+    for (const auto* buffer : {&computed_, &visible_})
+      for (const PixelState& st : *buffer)
+        if (st.slot >= 0) oldest = std::min(oldest, st.slot);
+    if (mode_ == Mode::DoubleBufferFallback) oldest = std::min(oldest, fallback_slot_);
+    // Keep the newest sample: slot_for compares against it.
+    oldest = std::min(oldest, slot_base_ + static_cast<int64_t>(samples_.size()) - 1);
+    while (slot_base_ < oldest) {
+      samples_.pop_front();
+      ++slot_base_;
+    }
+  }
+
+  // ---- both strategies at each refresh ---------------------------------
+
+  void retrace(int64_t, des::Time now) {
+    if (double_buffer_) {
+      const int64_t front = ctx_->display.front(0);
+      ctx_->recorder.add("updated_fraction", front != last_front_ ? 1.0 : 0.0);
+      last_front_ = front;
+      return;
+    }
+    advance_to(now);
+    // A double-buffering fallback shows nothing new until its image is complete.
+    if (mode_ == Mode::DoubleBufferFallback) {
+      ctx_->recorder.add("updated_fraction", 0.0);
+      return;
+    }
+    for (int32_t p : dirty_) visible_[static_cast<size_t>(p)] = computed_[static_cast<size_t>(p)];
+    ctx_->recorder.add("updated_fraction", static_cast<double>(dirty_.size()) / static_cast<double>(pixels_));
+    dirty_.clear();
+    ++generation_;
+  }
+
+  // ---- double buffering at the same budget -----------------------------
+
+  /// Image `image` (-1: none yet) has just been completed; present it and start the next.
+  void image_done(int64_t image) {
+    const des::Time now = ctx_->sim.now();
+    if (image >= 0 && pending_sample_) {
+      for (int eye = 0; eye < eyes_; ++eye) {
+        ImageRecord rec;
+        rec.frame = image;
+        rec.eye = eye;
+        rec.sample = *pending_sample_;
+        rec.host_received = ctx_->host.received_at(*pending_sample_);
+        rec.render_start = schedule_.at(image * pixels_);
+        rec.render_end = now;
+        rec.eye_pose = ctx_->eye_pose(*pending_sample_, eye);
+        ctx_->display.present_at_next_retrace(eye, ctx_->recorder.register_image(rec));
+      }
+      ++images_;
+      computed_units_ += pixels_;
+      if (ctx_->timeline) ctx_->timeline->add("RENDER", image, -1, "renderer", rec_start(image), now);
+    }
+    const int64_t next = image + 1;
+    // The next image starts now, from the newest pose (none yet: it renders nothing).
+    pending_sample_ = ctx_->host.newest_at(now);
+    const des::Time end = schedule_.at((next + 1) * pixels_);
+    if (end < ctx_->duration) ctx_->sim.at(end, kind_image_, [this, next] { image_done(next); });
+  }
+
+  des::Time rec_start(int64_t image) const { return schedule_.at(image * pixels_); }
+
+  void registration(int eye, int x, int row, const PixelState& st, const tracker::TrackerSample& s, des::Time photon) {
+    const tracker::Pose drawn = ctx_->eye_pose(s, eye);
+    const tracker::Pose truth = eye_pose_of(ctx_->motion.pose_at(photon), eye, ctx_->ipd_m, ctx_->stereo);
+    // The pixel shows the surface point its source ray met, taken at a fixed depth.
+    const int sx = st.source % width_, sy = st.source / width_;
+    const glm::dvec3 point = drawn.position_m + depth_m_ * (drawn.orientation * camera_->head_direction(sx + 0.5, sy + 0.5));
+    const glm::dvec3 seen = truth.orientation * camera_->head_direction(x + 0.5, row + 0.5);
+    const glm::dvec3 should = glm::normalize(point - truth.position_m);
+    const double angle = std::atan2(glm::length(glm::cross(seen, should)), glm::dot(seen, should));
+    ctx_->recorder.add("registration_error_arcmin", angle * 180.0 / kPi * 60.0);
+    ctx_->recorder.add("registration_error_px", angle / rad_per_px_);
+  }
+
+  RunContext* ctx_ = nullptr;
+  bool double_buffer_ = false;
+  int width_ = 0, height_ = 0, eyes_ = 1;
+  int32_t pixels_ = 0;
+  int64_t budget_px_s_ = 1;
+  int64_t chunk_px_ = 2048;
+  int32_t sampled_count_ = 0;
+  double depth_m_ = 2.0;
+  double rad_per_px_ = 0.0;
+  std::optional<renderer::Camera> camera_;
+  Mode fallback_ = Mode::Normal;
+  double trigger_deg_ = 20.0, trigger_m_ = 0.5;
+  int block_px_ = 4;
+  des::KindId kind_chunk_ = 0, kind_image_ = 0;
+  des::PeriodicSchedule schedule_;
+  std::vector<std::vector<int>> sampled_;  ///< per (eye, row): sampled columns, sorted
+
+  // Frameless state.
+  std::optional<FramelessOrder> order_;
+  std::optional<FramelessOrder> block_order_;
+  int blocks_x_ = 0, blocks_y_ = 0;
+  std::vector<PixelState> computed_;  ///< what has been written
+  std::vector<PixelState> visible_;   ///< what the display shows (latched at retrace)
+  std::vector<int64_t> stamp_;        ///< refresh generation a pixel was last written in
+  std::vector<int32_t> dirty_;        ///< pixels written since the last latch
+  int64_t generation_ = 0;
+  std::deque<tracker::TrackerSample> samples_;
+  int64_t slot_base_ = 0;
+  int64_t next_unit_ = 0;   ///< next unit of pixel budget to compute
+  int64_t cursor_ = 0;      ///< updates taken from the permutation table
+  int32_t block_cursor_ = 0;
+  Mode mode_ = Mode::Normal;
+  int64_t fallback_slot_ = -1;
+  int32_t fallback_left_ = 0;
+  std::deque<int64_t> triggers_;
+  std::optional<tracker::Pose> last_delivered_;
+  std::optional<tracker::TrackerSample> cached_;
+  int64_t cached_until_ = -1;
+
+  // Double-buffering state.
+  std::optional<tracker::TrackerSample> pending_sample_;
+  int64_t last_front_ = -1;
+
+  int64_t computed_units_ = 0;
+  int64_t images_ = 0;
+  int64_t fallbacks_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Pipeline> make_frameless_pipeline() { return std::make_unique<FramelessPipeline>(); }
+
+}  // namespace latsim::pipelines
