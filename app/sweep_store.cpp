@@ -51,8 +51,15 @@ std::optional<nlohmann::json> SweepStore::load_summary(const std::string& run_id
 }
 
 size_t SweepStore::remove_temporaries() const {
+  // Only what a sweep writes: its own tables at the top, anything under runs/;
+  // other files in a directory the user chose are none of our business.
   std::vector<fs::path> stale;
-  for (const auto& entry : fs::recursive_directory_iterator(out_dir_))
+  for (const auto& entry : fs::directory_iterator(out_dir_)) {
+    const std::string name = entry.path().filename().string();
+    const bool ours = name.rfind("results.", 0) == 0 || name.rfind("plan.json", 0) == 0;
+    if (ours && entry.is_regular_file() && is_temporary_name(name)) stale.push_back(entry.path());
+  }
+  for (const auto& entry : fs::recursive_directory_iterator(out_dir_ / "runs"))
     if (entry.is_regular_file() && is_temporary_name(entry.path().filename().string())) stale.push_back(entry.path());
   for (const auto& file : stale) fs::remove(file);
   return stale.size();

@@ -27,8 +27,9 @@ class SweepStore {
   bool is_finished(const std::string& run_id) const;
   /// The run's summary.json, or empty when the run is not finished.
   std::optional<nlohmann::json> load_summary(const std::string& run_id) const;
-  /// Removes temporary files an interrupted writer left behind (safe: we hold
-  /// the lock, and a temporary file is never a finished result). Returns how many.
+  /// Removes temporary files an interrupted writer left behind, under runs/
+  /// and of the top-level tables (safe: we hold the lock, and a temporary file
+  /// is never a finished result). Returns how many.
   size_t remove_temporaries() const;
 
  private:

@@ -35,21 +35,25 @@ cat > "$work/sweep_1000.json" <<EOF
 }
 EOF
 
-time_sweep() {  # jobs -> seconds
+time_sweep() {  # jobs: writes "wall user sys" (seconds) to $work/time_j<jobs>
   local jobs="$1" out="$work/sweep_j$1"
   rm -rf "$out"
-  local start end
-  start=$(date +%s.%N)
-  "$latsim" sweep "$work/sweep_1000.json" --out "$out" -j "$jobs" > "$work/sweep_j$jobs.log"
-  end=$(date +%s.%N)
-  echo "$end - $start" | bc -l
+  /usr/bin/time -f "%e %U %S" -o "$work/time_j$jobs" \
+    "$latsim" sweep "$work/sweep_1000.json" --out "$out" -j "$jobs" > "$work/sweep_j$jobs.log"
 }
 
-echo "machine: $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg), latsim $("$latsim" --version 2>/dev/null || echo '?')"
-t1=$(time_sweep 1)
-t2=$(time_sweep 2)
-printf '1000-run sweep: -j1 %.1f s (%.1f runs/s), -j2 %.1f s (%.1f runs/s), speed-up %.2fx\n' \
-  "$t1" "$(echo "1000 / $t1" | bc -l)" "$t2" "$(echo "1000 / $t2" | bc -l)" "$(echo "$t1 / $t2" | bc -l)"
+# The machine may be shared: CPU time (user + sys) shows whether -j2 did more
+# work than -j1 or merely got less of the machine.
+echo "machine: $(nproc) cores, load before $(cut -d' ' -f1-3 /proc/loadavg)"
+time_sweep 1
+time_sweep 2
+read -r w1 u1 s1 < "$work/time_j1"
+read -r w2 u2 s2 < "$work/time_j2"
+echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)"
+printf '1000-run sweep -j1: %.1f s wall (%.1f runs/s), %.1f s CPU\n' "$w1" "$(echo "1000 / $w1" | bc -l)" "$(echo "$u1 + $s1" | bc -l)"
+printf '1000-run sweep -j2: %.1f s wall (%.1f runs/s), %.1f s CPU; speed-up %.2fx\n' "$w2" "$(echo "1000 / $w2" | bc -l)" \
+  "$(echo "$u2 + $s2" | bc -l)" "$(echo "$w1 / $w2" | bc -l)"
+t2="$w2"
 
 status=0
 strip_wall() { python3 -c 'import csv,sys

@@ -142,6 +142,7 @@ TEST_CASE("a sweep directory: finished means summary.json exists; stray temporar
     std::ofstream(store.run_dir("r2") / "summary.json.tmp.4242") << R"({"eve)";
     std::ofstream(store.run_dir("r2") / "timeline.csv") << "stage,frame,eye,unit,start_ms,end_ms\n";
     std::ofstream(dir / "results.csv.tmp.4242") << "run_id";
+    std::ofstream(dir / "notes.txt.tmp") << "someone else's file";
     CHECK(store.is_finished("r1"));
     CHECK_FALSE(store.is_finished("r2"));
     CHECK(store.load_summary("r1")->at("events") == 5);
@@ -151,6 +152,7 @@ TEST_CASE("a sweep directory: finished means summary.json exists; stray temporar
     CHECK_FALSE(fs::exists(store.run_dir("r2") / "summary.json.tmp.4242"));
     CHECK(fs::exists(store.run_dir("r2") / "timeline.csv"));
     CHECK(fs::exists(store.summary_file("r1")));
+    CHECK(fs::exists(dir / "notes.txt.tmp"));
   }
   // The lock goes with the store.
   CHECK_NOTHROW(SweepStore(dir));
