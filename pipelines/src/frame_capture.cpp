@@ -368,7 +368,14 @@ int64_t FrameCapture::renderers_built() const { return impl_->casters_built; }
 
 std::unique_ptr<FrameCapture> make_frame_capture(const scenario::ConfigNode& frames, const scenario::ConfigNode& root,
                                                  FrameCaptureInputs inputs) {
+  // "enabled": false keeps a scenario's capture settings but casts nothing
+  // (the speed of a run without frames is measured that way).
   const std::optional<scenario::ConfigNode> scene = root.optional_child("scene");
+  if (!frames.boolean("enabled", true)) {
+    frames.mark_all_read();
+    (void)read_scene(scene ? &*scene : nullptr);  // its keys stay known, nothing is loaded
+    return nullptr;
+  }
   return std::make_unique<FrameCapture>(frames, scene ? &*scene : nullptr, std::move(inputs));
 }
 

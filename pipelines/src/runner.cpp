@@ -134,7 +134,7 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
     run.frames = make_frame_capture(*fr, root, FrameCaptureInputs{*run.recorder, *run.host, *run.motion,
                                                                   run.display->timing(), run.display_config.hfov_deg,
                                                                   ipd_m, stereo, options.out_dir});
-    run.display->add_listener(run.frames.get());
+    if (run.frames) run.display->add_listener(run.frames.get());
   }
   LatencyRecorder* rec = run.recorder.get();
   run.host->on_measured([rec](const tracker::TrackerSample& s, des::Time delivered) {

@@ -89,7 +89,8 @@ class FrameCapture final : public display::ScanoutListener {
   std::unique_ptr<Impl> impl_;
 };
 
-/// The capture the runner registers with the display when /frames exists.
+/// The capture the runner registers with the display when /frames exists;
+/// nullptr when /frames/enabled is false.
 std::unique_ptr<FrameCapture> make_frame_capture(const scenario::ConfigNode& frames, const scenario::ConfigNode& root,
                                                  FrameCaptureInputs inputs);
 
