@@ -34,22 +34,29 @@ def main(argv):
     events = [int(r[6]) for r in rows]
     rss_mb = [float(r[7]) for r in rows]
 
-    fig, (ax_cost, ax_value) = plt.subplots(1, 2, figsize=(12, 4.8))
+    fig, (ax_cost, ax_events) = plt.subplots(1, 2, figsize=(12, 4.8))
     ax_cost.plot(wall_s, abs_error, marker="o", color="tab:blue")
-    for x, y, v, n, m in zip(wall_s, abs_error, values, events, rss_mb):
-        ax_cost.annotate(f"{v}\n{n:,} events, {m:.0f} MB", (x, y), textcoords="offset points", xytext=(6, 6),
+    for i, (x, y, v, m) in enumerate(zip(wall_s, abs_error, values, metric_values)):
+        # Alternate above and below: neighbouring levels often cost almost the same.
+        ax_cost.annotate(f"{v}: {m:.6g}", (x, y), textcoords="offset points", xytext=(6, 8 if i % 2 == 0 else -16),
                          fontsize=8)
     if min(wall_s) > 0 and max(wall_s) / min(wall_s) > 10:
         ax_cost.set_xscale("log")
+    ax_cost.margins(x=0.25, y=0.15)
     ax_cost.set_xlabel("wall time of the run (s)")
     ax_cost.set_ylabel(f"|error| of {metric} against {values[-1]}")
-    ax_cost.set_title("Accuracy against cost")
-    ax_value.bar(range(len(values)), metric_values, color="tab:orange")
-    ax_value.set_xticks(range(len(values)))
-    ax_value.set_xticklabels(values)
-    ax_value.set_xlabel(knob)
-    ax_value.set_ylabel(metric)
-    ax_value.set_title(f"{metric} at each level")
+    ax_cost.set_title("Accuracy against cost (labels: level: value)")
+    bars = ax_events.bar(range(len(values)), events, color="tab:orange")
+    for bar, w, m in zip(bars, wall_s, rss_mb):
+        ax_events.annotate(f"{w:.3g} s, {m:.0f} MB", (bar.get_x() + bar.get_width() / 2, bar.get_height()),
+                           textcoords="offset points", xytext=(0, 3), ha="center", fontsize=8)
+    if max(events) > 0 and min(events) > 0 and max(events) / min(events) > 10:
+        ax_events.set_yscale("log")
+    ax_events.set_xticks(range(len(values)))
+    ax_events.set_xticklabels(values)
+    ax_events.set_xlabel(knob)
+    ax_events.set_ylabel("events")
+    ax_events.set_title("Cost of each level (labels: wall time, peak memory)")
     fig.suptitle(f"Fidelity of {knob}")
     plotting.save(fig, os.path.join(argv[1], "fidelity"))
     return 0
