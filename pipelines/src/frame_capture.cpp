@@ -183,31 +183,40 @@ struct FrameCapture::Impl {
                                          : renderer::RowSet::all(height());
   }
 
-  void cast_truth(int64_t field) {
-    // One true pose per row, at the instant the row's first pixel is lit.
-    std::vector<renderer::EyePose> row_poses(static_cast<size_t>(height()));
-    for (int j = 0; j < in.timing.lines_per_field(); ++j) {
-      const tracker::Pose head = in.motion.pose_at(in.timing.line_time(field, j));
-      row_poses[static_cast<size_t>(in.timing.row_of(field, j))] = to_eye(eye_pose_of(head, eye, in.ipd_m, in.stereo));
-    }
-    caster->render_scanlines(*camera, row_poses, field_rows(field), truth, options());
-  }
-
-  /// Casts one ray per listed pixel, each from its own pose and through its source pixel.
+  /// One ray per listed pixel, each from its own pose and through its source pixel.
   struct PixelRay {
     int x, row;
     renderer::Ray ray;
   };
-  void cast_pixel_rays(const std::vector<PixelRay>& list) {
+  void cast_pixel_rays(const std::vector<PixelRay>& list, renderer::Frame& frame) {
     std::vector<renderer::Ray> rays;
     rays.reserve(list.size());
     for (const PixelRay& p : list) rays.push_back(p.ray);
     std::vector<renderer::Hit> hits(rays.size());
     caster->cast_rays(rays, hits, options());
     for (size_t i = 0; i < list.size(); ++i) {
-      displayed.colour.at(list[i].x, list[i].row) = hits[i].colour;
-      displayed.depth.at(list[i].x, list[i].row) = hits[i].distance_m;
+      frame.colour.at(list[i].x, list[i].row) = hits[i].colour;
+      frame.depth.at(list[i].x, list[i].row) = hits[i].distance_m;
     }
+  }
+
+  /// The truth: one true pose per row, at the instant the row's first pixel is
+  /// lit. Per pixel it is cast through the same ray path, in the same order,
+  /// as a per-pixel displayed image, so that equal poses give equal pixels.
+  void cast_truth(int64_t field, bool per_pixel) {
+    std::vector<renderer::EyePose> row_poses(static_cast<size_t>(height()));
+    std::vector<PixelRay> list;
+    for (int j = 0; j < in.timing.lines_per_field(); ++j) {
+      const tracker::Pose head = in.motion.pose_at(in.timing.line_time(field, j));
+      const renderer::EyePose pose = to_eye(eye_pose_of(head, eye, in.ipd_m, in.stereo));
+      const int row = in.timing.row_of(field, j);
+      row_poses[static_cast<size_t>(row)] = pose;
+      if (per_pixel)
+        for (int x = 0; x < width(); ++x)
+          list.push_back({x, row, renderer::Ray{pose.position_m, camera->pixel_ray(x, row, pose.orientation)}});
+    }
+    if (per_pixel) cast_pixel_rays(list, truth);
+    else caster->render_scanlines(*camera, row_poses, field_rows(field), truth, options());
   }
 
   void clear_pixel(int x, int row) {
@@ -230,15 +239,16 @@ struct FrameCapture::Impl {
       for (int x = 0; x < width(); ++x) {
         const ShownPixel& p = c.pixels[static_cast<size_t>(j) * static_cast<size_t>(width()) + static_cast<size_t>(x)];
         set_age(c.field, j, x, p.lit, p.measured_at);
-        if (!p.lit) {
-          clear_pixel(x, row);
-          continue;
-        }
+        // Unlit pixels get a ray too, so that the batches line up with the truth's.
         const glm::dvec3 dir = camera->pixel_ray(p.source_x, p.source_y, p.eye_pose.orientation);
         list.push_back({x, row, renderer::Ray{p.eye_pose.position_m, dir}});
       }
     }
-    cast_pixel_rays(list);
+    cast_pixel_rays(list, displayed);
+    for (int j = 0; j < in.timing.lines_per_field(); ++j)
+      for (int x = 0; x < width(); ++x)
+        if (!c.pixels[static_cast<size_t>(j) * static_cast<size_t>(width()) + static_cast<size_t>(x)].lit)
+          clear_pixel(x, in.timing.row_of(c.field, j));
   }
 
   void cast_displayed_images(const Collection& c) {
@@ -269,12 +279,12 @@ struct FrameCapture::Impl {
       const int row = in.timing.row_of(c.field, j);
       for (int x = 0; x < width(); ++x) clear_pixel(x, row);
     }
-    cast_pixel_rays(split);
+    cast_pixel_rays(split, displayed);
   }
 
   void process(const Collection& c) {
     ensure_renderer();
-    cast_truth(c.field);
+    cast_truth(c.field, c.pixel_mode);
     if (c.pixel_mode) cast_displayed_pixels(c);
     else cast_displayed_images(c);
     if (c.capture) write_capture(c);
