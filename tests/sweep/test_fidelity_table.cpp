@@ -13,7 +13,7 @@ using latsim::app::FidelityLevel;
 using latsim::app::level_dir_name;
 using latsim::app::parse_vary;
 
-TEST_CASE("--vary splits a pointer and its levels, coarsest first", "[fidelity]") {
+TEST_CASE("the vary option splits a pointer and its levels, coarsest first", "[fidelity]") {
   const auto axis = parse_vary("/display/scanout=field,line,pixel");
   CHECK(axis.pointer == "/display/scanout");
   REQUIRE(axis.values.size() == 3);

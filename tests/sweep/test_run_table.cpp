@@ -63,7 +63,7 @@ int64_t count_rows(sqlite3* db, const std::string& sql) {
 
 }  // namespace
 
-TEST_CASE("find_figure looks under figures, then at the root; a bare distribution is its mean", "[sweep]") {
+TEST_CASE("find_figure looks under figures, then at the root, and a bare distribution is its mean", "[sweep]") {
   const Json s = summary_with(25.25);
   CHECK(*find_figure(s, "motion_to_photon_ms.p99") == 30.5);
   CHECK(*find_figure(s, "motion_to_photon_ms") == 25.25);
@@ -131,7 +131,7 @@ TEST_CASE("temporary file names are recognised", "[sweep]") {
   CHECK_FALSE(is_temporary_name(".tmp"));
 }
 
-TEST_CASE("a sweep directory: finished means summary.json exists; stray temporaries are removed; one writer", "[sweep]") {
+TEST_CASE("a sweep directory: finished means summary.json exists, stray temporaries are removed, one writer", "[sweep]") {
   const fs::path dir = scratch_dir("latsim_sweep_store");
   {
     SweepStore store(dir);
