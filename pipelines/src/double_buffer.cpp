@@ -5,9 +5,11 @@
 #include <memory>
 
 #include "latsim/pipelines/double_buffer.hpp"
+#include "latsim/pipelines/double_buffer_analytic.hpp"
 #include "latsim/pipelines/latency_recorder.hpp"
 #include "latsim/pipelines/render_cost.hpp"
 #include "latsim/pipelines/timeline.hpp"
+#include "latsim/tracker/config.hpp"
 
 namespace latsim::pipelines {
 
@@ -39,7 +41,15 @@ class DoubleBufferPipeline final : public Pipeline {
     figures["frames_rendered"] = frames_done_;
     figures["missed_refreshes"] = missed_refreshes_;
     figures["nominal_frame_time_ms"] = cost_.nominal_frame_time().to_ms();
-    (void)ctx;
+    if (vsync_ && queued_frames_ == 0 && !cost_.varies()) {
+      // The same models, rebuilt from the scenario, but asked for phases only.
+      const auto tracker = tracker::parse_tracker(ctx.root.child("tracker"));
+      std::unique_ptr<tracker::Transport> link = ctx.root.has("transport")
+                                                     ? tracker::make_transport(ctx.root.child("transport"))
+                                                     : std::make_unique<tracker::DirectLink>();
+      if (auto a = analytic_double_buffer(ctx.display.timing(), tracker, *link, cost_.nominal_frame_time()))
+        figures["analytic"] = *a;
+    }
   }
 
  private:

@@ -176,3 +176,45 @@ TEST_CASE("hours of simulated time at 59.94 Hz stay exact", "[double_buffer][lon
   CHECK(std::isfinite(fig(long_run, "registration_error_arcmin")["max"].get<double>()));
   CHECK(fig(long_run, "fields").get<int64_t>() == 647353);  // retraces k with k·1001/60000 s < 10800 s: k = 0 … 647352
 }
+
+TEST_CASE("the analytic phase enumeration agrees with the simulation", "[double_buffer][analytic]") {
+  struct Case {
+    const char* name;
+    Json tracker_rate, refresh;
+    Json transport;
+    double render_ms;
+  };
+  const Case cases[] = {
+      {"aligned direct", 60, 60, Json{{"type", "direct"}}, 0.0},
+      {"59.94 Hz display, 60 Hz tracker", 60, "60000/1001", Json{{"type", "direct"}}, 5.0},
+      {"serial poll 30 ms", 60, 60,
+       Json{{"type", "serial"}, {"record_bytes", 24}, {"baud", 38400}, {"host", "poll"}, {"poll_interval_ms", 30}}, 20.0},
+      {"serial interrupt, 59.94 Hz tracker", "60000/1001", 60,
+       Json{{"type", "serial"}, {"record_bytes", 24}, {"baud", 38400}, {"host", "interrupt"}}, 12.0},
+  };
+  for (const auto& c : cases) {
+    SECTION(c.name) {
+      Json s = base_scenario();
+      s["duration_s"] = 20;
+      s["tracker"] = {{"rate_hz", c.tracker_rate}, {"internal_delay_ms", 1.5}};
+      s["display"]["refresh_hz"] = c.refresh;
+      s["display"]["height_px"] = 32;
+      s["transport"] = c.transport;
+      s["pipeline"]["render"]["fixed_ms"] = c.render_ms;
+      const Json out = run(s);
+      REQUIRE(out["figures"].contains("analytic"));
+      const auto& a = out["figures"]["analytic"];
+      REQUIRE(a["hyperperiod_s"].get<double>() <= 20.0);
+      const auto& sim = fig(out, "motion_to_photon_ms");
+      CHECK(sim["min"].get<double>() == Approx(a["motion_to_photon_ms"]["min"].get<double>()).margin(1e-6));
+      CHECK(sim["max"].get<double>() == Approx(a["motion_to_photon_ms"]["max"].get<double>()).margin(1e-6));
+      CHECK(sim["mean"].get<double>() == Approx(a["motion_to_photon_ms"]["mean"].get<double>()).epsilon(0.01));
+    }
+  }
+}
+
+TEST_CASE("no analytic figure where the configuration is not tractable", "[double_buffer][analytic]") {
+  Json s = base_scenario();
+  s["tracker"]["jitter_ms"] = 1;
+  CHECK_FALSE(run(s)["figures"].contains("analytic"));
+}
