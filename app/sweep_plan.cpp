@@ -119,7 +119,7 @@ SweepAxis read_axis(const Json& axis, const std::string& where, const fs::path& 
 }  // namespace
 
 SweepError::SweepError(const fs::path& file, const std::string& pointer, const std::string& message)
-    : std::runtime_error(file.string() + ": " + pointer + ": " + message) {}
+    : std::runtime_error(file.string() + ": " + (pointer.empty() ? "" : pointer + ": ") + message) {}
 
 std::vector<Json> expand_range(const Json& range, const fs::path& file, const std::string& pointer) {
   if (!range.is_object()) throw SweepError(file, pointer, "expected {\"from\": a, \"to\": b, \"step\": s}");
