@@ -10,7 +10,7 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 pinned="$here/fingerprints.txt"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-mapfile -t files < <(grep -rl '"pipeline"' scenarios --include='*.json' | grep -v '/sweeps/' | sort)
+mapfile -t files < <(find scenarios -name '*.json' | grep -v '/sweeps/' | grep -v '/base.json$' | sort)
 : >"$tmp/now.txt"
 for f in "${files[@]}"; do
   out="$tmp/run"
