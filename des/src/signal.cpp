@@ -62,8 +62,10 @@ void SignalSetAwaiter::await_suspend(ProcessPromise::Handle h) {
   registered_ = true;
 }
 
-void SignalSetAwaiter::on_trigger(Signal&) {
-  // The triggering signal has already dropped this waiter from its list.
+void SignalSetAwaiter::on_trigger(Signal& s) {
+  // The triggering signal has already dropped this waiter from its list;
+  // forget it too, so that it may be destroyed before this awaiter.
+  std::erase(signals_, &s);
   if (mode_ == Mode::all && --remaining_ > 0) return;
   wake();
 }

@@ -1,6 +1,7 @@
 // Signals (single, all_of, any_of) and FIFO resources with busy time.
 #include <catch2/catch.hpp>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -108,6 +109,24 @@ TEST_CASE("waiters on signals are cleaned up when the simulator ends early", "[s
   sim.run();
   CHECK(never.waiter_count() == 3);  // all_of(never, never) waits on it twice
   CHECK(log.empty());
+}
+
+TEST_CASE("a fired signal may be destroyed while an all_of wait on it is still pending", "[signal]") {
+  // The waiter must forget a signal once it has fired: destroying that signal
+  // and then the simulator (which tears the waiting process down) must not
+  // touch freed memory (AddressSanitizer checks this).
+  auto sim = std::make_unique<Simulator>();
+  auto a = std::make_unique<Signal>(*sim, "a");
+  Signal b(*sim, "b");
+  Log log;
+  sim->spawn(wait_all(*sim, *a, b, log));
+  sim->spawn(fire(*sim, *a, Time::ms(1)));
+  sim->run();
+  CHECK(log.empty());
+  CHECK(b.waiter_count() == 1);
+  a.reset();
+  sim.reset();
+  CHECK(b.waiter_count() == 0);
 }
 
 TEST_CASE("resource with capacity 1 queues FIFO and measures busy time", "[resource]") {
