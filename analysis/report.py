@@ -134,7 +134,8 @@ def plot_sweep_axis(coll, axis):
         if not numeric:
             ax.set_xticks(range(len(axis_values)))
             ax.set_xticklabels(axis_values)
-        ax.legend(fontsize=7, loc="best")
+        # Outside the axes: with many series an inside legend hides the lines.
+        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     reps = max(len(r.summaries) for r in coll.rows)
     axes[0, 0].set_title(f"Against {name}: mean over {reps} replication(s), band = 95 % t-interval")
     base = "sweep_" + name.replace("/", "_").replace(".", "_")
