@@ -230,7 +230,7 @@ Json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& optio
   }
   // figures.json holds only what the scenario and seed determine: byte-identical
   // across runs. summary.json adds wall time, memory and the command line.
-  Json deterministic{{"latsim", {{"version", latsim_version()}}},
+  Json deterministic{{"latsim", {{"version", latsim_version()}, {"git_revision", latsim_git_revision()}}},
                      {"seed", run.seed},
                      {"replication", options.replication},
                      {"scenario", doc.resolved()},
@@ -239,7 +239,6 @@ Json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& optio
                      {"events_per_model", events_per_model},
                      {"fingerprint", hex64(run.sim.fingerprint())}};
   Json summary = deterministic;
-  summary["latsim"]["git_revision"] = latsim_git_revision();
   summary["command_line"] = options.command_line;
   summary["exit_status"] = 0;
   summary["models"] = models;
