@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
     return kExitOk;
   }
   if (cmd == "--version") {
-    std::puts("latsim " LATSIM_VERSION_TEXT);
+    std::puts("latsim " LATSIM_VERSION " (" LATSIM_GIT_REVISION ")");
     return kExitOk;
   }
   // Each command sees its own name as argv[0].
