@@ -79,7 +79,7 @@ Latencies run_arp(double rate_hz, std::unique_ptr<tracker::MotionSource> motion)
 
 }  // namespace
 
-TEST_CASE("ARP rotation latency is identical at 10 Hz and 60 Hz rendering; translation latency is not") {
+TEST_CASE("ARP rotation latency is identical at 10 Hz and 60 Hz rendering, translation latency is not") {
   const Latencies slow = run_arp(10.0, constant_yaw());
   const Latencies fast = run_arp(60.0, constant_yaw());
   CHECK(slow.rotation.count == fast.rotation.count);

@@ -61,7 +61,7 @@ TEST_CASE("processes interleave by simulated time, FIFO on ties", "[process]") {
   CHECK(sim.empty());
 }
 
-TEST_CASE("until waits for an absolute time; zero delay yields", "[process]") {
+TEST_CASE("until waits for an absolute time, zero delay yields", "[process]") {
   Simulator sim;
   Log log;
   const auto k = sim.kind("test.plain");

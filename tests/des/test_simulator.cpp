@@ -72,7 +72,7 @@ TEST_CASE("scheduling in the past or with a negative delay throws", "[simulator]
   CHECK(sim.pending() == 1);
 }
 
-TEST_CASE("cancelled events never run; cancelling twice or after running returns false", "[simulator]") {
+TEST_CASE("cancelled events never run, cancelling twice or after running returns false", "[simulator]") {
   for (const QueueKind qk : kQueueKinds) {
     Simulator sim(qk);
     const auto k = sim.kind("test.cancel");
@@ -135,7 +135,7 @@ TEST_CASE("run_until runs events up to and including the end time, then sets now
   }
 }
 
-TEST_CASE("stop ends the run after the current event; run resumes", "[simulator]") {
+TEST_CASE("stop ends the run after the current event, run resumes", "[simulator]") {
   Simulator sim;
   const auto k = sim.kind("test.stop");
   std::vector<int> log;

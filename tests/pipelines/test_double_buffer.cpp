@@ -55,7 +55,7 @@ TEST_CASE("direct tracker and instant rendering: latency is one field plus each 
   CHECK(fig(out, "frame_rate_hz").get<double>() == Approx(60.0).epsilon(0.02));
 }
 
-TEST_CASE("serial polling at P adds a delay uniform on [0, P)", "[double_buffer][transport]") {
+TEST_CASE("serial polling at P adds a delay uniform on between 0 and P", "[double_buffer][transport]") {
   Json s = base_scenario();
   s["duration_s"] = 60;
   s["tracker"]["rate_hz"] = "60000/1001";  // incommensurate with the 30 ms poll
@@ -144,7 +144,7 @@ TEST_CASE("without vsync a new image replaces the front buffer mid-scan and lowe
   CHECK(fig(torn, "frame_rate_hz").get<double>() > 150.0);
 }
 
-TEST_CASE("same scenario and seed give identical figures; another seed with jitter differs", "[double_buffer][determinism]") {
+TEST_CASE("same scenario and seed give identical figures, another seed with jitter differs", "[double_buffer][determinism]") {
   Json s = base_scenario();
   s["tracker"]["jitter_ms"] = 2;
   s["pipeline"]["render"] = {{"fixed_ms", 5}, {"variation", "normal"}, {"variation_fraction", 0.2}};

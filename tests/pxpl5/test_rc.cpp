@@ -70,7 +70,7 @@ TEST_CASE("RC timeline of a fixed seed is fingerprint-stable", "[pxpl5][rc]") {
   CHECK(a.stage_fingerprint() != c.stage_fingerprint());
 }
 
-TEST_CASE("RC reports utilisation within [0, 1] and COPY as the busiest unit when copy-bound", "[pxpl5][rc]") {
+TEST_CASE("RC reports utilisation within 0, 1 and COPY as the busiest unit when copy-bound", "[pxpl5][rc]") {
   const RunRecord r = run_rc(RcParams{}, Workload{12, 20.0}, des::Time::s(2));
   for (double u : {r.utilisation.gp, r.utilisation.renderer, r.utilisation.ring, r.utilisation.copy}) {
     CHECK(u >= 0.0);

@@ -123,7 +123,7 @@ TEST_CASE("related streams are uncorrelated", "[random]") {
   CHECK(correlation(RandomStream(1, "s"), RandomStream(1, "s"), 1000) == Approx(1.0));
 }
 
-TEST_CASE("uniform01 has the mean and variance of U[0,1)", "[random]") {
+TEST_CASE("uniform01 has the mean and variance of the unit interval", "[random]") {
   RandomStream s(3, "uniform");
   double sum = 0, sum_sq = 0;
   for (int i = 0; i < kDraws; ++i) {
