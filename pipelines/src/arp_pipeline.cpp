@@ -98,14 +98,7 @@ class ArpPipeline final : public Pipeline {
   void end_render(const tracker::TrackerSample& s, des::Time start, int64_t k) {
     ++renders_;
     for (int eye = 0; eye < ctx_->display.eyes(); ++eye) {
-      ImageRecord rec;
-      rec.frame = k;
-      rec.eye = eye;
-      rec.sample = s;
-      rec.host_received = ctx_->host.received_at(s);
-      rec.render_start = start;
-      rec.render_end = ctx_->sim.now();
-      rec.eye_pose = ctx_->eye_pose(s, eye);
+      ImageRecord rec = ctx_->image_record(k, eye, s, start, ctx_->sim.now());
       rec.orientation_at_scanout = true;
       // Display memories are double-buffered: the new cube is used from the next field on.
       ctx_->display.present_at_next_retrace(eye, ctx_->recorder.register_image(rec));

@@ -79,14 +79,7 @@ class DoubleBufferPipeline final : public Pipeline {
     const des::Time now = ctx_->sim.now();
     Done done{{}, frame_, now};
     for (int eye = 0; eye < ctx_->display.eyes(); ++eye) {
-      ImageRecord rec;
-      rec.frame = frame_;
-      rec.eye = eye;
-      rec.sample = s;
-      rec.host_received = ctx_->host.received_at(s);
-      rec.render_start = start;
-      rec.render_end = now;
-      rec.eye_pose = ctx_->eye_pose(s, eye);
+      ImageRecord rec = ctx_->image_record(frame_, eye, s, start, now);
       done.ids.push_back(ctx_->recorder.register_image(rec));
     }
     if (ctx_->timeline) ctx_->timeline->add("RENDER", frame_, -1, "renderer", start, now);

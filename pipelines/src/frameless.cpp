@@ -346,14 +346,7 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
     const des::Time now = ctx_->sim.now();
     if (image >= 0 && pending_sample_) {
       for (int eye = 0; eye < eyes_; ++eye) {
-        ImageRecord rec;
-        rec.frame = image;
-        rec.eye = eye;
-        rec.sample = *pending_sample_;
-        rec.host_received = ctx_->host.received_at(*pending_sample_);
-        rec.render_start = schedule_.at(image * pixels_);
-        rec.render_end = now;
-        rec.eye_pose = ctx_->eye_pose(*pending_sample_, eye);
+        ImageRecord rec = ctx_->image_record(image, eye, *pending_sample_, schedule_.at(image * pixels_), now);
         ctx_->display.present_at_next_retrace(eye, ctx_->recorder.register_image(rec));
       }
       ++images_;

@@ -65,14 +65,7 @@ void Pxpl5Wiring::present(const pxpl5::FrameReady& f) {
       ++images_without_sample_;  // nothing tracked yet: the display keeps what it has
       continue;
     }
-    ImageRecord rec;
-    rec.frame = f.frame;
-    rec.eye = e.eye;
-    rec.sample = it->second;
-    rec.host_received = ctx_->host.received_at(it->second);
-    rec.render_start = e.transform_start;
-    rec.render_end = e.copy_end;
-    rec.eye_pose = ctx_->eye_pose(it->second, e.eye);
+    ImageRecord rec = ctx_->image_record(f.frame, e.eye, it->second, e.transform_start, e.copy_end);
     const int64_t id = ctx_->recorder.register_image(rec);
     ctx_->display.present_at_next_retrace(e.eye, id);
   }

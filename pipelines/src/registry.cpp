@@ -37,4 +37,17 @@ tracker::Pose RunContext::eye_pose(const tracker::TrackerSample& s, int eye) con
   return eye_pose_of(s.pose, eye, ipd_m, stereo);
 }
 
+ImageRecord RunContext::image_record(int64_t frame, int eye, const tracker::TrackerSample& s, des::Time start,
+                                     des::Time end) const {
+  ImageRecord rec;
+  rec.frame = frame;
+  rec.eye = eye;
+  rec.sample = s;
+  rec.host_received = host.received_at(s);
+  rec.render_start = start;
+  rec.render_end = end;
+  rec.eye_pose = eye_pose(s, eye);
+  return rec;
+}
+
 }  // namespace latsim::pipelines

@@ -84,6 +84,10 @@ struct RunContext {
   des::RandomStream stream(std::string_view name) const { return des::RandomStream(seed, name, replication); }
   /// The eye pose of a tracker sample (mono: the head pose).
   tracker::Pose eye_pose(const tracker::TrackerSample& s, int eye) const;
+  /// An image of `eye` rendered from sample `s` between `start` and `end`,
+  /// with the host's receive time and the eye pose filled in.
+  ImageRecord image_record(int64_t frame, int eye, const tracker::TrackerSample& s, des::Time start,
+                           des::Time end) const;
 };
 
 /// A display strategy: schedules its events in start(), reports in finish().
