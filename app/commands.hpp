@@ -1,12 +1,22 @@
 // The latsim command-line program's subcommands; each parses its own options.
 #pragma once
 
+#include <optional>
+
+namespace CLI {
+class App;
+}
+
 namespace latsim::app {
 
 /// Exit codes shared by every subcommand.
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;   ///< the run itself failed (a model error)
 inline constexpr int kExitBadInput = 2;  ///< bad scenario or command line: nothing was written
+
+/// Parses a subcommand's options: the exit code when the program should stop
+/// here (help printed: 0; bad options, message printed: 2), nothing otherwise.
+std::optional<int> parse_options(CLI::App& app, int argc, char** argv);
 
 int command_run(int argc, char** argv);       ///< latsim run SCENARIO [--out DIR] [--seed N] [--set P=V]...
 int command_validate(int argc, char** argv);  ///< latsim validate SCENARIO...

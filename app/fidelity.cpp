@@ -97,11 +97,7 @@ int command_fidelity(int argc, char** argv) {
   app.add_option("--out,-o", request.out_dir, "output directory")->capture_default_str();
   app.add_option("--set", request.sets, "override a value for every level: /json/pointer=value (repeatable)");
   auto* seed_option = app.add_option("--seed", seed, "run seed (overrides the scenario's /seed)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? kExitOk : kExitBadInput;
-  }
+  if (const auto rc = parse_options(app, argc, argv)) return *rc;
   if (*seed_option) request.seed = seed;
 
   FidelityAxis axis;

@@ -20,11 +20,7 @@ int command_report(int argc, char** argv) {
   int gantt_limit = -1;
   app.add_option("dir", dir, "result directory")->required();
   app.add_option("--gantt-limit", gantt_limit, "draw at most this many Gantt charts (default: all)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? kExitOk : kExitBadInput;
-  }
+  if (const auto rc = parse_options(app, argc, argv)) return *rc;
   if (!std::filesystem::is_directory(dir)) {
     std::cerr << dir << ": not a directory\n";
     return kExitBadInput;

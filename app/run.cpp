@@ -45,12 +45,7 @@ int command_run(int argc, char** argv) {
   app.add_flag("--samples", samples, "also write samples.csv (every recorded sample)");
   app.add_flag("--ledger", ledger, "also write frames.csv (every stage timestamp of every frame)");
   app.add_flag("--quiet,-q", quiet, "print nothing on success");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int rc = app.exit(e);
-    return rc == 0 ? kExitOk : kExitBadInput;
-  }
+  if (const auto rc = parse_options(app, argc, argv)) return *rc;
   pipelines::RunOptions opt;
   if (*seed_opt) opt.seed = seed;
   opt.replication = replication;
@@ -91,12 +86,7 @@ int command_validate(int argc, char** argv) {
   std::vector<std::string> sets;
   app.add_option("scenarios", files, "scenario JSON files")->required();
   app.add_option("--set", sets, "override a value: /json/pointer=value (repeatable)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int rc = app.exit(e);
-    return rc == 0 ? kExitOk : kExitBadInput;
-  }
+  if (const auto rc = parse_options(app, argc, argv)) return *rc;
   int rc = kExitOk;
   for (const auto& file : files) {
     try {
@@ -122,12 +112,7 @@ int command_capacity(int argc, char** argv) {
   app.add_option("--metric", metric, "figure that must stay zero")->capture_default_str();
   app.add_option("--max", hi, "upper bound of the search")->capture_default_str();
   app.add_option("--set", sets, "override a value: /json/pointer=value (repeatable)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int rc = app.exit(e);
-    return rc == 0 ? kExitOk : kExitBadInput;
-  }
+  if (const auto rc = parse_options(app, argc, argv)) return *rc;
   try {
     auto misses_at = [&](int64_t n) {
       std::vector<std::string> s = sets;

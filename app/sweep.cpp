@@ -149,11 +149,7 @@ int command_sweep(int argc, char** argv) {
   app.add_option("-j,--jobs", request.jobs, "Runs in parallel (default: number of cores)")->check(CLI::Range(1u, 4096u));
   app.add_flag("--samples", request.write_samples, "Also write each run's samples.csv");
   app.add_flag("--ledger", request.write_ledger, "Also write each run's frames.csv ledger");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? kExitOk : kExitBadInput;
-  }
+  if (const auto rc = parse_options(app, argc, argv)) return *rc;
 
   std::optional<SweepPlan> plan;
   try {
