@@ -97,13 +97,8 @@ class ArpPipeline final : public Pipeline {
 
   void end_render(const tracker::TrackerSample& s, des::Time start, int64_t k) {
     ++renders_;
-    for (int eye = 0; eye < ctx_->display.eyes(); ++eye) {
-      ImageRecord rec = ctx_->image_record(k, eye, s, start, ctx_->sim.now());
-      rec.orientation_at_scanout = true;
-      // Display memories are double-buffered: the new cube is used from the next field on.
-      ctx_->display.present_at_next_retrace(eye, ctx_->recorder.register_image(rec));
-    }
-    if (ctx_->timeline) ctx_->timeline->add("RENDER", k, -1, "arp", start, ctx_->sim.now());
+    // Display memories are double-buffered: the new cube is used from the next field on.
+    ctx_->present_display_memory(k, s, start, "arp");
   }
 
   // The cube shown now: rendered from the position of the image in the front buffer.

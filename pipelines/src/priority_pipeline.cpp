@@ -108,12 +108,7 @@ class PriorityPipeline final : public Pipeline {
   }
 
   void present(const tracker::TrackerSample& s, des::Time start, int64_t k) {
-    for (int eye = 0; eye < ctx_->display.eyes(); ++eye) {
-      ImageRecord rec = ctx_->image_record(k, eye, s, start, ctx_->sim.now());
-      rec.orientation_at_scanout = true;
-      ctx_->display.present_at_next_retrace(eye, ctx_->recorder.register_image(rec));
-    }
-    if (ctx_->timeline) ctx_->timeline->add("RENDER", k, -1, "priority", start, ctx_->sim.now());
+    ctx_->present_display_memory(k, s, start, "priority");
   }
 
   RunContext* ctx_ = nullptr;

@@ -2,9 +2,11 @@
 
 #include "latsim/pipelines/arp.hpp"
 #include "latsim/pipelines/double_buffer.hpp"
+#include "latsim/pipelines/latency_recorder.hpp"
 #include "latsim/pipelines/pxpl5.hpp"
 #include "latsim/pipelines/frameless.hpp"
 #include "latsim/pipelines/pipeline.hpp"
+#include "latsim/pipelines/timeline.hpp"
 
 namespace latsim::pipelines {
 
@@ -48,6 +50,17 @@ ImageRecord RunContext::image_record(int64_t frame, int eye, const tracker::Trac
   rec.render_end = end;
   rec.eye_pose = eye_pose(s, eye);
   return rec;
+}
+
+void RunContext::present_display_memory(int64_t frame, const tracker::TrackerSample& s, des::Time start,
+                                        const std::string& unit) {
+  const des::Time now = sim.now();
+  for (int eye = 0; eye < display.eyes(); ++eye) {
+    ImageRecord rec = image_record(frame, eye, s, start, now);
+    rec.orientation_at_scanout = true;
+    display.present_at_next_retrace(eye, recorder.register_image(rec));
+  }
+  if (timeline) timeline->add("RENDER", frame, -1, unit, start, now);
 }
 
 }  // namespace latsim::pipelines

@@ -88,6 +88,11 @@ struct RunContext {
   /// with the host's receive time and the eye pose filled in.
   ImageRecord image_record(int64_t frame, int eye, const tracker::TrackerSample& s, des::Time start,
                            des::Time end) const;
+  /// Display memories of the address recalculation pipelines: registers the
+  /// cube rendered from `s` since `start` for every eye (orientation looked up
+  /// at scanout), swaps it in at the next retrace, and logs a RENDER interval.
+  void present_display_memory(int64_t frame, const tracker::TrackerSample& s, des::Time start,
+                              const std::string& unit);
 };
 
 /// A display strategy: schedules its events in start(), reports in finish().
