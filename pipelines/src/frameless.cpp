@@ -87,6 +87,8 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
                             {"fallbacks", fallbacks_},
                             {"sampled_pixels", sampled_count_},
                             {"chunk_pixels", chunk_px_}};
+    // Frameless shows no whole images; its "frame rate" is full update cycles per second.
+    if (!double_buffer_) figures["frame_rate_hz"] = 1e3 / cycle_ms;
   }
 
   void on_scanout(const display::ScanoutSpan& span) override {
