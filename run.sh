@@ -12,6 +12,11 @@ while read -r scenario; do
   name=$(basename "$scenario" .json)
   build/latsim run "scenarios/$scenario" --out "$OUT.partial/$name" --ledger
 done < scenarios/default_set.txt
+# Frameless beside double buffering at the same budget, with the truth: one strip per capture.
+if [ -d "$OUT.partial/side_by_side" ] && [ -d "$OUT.partial/double_buffered" ]; then
+  /usr/bin/python3 analysis/side_by_side.py "$OUT.partial/side_by_side" "$OUT.partial/double_buffered" \
+    "$OUT.partial/frameless_vs_double_buffering" >/dev/null
+fi
 build/latsim report "$OUT.partial"
 # Replace the previous results only once everything succeeded.
 rm -rf "$OUT"
