@@ -104,15 +104,28 @@ int command_validate(int argc, char** argv) {
 
 int command_capacity(int argc, char** argv) {
   CLI::App app{"Bisect for the largest triangle count that never misses a field", "latsim capacity"};
-  std::string file, pointer = "/scene/triangles", metric = "missed_fields";
+  std::string file, pointer = "/scene/triangles", metric = "missed_fields", out_dir;
   std::vector<std::string> sets;
   int64_t lo = 0, hi = 100000;
   app.add_option("scenario", file, "scenario JSON file")->required();
   app.add_option("--pointer", pointer, "the JSON pointer of the count to vary")->capture_default_str();
   app.add_option("--metric", metric, "figure that must stay zero")->capture_default_str();
   app.add_option("--max", hi, "upper bound of the search")->capture_default_str();
+  app.add_option("--out,-o", out_dir, "also write DIR/capacity.json (the result and every count tried)");
   app.add_option("--set", sets, "override a value: /json/pointer=value (repeatable)");
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
+  nlohmann::json tried = nlohmann::json::array();
+  // Prints the result and, when asked, writes it with every count tried.
+  auto finish = [&](int64_t max_count, const char* note) {
+    std::printf("max_triangles_per_field=%lld%s\n", static_cast<long long>(max_count), note);
+    if (out_dir.empty()) return;
+    std::filesystem::create_directories(out_dir);
+    const nlohmann::json doc{{"scenario", file},         {"pointer", pointer}, {"metric", metric},
+                             {"max_triangles_per_field", max_count}, {"note", note}, {"tried", tried},
+                             {"command_line", command_line_of(argc, argv)}, {"latsim", pipelines::latsim_version()},
+                             {"git_revision", pipelines::latsim_git_revision()}};
+    pipelines::write_file_atomically(std::filesystem::path(out_dir) / "capacity.json", doc.dump(2) + "\n");
+  };
   try {
     auto misses_at = [&](int64_t n) {
       std::vector<std::string> s = sets;
@@ -120,15 +133,16 @@ int command_capacity(int argc, char** argv) {
       const auto summary = pipelines::run_scenario(scenario::ScenarioDocument::load(file, s), pipelines::RunOptions{});
       const auto& f = summary["figures"];
       if (!f.contains(metric)) throw scenario::ScenarioError(pointer, "this pipeline reports no \"" + metric + "\"");
-      return f[metric].get<double>();
+      const double misses = f[metric].get<double>();
+      tried.push_back({{"count", n}, {metric, misses}});
+      return misses;
     };
     if (misses_at(lo) > 0) {
-      std::printf("%s: misses fields even at %s=%lld\n", file.c_str(), pointer.c_str(), static_cast<long long>(lo));
-      std::printf("max_triangles_per_field=-1\n");
+      finish(-1, " (misses fields even with none)");
       return kExitOk;
     }
     if (misses_at(hi) == 0) {
-      std::printf("max_triangles_per_field>=%lld (raise --max)\n", static_cast<long long>(hi));
+      finish(hi, " (never missed up to --max: raise it)");
       return kExitOk;
     }
     // Invariant: lo never misses, hi misses.
@@ -136,7 +150,7 @@ int command_capacity(int argc, char** argv) {
       const int64_t mid = lo + (hi - lo) / 2;
       (misses_at(mid) > 0 ? hi : lo) = mid;
     }
-    std::printf("max_triangles_per_field=%lld\n", static_cast<long long>(lo));
+    finish(lo, "");
   } catch (const scenario::ScenarioError& e) {
     return bad_input(file, e);
   } catch (const std::exception& e) {
