@@ -1,189 +1,156 @@
 // latsim sweep: runs every point of a sweep file, resumably and in parallel,
-// and gathers the results into results.csv and results.sqlite.
+// on this machine's threads, as one shard of a batch scheduler's job array, or
+// on the ranks of an MPI job, and gathers the results into results.csv and
+// results.sqlite.
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "commands.hpp"
-#include "latsim/pipelines/runner.hpp"
-#include "latsim/scenario/config.hpp"
 #include "parallel_for.hpp"
 #include "progress_line.hpp"
-#include "results_db.hpp"
-#include "run_table.hpp"
-#include "sweep_plan.hpp"
-#include "sweep_store.hpp"
+#include "sweep_common.hpp"
+#include "sweep_cost.hpp"
+#include "sweep_mpi.hpp"
+#include "sweep_shard.hpp"
+#include "sweep_tables.hpp"
 
 namespace latsim::app {
 
 namespace {
 
-using Json = nlohmann::json;
-namespace fs = std::filesystem;
-
-/// What `latsim sweep` was asked to do.
-struct SweepRequest {
-  std::string sweep_file;
-  std::string out_dir;
-  unsigned jobs = 0;
-  bool write_samples = false;
-  bool write_ledger = false;
-};
-
-Json resolve_defaults(const Json& scenario, const fs::path& base_dir) {
-  auto doc = scenario::ScenarioDocument::from_json(scenario, base_dir);
-  pipelines::validate_scenario(doc);
-  return doc.resolved();
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// The sweep-file location to blame for a scenario error at `pointer`: the axis
-// value that put something bad there, or else the point as a whole.
-std::string blame(const SweepPlan& plan, const SweepRun& run, const scenario::ScenarioError& e) {
-  for (size_t a = 0; a < plan.axes().size(); ++a) {
-    const std::string& axis = plan.axes()[a].pointer;
-    if (e.pointer() == axis || e.pointer().rfind(axis + "/", 0) == 0)
-      return plan.value_pointer(a, run.value_indices[a]) + ": " + e.pointer() + ": " + e.message();
-  }
-  return "/axes: at " + plan.describe(run) + ": " + e.pointer() + ": " + e.message();
-}
-
-// Builds every distinct scenario of the plan without running it, so a bad
-// value is reported before anything is written. Returns the first problem in plan order.
-std::optional<std::string> validate_points(const SweepPlan& plan, unsigned jobs) {
-  std::vector<const SweepRun*> firsts;
+// Runs the plan's runs that are in `shard` (all of them without one) on this
+// machine's threads, then writes the tables unless this is one shard of many.
+int sweep_here(const SweepRequest& request, const SweepPlan& plan, const std::optional<Shard>& shard) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<size_t> selected;
   for (const auto& run : plan.runs())
-    if (run.replication == 0) firsts.push_back(&run);
-  std::vector<std::optional<std::string>> problems(firsts.size());
-  parallel_for(firsts.size(), jobs, [&](size_t i) {
-    try {
-      auto doc = scenario::ScenarioDocument::from_json(firsts[i]->scenario, plan.base_dir());
-      pipelines::validate_scenario(doc);
-    } catch (const scenario::ScenarioError& e) {
-      problems[i] = blame(plan, *firsts[i], e);
-    } catch (const std::exception& e) {
-      problems[i] = "/axes: at " + plan.describe(*firsts[i]) + ": " + e.what();
-    }
-  });
-  for (auto& problem : problems)
-    if (problem) return problem;
-  return std::nullopt;
-}
+    if (!shard || shard->contains(run.index)) selected.push_back(run.index);
+  const PointCheck check = check_points(plan, selected, request.jobs);
+  if (check.problem) {
+    std::cerr << request.sweep_file << ": " << *check.problem << "\n";
+    return kExitBadInput;
+  }
 
-// Runs every unfinished run; returns one message per failed run, in plan order.
-std::vector<std::string> execute(const SweepPlan& plan, const SweepStore& store, const SweepRequest& request,
-                                 const std::vector<std::string>& command_line) {
-  const auto& runs = plan.runs();
+  SweepWorkspace work(request);
+  const SweepStore& store = work.store;
+  write_file_if_changed(store.out_dir() / "plan.json", plan.to_json().dump(2) + "\n");
+
+  SweepTally tally;
   std::vector<size_t> pending;
-  for (const auto& run : runs)
-    if (!store.is_finished(run.run_id)) pending.push_back(run.index);
-  ProgressLine progress("sweep", runs.size(), runs.size() - pending.size());
-  std::vector<std::optional<std::string>> failures(pending.size());
+  for (size_t i : selected) {
+    if (store.is_finished(plan.runs()[i].run_id)) ++tally.resumed;
+    else pending.push_back(i);
+  }
+  pending = longest_first(pending, check.cost_of_run);
+  ProgressLine progress("sweep", selected.size(), tally.resumed);
+  std::vector<RunAttempt> attempts(pending.size());
   parallel_for(pending.size(), request.jobs, [&](size_t i) {
-    const SweepRun& run = runs[pending[i]];
-    pipelines::RunOptions options;
-    options.seed = run.seed;
-    options.replication = run.replication;
-    options.out_dir = store.run_dir(run.run_id);
-    options.write_samples = request.write_samples;
-    options.write_ledger = request.write_ledger;
-    options.command_line = command_line;
-    try {
-      auto doc = scenario::ScenarioDocument::from_json(run.scenario, plan.base_dir());
-      (void)pipelines::run_scenario(doc, options);
-    } catch (const scenario::ScenarioError& e) {
-      failures[i] = run.run_id + " (" + plan.describe(run) + "): " + e.pointer() + ": " + e.message();
-    } catch (const std::exception& e) {
-      failures[i] = run.run_id + " (" + plan.describe(run) + "): " + e.what();
-    }
+    attempts[i] = work.executor.execute(RunTask::of(plan, plan.runs()[pending[i]]));
     progress.advance();
   });
   progress.finish();
-  std::vector<std::string> messages;
-  for (auto& failure : failures)
-    if (failure) messages.push_back(*failure);
-  return messages;
-}
+  tally.add(plan, pending, attempts);
 
-// Reads every finished run's summary in plan order and writes the two result tables.
-size_t gather(const SweepPlan& plan, const SweepStore& store) {
-  std::vector<RunRecord> records;
-  for (const auto& run : plan.runs()) {
-    auto summary = store.load_summary(run.run_id);
-    if (!summary) continue;
-    RunRecord record{run.run_id, run.point, run.seed, run.replication, {}, std::move(*summary)};
-    for (size_t a = 0; a < plan.axes().size(); ++a) record.values.push_back(plan.axes()[a].values[run.value_indices[a]]);
-    records.push_back(std::move(record));
+  size_t temporaries = work.executor.temporaries_removed();
+  if (shard && shard->count > 1) {
+    const std::string from = shard->source == request.shard ? "" : " (" + shard->source + ")";
+    std::printf("sweep: shard %zu/%zu%s: %zu of %zu runs %s on %u thread(s) in %.2f s; "
+                "latsim sweep --collect writes the tables once every shard is done\n",
+                shard->index, shard->count, from.c_str(), selected.size(), plan.runs().size(),
+                tally.counts().c_str(), request.jobs, seconds_since(start));
+    tally.print_notes(temporaries, request.timings);
+    return tally.failures.empty() ? kExitOk : kExitFailure;
   }
-  std::vector<std::string> pointers;
-  for (const auto& axis : plan.axes()) pointers.push_back(axis.pointer);
-  pipelines::write_file_atomically(store.out_dir() / "results.csv", results_csv(pointers, records));
-  write_results_db(store.out_dir() / "results.sqlite", pointers, records);
-  return records.size();
+  const size_t gathered = write_tables(plan, store, temporaries);
+  std::printf("sweep: %zu runs %s on %u thread(s) in %.2f s -> %s\n", plan.runs().size(), tally.counts().c_str(),
+              request.jobs, seconds_since(start), (store.out_dir() / "results.csv").c_str());
+  tally.print_notes(temporaries, request.timings);
+  return tally.failures.empty() && gathered == plan.runs().size() ? kExitOk : kExitFailure;
 }
 
-// The command line each run records: the sweep as invoked, less -j, which
-// must not make one run's files differ from another's.
-std::vector<std::string> recorded_command_line(const SweepRequest& request) {
-  std::vector<std::string> line{"latsim", "sweep", request.sweep_file, "--out", request.out_dir};
-  if (request.write_samples) line.push_back("--samples");
-  if (request.write_ledger) line.push_back("--ledger");
-  return line;
+// Writes the tables of a sweep that shards ran, and names every run still missing.
+int collect(const SweepRequest& request, const SweepPlan& plan) {
+  if (!std::filesystem::is_directory(std::filesystem::path(request.out_dir) / "runs")) {
+    std::cerr << request.out_dir << ": not a sweep directory (no runs/ in it)\n";
+    return kExitBadInput;
+  }
+  SweepStore store(request.out_dir);
+  RunClaims claims(store.claims_dir(), std::chrono::seconds(request.stale_after_s));
+  size_t temporaries = 0;
+  const size_t gathered = write_tables(plan, store, temporaries);
+  const auto missing = missing_runs(plan, store, claims);
+  std::printf("sweep: collected %zu of %zu runs -> %s\n", gathered, plan.runs().size(),
+              (store.out_dir() / "results.csv").c_str());
+  if (missing.empty()) return kExitOk;
+  std::cerr << "sweep: " << missing.size() << " run(s) not finished; run their shards again:\n";
+  constexpr size_t kShown = 20;
+  for (size_t i = 0; i < missing.size() && i < kShown; ++i) std::cerr << "  missing " << missing[i] << "\n";
+  if (missing.size() > kShown) std::cerr << "  ... and " << missing.size() - kShown << " more\n";
+  return kExitFailure;
 }
 
 }  // namespace
 
 int command_sweep(int argc, char** argv) {
-  CLI::App app{"Runs every point of a parameter sweep (resumable, parallel) and gathers results.csv and results.sqlite"};
+  CLI::App app{"Runs every point of a parameter sweep (resumable, parallel, on a cluster by shards or MPI) and "
+               "gathers results.csv and results.sqlite"};
   app.name("latsim sweep");
   SweepRequest request;
-  request.jobs = std::max(1u, std::thread::hardware_concurrency());
   app.add_option("sweep", request.sweep_file, "Sweep file (JSON: base, axes, mode, replications, seed, overrides)")
       ->required();
   app.add_option("-o,--out", request.out_dir, "Output directory; an existing sweep there is resumed")->required();
-  app.add_option("-j,--jobs", request.jobs, "Runs in parallel (default: number of cores)")->check(CLI::Range(1u, 4096u));
+  auto* jobs = app.add_option("-j,--jobs", request.jobs,
+                              "Runs at once (default: the CPUs this process may use; with --mpi, 1 per rank)")
+                   ->check(CLI::Range(1u, 4096u));
   app.add_flag("--samples", request.write_samples, "Also write each run's samples.csv");
   app.add_flag("--ledger", request.write_ledger, "Also write each run's frames.csv ledger");
+  auto* shard = app.add_option("--shard", request.shard,
+                               "Run only the runs whose plan position modulo N is I (I/N, from 0), or 'env': the "
+                               "array task of Slurm or Grid Engine; tables are left to --collect");
+  auto* collect_flag = app.add_flag("--collect", request.collect,
+                                    "Run nothing: write the tables of the finished runs and name the missing ones");
+  auto* mpi = app.add_flag("--mpi", request.mpi, "Under mpirun: rank 0 hands runs out to every rank, then writes the tables");
+  app.add_flag("--timings", request.timings, "Also print where the time per run went");
+  app.add_option("--stale-after", request.stale_after_s,
+                 "Seconds without a heartbeat after which another host's claim on a run is stale")
+      ->check(CLI::Range(1u, 7u * 24u * 3600u))
+      ->capture_default_str();
+  shard->excludes(collect_flag);
+  mpi->excludes(shard);
+  mpi->excludes(collect_flag);
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
+  if (!*jobs) request.jobs = request.mpi ? 1u : available_cpus();
 
-  std::optional<SweepPlan> plan;
-  try {
-    plan = SweepPlan::load(request.sweep_file, resolve_defaults);
-  } catch (const SweepError& e) {
-    std::cerr << e.what() << "\n";
-    return kExitBadInput;
+  std::optional<Shard> slice;
+  if (!request.shard.empty()) {
+    try {
+      slice = parse_shard(request.shard);
+    } catch (const std::invalid_argument& e) {
+      std::cerr << "latsim sweep: " << e.what() << "\n";
+      return kExitBadInput;
+    }
   }
-  if (auto problem = validate_points(*plan, request.jobs)) {
-    std::cerr << request.sweep_file << ": " << *problem << "\n";
-    return kExitBadInput;
-  }
-
-  const auto start = std::chrono::steady_clock::now();
   try {
-    SweepStore store(request.out_dir);
-    const size_t stale = store.remove_temporaries();
-    if (stale > 0) std::cerr << "sweep: removed " << stale << " unfinished temporary file(s) of an interrupted sweep\n";
-    pipelines::write_file_atomically(store.out_dir() / "plan.json", plan->to_json().dump(2) + "\n");
-    size_t resumed = 0;
-    for (const auto& run : plan->runs()) resumed += store.is_finished(run.run_id) ? 1 : 0;
-    const auto failures = execute(*plan, store, request, recorded_command_line(request));
-    const size_t gathered = gather(*plan, store);
-    const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::printf("sweep: %zu runs (%zu resumed, %zu run now, %zu failed) on %u thread(s) in %.2f s -> %s\n",
-                plan->runs().size(), resumed, plan->runs().size() - resumed - failures.size(), failures.size(),
-                request.jobs, wall_s, (store.out_dir() / "results.csv").c_str());
-    for (const auto& failure : failures) std::cerr << "sweep: run failed: " << failure << "\n";
-    if (!failures.empty() || gathered != plan->runs().size()) return kExitFailure;
+    if (request.mpi) return sweep_mpi(request);
+    const auto plan = load_plan(request);
+    if (!plan) return kExitBadInput;
+    return request.collect ? collect(request, *plan) : sweep_here(request, *plan, slice);
   } catch (const std::exception& e) {
     std::cerr << "sweep: " << e.what() << "\n";
     return kExitFailure;
   }
-  return kExitOk;
 }
 
 }  // namespace latsim::app

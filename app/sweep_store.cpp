@@ -1,34 +1,18 @@
 #include "sweep_store.hpp"
 
-#include <fcntl.h>
-#include <sys/file.h>
-#include <unistd.h>
-
 #include <cctype>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
 
+#include "latsim/pipelines/runner.hpp"
+
 namespace latsim::app {
 
 namespace fs = std::filesystem;
 
-SweepStore::SweepStore(fs::path out_dir) : out_dir_(std::move(out_dir)) {
-  fs::create_directories(out_dir_ / "runs");
-  const fs::path lock_file = out_dir_ / ".sweep.lock";
-  lock_fd_ = ::open(lock_file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (lock_fd_ < 0) throw std::runtime_error(lock_file.string() + ": cannot open the lock file");
-  // The kernel drops the lock when the process dies, even by kill -9.
-  if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
-    ::close(lock_fd_);
-    throw std::runtime_error(out_dir_.string() + ": another sweep is writing to this directory; wait for it or use another --out");
-  }
-}
-
-SweepStore::~SweepStore() {
-  if (lock_fd_ >= 0) ::close(lock_fd_);
-}
+SweepStore::SweepStore(fs::path out_dir) : out_dir_(std::move(out_dir)) { fs::create_directories(out_dir_ / "runs"); }
 
 fs::path SweepStore::run_dir(const std::string& run_id) const { return out_dir_ / "runs" / run_id; }
 
@@ -50,17 +34,24 @@ std::optional<nlohmann::json> SweepStore::load_summary(const std::string& run_id
   }
 }
 
-size_t SweepStore::remove_temporaries() const {
-  // Only what a sweep writes: its own tables at the top, anything under runs/;
-  // other files in a directory the user chose are none of our business.
+size_t SweepStore::remove_run_temporaries(const std::string& run_id) const {
+  std::vector<fs::path> stale;
+  std::error_code ec;
+  for (fs::recursive_directory_iterator it(run_dir(run_id), ec), end; !ec && it != end; it.increment(ec))
+    if (it->is_regular_file() && is_temporary_name(it->path().filename().string())) stale.push_back(it->path());
+  for (const auto& file : stale) fs::remove(file);
+  return stale.size();
+}
+
+size_t SweepStore::remove_table_temporaries() const {
+  // Only what a sweep writes at the top; other files in a directory the user
+  // chose are none of our business.
   std::vector<fs::path> stale;
   for (const auto& entry : fs::directory_iterator(out_dir_)) {
     const std::string name = entry.path().filename().string();
     const bool ours = name.rfind("results.", 0) == 0 || name.rfind("plan.json", 0) == 0;
     if (ours && entry.is_regular_file() && is_temporary_name(name)) stale.push_back(entry.path());
   }
-  for (const auto& entry : fs::recursive_directory_iterator(out_dir_ / "runs"))
-    if (entry.is_regular_file() && is_temporary_name(entry.path().filename().string())) stale.push_back(entry.path());
   for (const auto& file : stale) fs::remove(file);
   return stale.size();
 }
@@ -74,6 +65,16 @@ bool is_temporary_name(const std::string& filename) {
   for (size_t i = 1; i < rest.size(); ++i)
     if (!std::isdigit(static_cast<unsigned char>(rest[i]))) return false;
   return true;
+}
+
+void write_file_if_changed(const fs::path& file, const std::string& text) {
+  std::ifstream in(file, std::ios::binary);
+  if (in) {
+    std::stringstream buf;
+    buf << in.rdbuf();
+    if (buf.str() == text) return;
+  }
+  pipelines::write_file_atomically(file, text);
 }
 
 }  // namespace latsim::app

@@ -7,7 +7,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 PACKAGES=(g++ cmake make pkg-config git python3 python3-matplotlib
           libglm-dev libeigen3-dev nlohmann-json3-dev catch2 libembree-dev
-          libcli11-dev libpng-dev libtbb-dev libsqlite3-dev)
+          libcli11-dev libpng-dev libtbb-dev libsqlite3-dev libopenmpi-dev openmpi-bin)
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

@@ -5,9 +5,12 @@
 #include <sqlite3.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
+#include <string>
 
 #include "results_db.hpp"
 #include "run_table.hpp"
@@ -131,30 +134,50 @@ TEST_CASE("temporary file names are recognised", "[sweep]") {
   CHECK_FALSE(is_temporary_name(".tmp"));
 }
 
-TEST_CASE("a sweep directory: finished means summary.json exists, stray temporaries are removed, one writer", "[sweep]") {
+TEST_CASE("a sweep directory: finished means summary.json exists, stray temporaries are removed per run", "[sweep]") {
   const fs::path dir = scratch_dir("latsim_sweep_store");
-  {
-    SweepStore store(dir);
-    fs::create_directories(store.run_dir("r1"));
-    fs::create_directories(store.run_dir("r2"));
-    std::ofstream(store.summary_file("r1")) << R"({"events": 5})";
-    // r2 was killed while writing its summary: only the temporary file exists.
-    std::ofstream(store.run_dir("r2") / "summary.json.tmp.4242") << R"({"eve)";
-    std::ofstream(store.run_dir("r2") / "timeline.csv") << "stage,frame,eye,unit,start_ms,end_ms\n";
-    std::ofstream(dir / "results.csv.tmp.4242") << "run_id";
-    std::ofstream(dir / "notes.txt.tmp") << "someone else's file";
-    CHECK(store.is_finished("r1"));
-    CHECK_FALSE(store.is_finished("r2"));
-    CHECK(store.load_summary("r1")->at("events") == 5);
-    CHECK_FALSE(store.load_summary("r2"));
-    CHECK_THROWS_WITH(SweepStore(dir), Catch::Contains("another sweep is writing"));
-    CHECK(store.remove_temporaries() == 2);
-    CHECK_FALSE(fs::exists(store.run_dir("r2") / "summary.json.tmp.4242"));
-    CHECK(fs::exists(store.run_dir("r2") / "timeline.csv"));
-    CHECK(fs::exists(store.summary_file("r1")));
-    CHECK(fs::exists(dir / "notes.txt.tmp"));
-  }
-  // The lock goes with the store.
+  SweepStore store(dir);
+  fs::create_directories(store.run_dir("r1"));
+  fs::create_directories(store.run_dir("r2") / "frames");
+  std::ofstream(store.summary_file("r1")) << R"({"events": 5})";
+  // r2 was killed while writing its summary: only the temporary file exists.
+  std::ofstream(store.run_dir("r2") / "summary.json.tmp.4242") << R"({"eve)";
+  std::ofstream(store.run_dir("r2") / "frames" / "f0.png.tmp.4242") << "png";
+  std::ofstream(store.run_dir("r2") / "timeline.csv") << "stage,frame,eye,unit,start_ms,end_ms\n";
+  std::ofstream(store.run_dir("r1") / "figures.json.tmp.77") << "{";
+  std::ofstream(dir / "results.csv.tmp.4242") << "run_id";
+  std::ofstream(dir / "plan.json.tmp.4242") << "{";
+  std::ofstream(dir / "notes.txt.tmp") << "someone else's file";
+  CHECK(store.is_finished("r1"));
+  CHECK_FALSE(store.is_finished("r2"));
+  CHECK(store.load_summary("r1")->at("events") == 5);
+  CHECK_FALSE(store.load_summary("r2"));
+  // Two processes may share the directory: opening it again is fine.
   CHECK_NOTHROW(SweepStore(dir));
+  // Only the named run's temporaries go (another process may be writing r1's).
+  CHECK(store.remove_run_temporaries("r2") == 2);
+  CHECK_FALSE(fs::exists(store.run_dir("r2") / "summary.json.tmp.4242"));
+  CHECK(fs::exists(store.run_dir("r2") / "timeline.csv"));
+  CHECK(fs::exists(store.run_dir("r1") / "figures.json.tmp.77"));
+  CHECK(store.remove_run_temporaries("no_such_run") == 0);
+  CHECK(store.remove_table_temporaries() == 2);
+  CHECK(fs::exists(store.summary_file("r1")));
+  CHECK(fs::exists(dir / "notes.txt.tmp"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("plan.json is rewritten only when its content changes", "[sweep]") {
+  const fs::path dir = scratch_dir("latsim_write_if_changed");
+  const fs::path file = dir / "plan.json";
+  latsim::app::write_file_if_changed(file, "{}\n");
+  const auto first = fs::last_write_time(file);
+  // Set the time back by hand: the test must not depend on the clock's resolution.
+  fs::last_write_time(file, first - std::chrono::hours(1));
+  latsim::app::write_file_if_changed(file, "{}\n");
+  CHECK(fs::last_write_time(file) == first - std::chrono::hours(1));
+  latsim::app::write_file_if_changed(file, "{\"runs\": []}\n");
+  std::ifstream in(file);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CHECK(text == "{\"runs\": []}\n");
   fs::remove_all(dir);
 }

@@ -1,0 +1,146 @@
+#include "sweep_common.hpp"
+
+#include <sched.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <set>
+#include <thread>
+
+#include "latsim/pipelines/runner.hpp"
+#include "latsim/scenario/config.hpp"
+#include "parallel_for.hpp"
+#include "sweep_cost.hpp"
+
+namespace latsim::app {
+
+namespace {
+
+using Json = nlohmann::json;
+namespace fs = std::filesystem;
+
+Json resolve_defaults(const Json& scenario, const fs::path& base_dir) {
+  auto doc = scenario::ScenarioDocument::from_json(scenario, base_dir);
+  pipelines::validate_scenario(doc);
+  return doc.resolved();
+}
+
+// The sweep-file location to blame for a scenario error at `pointer`: the axis
+// value that put something bad there, or else the point as a whole.
+std::string blame(const SweepPlan& plan, const SweepRun& run, const scenario::ScenarioError& e) {
+  for (size_t a = 0; a < plan.axes().size(); ++a) {
+    const std::string& axis = plan.axes()[a].pointer;
+    if (e.pointer() == axis || e.pointer().rfind(axis + "/", 0) == 0)
+      return plan.value_pointer(a, run.value_indices[a]) + ": " + e.pointer() + ": " + e.message();
+  }
+  return "/axes: at " + plan.describe(run) + ": " + e.pointer() + ": " + e.message();
+}
+
+}  // namespace
+
+unsigned available_cpus() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (::sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
+std::optional<SweepPlan> load_plan(const SweepRequest& request) {
+  try {
+    return SweepPlan::load(request.sweep_file, resolve_defaults);
+  } catch (const SweepError& e) {
+    std::cerr << e.what() << "\n";
+    return std::nullopt;
+  }
+}
+
+PointCheck check_points(const SweepPlan& plan, const std::vector<size_t>& run_indices, unsigned jobs) {
+  // One run per point stands for all its replications: they share the scenario.
+  std::vector<size_t> firsts;
+  std::set<size_t> seen_points;
+  for (size_t i : run_indices)
+    if (seen_points.insert(plan.runs()[i].point).second) firsts.push_back(i);
+  std::vector<std::optional<std::string>> problems(firsts.size());
+  std::vector<double> point_cost(plan.point_count(), 0.0);
+  parallel_for(firsts.size(), jobs, [&](size_t i) {
+    const SweepRun& run = plan.runs()[firsts[i]];
+    try {
+      auto doc = scenario::ScenarioDocument::from_json(run.scenario, plan.base_dir());
+      pipelines::validate_scenario(doc);
+      point_cost[run.point] = expected_cost(doc.resolved());
+    } catch (const scenario::ScenarioError& e) {
+      problems[i] = blame(plan, run, e);
+    } catch (const std::exception& e) {
+      problems[i] = "/axes: at " + plan.describe(run) + ": " + e.what();
+    }
+  });
+  PointCheck check;
+  for (size_t i = 0; i < firsts.size() && !check.problem; ++i)
+    if (problems[i]) check.problem = problems[i];
+  check.cost_of_run.assign(plan.runs().size(), 0.0);
+  for (size_t i : run_indices) check.cost_of_run[i] = point_cost[plan.runs()[i].point];
+  return check;
+}
+
+RunSettings run_settings(const SweepRequest& request) {
+  RunSettings settings;
+  settings.write_samples = request.write_samples;
+  settings.write_ledger = request.write_ledger;
+  settings.command_line = {"latsim", "sweep", request.sweep_file, "--out", request.out_dir};
+  if (request.write_samples) settings.command_line.push_back("--samples");
+  if (request.write_ledger) settings.command_line.push_back("--ledger");
+  return settings;
+}
+
+SweepWorkspace::SweepWorkspace(const SweepRequest& request)
+    : store(request.out_dir),
+      claims(store.claims_dir(), std::chrono::seconds(request.stale_after_s)),
+      journal(store.out_dir(), ClaimHolder::self().host, static_cast<long>(ClaimHolder::self().pid)),
+      executor(store, claims, journal, run_settings(request)) {}
+
+void SweepTally::add(const SweepPlan& plan, const std::vector<size_t>& indices, const std::vector<RunAttempt>& attempts) {
+  std::vector<size_t> order(indices.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return indices[a] < indices[b]; });
+  for (size_t i : order) {
+    const RunAttempt& attempt = attempts[i];
+    const SweepRun& run = plan.runs()[indices[i]];
+    times.add(attempt);
+    switch (attempt.result) {
+      case RunAttempt::Result::ran: ++ran; break;
+      case RunAttempt::Result::finished_already: ++finished_elsewhere; break;
+      case RunAttempt::Result::busy:
+        ++busy;
+        if (std::find(holders.begin(), holders.end(), attempt.message) == holders.end()) holders.push_back(attempt.message);
+        break;
+      case RunAttempt::Result::failed:
+        failures.push_back(run.run_id + " (" + plan.describe(run) + "): " + attempt.message);
+        break;
+    }
+  }
+}
+
+std::string SweepTally::counts() const {
+  char text[200];
+  int n = std::snprintf(text, sizeof text, "(%zu resumed, %zu run now, ", resumed, ran);
+  if (finished_elsewhere) n += std::snprintf(text + n, sizeof text - n, "%zu finished by other processes, ", finished_elsewhere);
+  if (busy) n += std::snprintf(text + n, sizeof text - n, "%zu left to other processes, ", busy);
+  std::snprintf(text + n, sizeof text - n, "%zu failed)", failures.size());
+  return text;
+}
+
+void SweepTally::print_notes(size_t temporaries_removed, bool timings) const {
+  if (temporaries_removed > 0)
+    std::cerr << "sweep: removed " << temporaries_removed << " unfinished temporary file(s) of an interrupted sweep\n";
+  for (const auto& failure : failures) std::cerr << "sweep: run failed: " << failure << "\n";
+  if (busy > 0) {
+    std::cerr << "sweep: " << busy << " run(s) left to the processes that hold them:";
+    for (const auto& holder : holders) std::cerr << " " << holder << (&holder == &holders.back() ? "" : ",");
+    std::cerr << "\n";
+  }
+  if (timings) std::printf("sweep: %s\n", this->times.describe().c_str());
+}
+
+}  // namespace latsim::app

@@ -1,0 +1,281 @@
+#include "sweep_mpi.hpp"
+
+#include <iostream>
+
+#ifdef LATSIM_HAVE_MPI
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <deque>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <vector>
+
+#include "commands.hpp"
+#include "progress_line.hpp"
+#include "sweep_cost.hpp"
+#include "sweep_tables.hpp"
+
+namespace latsim::app {
+
+namespace {
+
+using Json = nlohmann::json;
+
+constexpr int kToRankZero = 1;
+constexpr int kToRank = 2;
+// Runs a rank holds at once (running and next), so that it never waits for
+// rank 0 to poll between two runs.
+constexpr size_t kRunsInHand = 2;
+
+// Waits by sleeping between polls: Open MPI's blocking calls spin on a core
+// that the runs of this or another rank need.
+class Backoff {
+ public:
+  void sleep() {
+    std::this_thread::sleep_for(delay_);
+    delay_ = std::min(delay_ * 2, std::chrono::microseconds(1000));
+  }
+  void reset() { delay_ = std::chrono::microseconds(20); }
+
+ private:
+  std::chrono::microseconds delay_{20};
+};
+
+struct Message {
+  int source = 0;
+  Json body;
+};
+
+void send(int rank, int tag, const Json& body) {
+  const std::string text = body.dump();
+  MPI_Send(text.data(), static_cast<int>(text.size()), MPI_CHAR, rank, tag, MPI_COMM_WORLD);
+}
+
+std::optional<Message> try_receive(int source, int tag) {
+  int arrived = 0;
+  MPI_Status status;
+  MPI_Iprobe(source, tag, MPI_COMM_WORLD, &arrived, &status);
+  if (!arrived) return std::nullopt;
+  int size = 0;
+  MPI_Get_count(&status, MPI_CHAR, &size);
+  std::string text(static_cast<size_t>(size), '\0');
+  MPI_Recv(text.data(), size, MPI_CHAR, status.MPI_SOURCE, tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  return Message{status.MPI_SOURCE, Json::parse(text)};
+}
+
+Message receive(int source, int tag) {
+  Backoff backoff;
+  while (true) {
+    if (auto message = try_receive(source, tag)) return std::move(*message);
+    backoff.sleep();
+  }
+}
+
+// MPI_Finalize synchronises the ranks and spins while it waits; wait for the
+// others here first, politely.
+void quiet_barrier() {
+  MPI_Request request;
+  MPI_Ibarrier(MPI_COMM_WORLD, &request);
+  Backoff backoff;
+  for (int done = 0; MPI_Test(&request, &done, MPI_STATUS_IGNORE), !done;) backoff.sleep();
+}
+
+/// MPI from initialisation to finalisation.
+class MpiSession {
+ public:
+  MpiSession() {
+    int provided = 0;
+    // Only the main thread of each rank calls MPI; run threads never do.
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+    MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  }
+  MpiSession(const MpiSession&) = delete;
+  MpiSession& operator=(const MpiSession&) = delete;
+  ~MpiSession() {
+    quiet_barrier();
+    MPI_Finalize();
+  }
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+
+ private:
+  int rank_ = 0, size_ = 1;
+};
+
+// Every rank but 0: run what rank 0 hands out until it says stop.
+int serve(const SweepRequest& request) {
+  send(0, kToRankZero, {{"ready", true}});
+  std::optional<SweepWorkspace> work;  // created with the first run: bad input writes nothing
+  std::deque<RunTask> inbox;
+  bool stopped = false;
+  auto take = [&](const Message& m) {
+    if (m.body.contains("stop")) stopped = true;
+    else inbox.push_back(RunTask::from_json(m.body.at("run")));
+  };
+  while (true) {
+    while (auto m = try_receive(0, kToRank)) take(*m);
+    if (inbox.empty()) {
+      if (stopped) return kExitOk;
+      take(receive(0, kToRank));
+      continue;
+    }
+    const RunTask task = std::move(inbox.front());
+    inbox.pop_front();
+    if (!work) work.emplace(request);
+    const size_t removed_before = work->executor.temporaries_removed();
+    const RunAttempt attempt = work->executor.execute(task);
+    send(0, kToRankZero, {{"index", task.index}, {"attempt", attempt.to_json()},
+                          {"temporaries", work->executor.temporaries_removed() - removed_before}});
+  }
+}
+
+// Hands out positions in a list of runs, in order, to whoever asks next.
+class RunQueue {
+ public:
+  explicit RunQueue(size_t count) : count_(count) {}
+  std::optional<size_t> next() {
+    const size_t i = next_.fetch_add(1);
+    if (i < count_) return i;
+    return std::nullopt;
+  }
+
+ private:
+  size_t count_;
+  std::atomic<size_t> next_{0};
+};
+
+// Tells every other rank there is nothing to do (after its first message, so none is left unreceived).
+void stop_all(int size) {
+  for (int rank = 1; rank < size; ++rank) {
+    (void)receive(rank, kToRankZero);
+    send(rank, kToRank, {{"stop", true}});
+  }
+}
+
+// Rank 0: check the plan, run the dispatcher and `request.jobs` run threads, write the tables.
+int lead(const SweepRequest& request, int size) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto plan = load_plan(request);
+  if (!plan) {
+    stop_all(size);
+    return kExitBadInput;
+  }
+  std::vector<size_t> all(plan->runs().size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+  const PointCheck check = check_points(*plan, all, request.jobs);
+  if (check.problem) {
+    std::cerr << request.sweep_file << ": " << *check.problem << "\n";
+    stop_all(size);
+    return kExitBadInput;
+  }
+
+  SweepWorkspace work(request);
+  write_file_if_changed(work.store.out_dir() / "plan.json", plan->to_json().dump(2) + "\n");
+  SweepTally tally;
+  std::vector<size_t> pending;
+  for (size_t i : all) {
+    if (work.store.is_finished(plan->runs()[i].run_id)) ++tally.resumed;
+    else pending.push_back(i);
+  }
+  pending = longest_first(pending, check.cost_of_run);
+  std::map<size_t, size_t> position_of;  // plan index -> position in pending
+  for (size_t p = 0; p < pending.size(); ++p) position_of[pending[p]] = p;
+
+  RunQueue queue(pending.size());
+  std::vector<RunAttempt> attempts(pending.size());
+  ProgressLine progress("sweep", plan->runs().size(), tally.resumed);
+  std::atomic<unsigned> threads_done{0};
+  std::vector<std::thread> threads;
+  for (unsigned t = 0; t < request.jobs; ++t)
+    threads.emplace_back([&] {
+      while (const auto p = queue.next()) {
+        attempts[*p] = work.executor.execute(RunTask::of(*plan, plan->runs()[pending[*p]]));
+        progress.advance();
+      }
+      ++threads_done;
+    });
+
+  std::vector<size_t> in_hand(static_cast<size_t>(size), 0);
+  std::vector<bool> stopped(static_cast<size_t>(size), false);
+  stopped[0] = true;
+  size_t remote_temporaries = 0;
+  auto everyone_done = [&] {
+    for (int r = 1; r < size; ++r)
+      if (!stopped[r] || in_hand[r] > 0) return false;
+    return threads_done == request.jobs;
+  };
+  Backoff backoff;
+  while (!everyone_done()) {
+    const auto message = try_receive(MPI_ANY_SOURCE, kToRankZero);
+    if (!message) {
+      backoff.sleep();
+      continue;
+    }
+    backoff.reset();
+    const auto r = static_cast<size_t>(message->source);
+    if (message->body.contains("index")) {
+      attempts[position_of.at(message->body["index"].get<size_t>())] = RunAttempt::from_json(message->body["attempt"]);
+      remote_temporaries += message->body.value("temporaries", size_t{0});
+      --in_hand[r];
+      progress.advance();
+    }
+    while (!stopped[r] && in_hand[r] < kRunsInHand) {
+      if (const auto p = queue.next()) {
+        send(message->source, kToRank, {{"run", RunTask::of(*plan, plan->runs()[pending[*p]]).to_json()}});
+        ++in_hand[r];
+      } else {
+        send(message->source, kToRank, {{"stop", true}});
+        stopped[r] = true;
+      }
+    }
+  }
+  for (auto& thread : threads) thread.join();
+  progress.finish();
+
+  tally.add(*plan, pending, attempts);
+  size_t temporaries = work.executor.temporaries_removed() + remote_temporaries;
+  const size_t gathered = write_tables(*plan, work.store, temporaries);
+  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("sweep: %zu runs %s on %d MPI rank(s) x %u thread(s) in %.2f s -> %s\n", plan->runs().size(),
+              tally.counts().c_str(), size, request.jobs, wall_s, (work.store.out_dir() / "results.csv").c_str());
+  tally.print_notes(temporaries, request.timings);
+  return tally.failures.empty() && gathered == plan->runs().size() ? kExitOk : kExitFailure;
+}
+
+}  // namespace
+
+int sweep_mpi(const SweepRequest& request) {
+  MpiSession mpi;
+  try {
+    return mpi.rank() == 0 ? lead(request, mpi.size()) : serve(request);
+  } catch (const std::exception& e) {
+    // The other ranks would wait for this one for ever.
+    std::cerr << "sweep: MPI rank " << mpi.rank() << ": " << e.what() << "\n";
+    MPI_Abort(MPI_COMM_WORLD, kExitFailure);
+    return kExitFailure;
+  }
+}
+
+}  // namespace latsim::app
+
+#else
+
+namespace latsim::app {
+
+int sweep_mpi(const SweepRequest&) {
+  std::cerr << "latsim sweep: --mpi: this latsim was built without MPI (install libopenmpi-dev and configure with "
+               "-DLATSIM_MPI=ON)\n";
+  return 2;
+}
+
+}  // namespace latsim::app
+
+#endif

@@ -1,0 +1,25 @@
+// The tables of a sweep directory (results.csv, results.sqlite), and what is
+// missing from them.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "sweep_claims.hpp"
+#include "sweep_plan.hpp"
+#include "sweep_store.hpp"
+
+namespace latsim::app {
+
+/// Reads every finished run's summary in plan order and writes results.csv
+/// and results.sqlite (removing temporaries a killed writer of them left, and
+/// the claim files left for finished runs). Returns how many runs the tables
+/// hold; `temporaries_removed` grows by the temporaries removed.
+size_t write_tables(const SweepPlan& plan, const SweepStore& store, size_t& temporaries_removed);
+
+/// One line per unfinished run, in plan order: "<run id> (<axis values>)",
+/// and who runs it when a live process holds its claim.
+std::vector<std::string> missing_runs(const SweepPlan& plan, const SweepStore& store, RunClaims& claims);
+
+}  // namespace latsim::app
