@@ -101,6 +101,25 @@ int collect(const SweepRequest& request, const SweepPlan& plan) {
   return kExitFailure;
 }
 
+// Builds every point without running or writing anything, for a batch
+// script to call once before it submits many tasks.
+int check_only(const SweepRequest& request, const SweepPlan& plan) {
+  std::vector<size_t> all(plan.runs().size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+  const PointCheck check = check_points(plan, all, request.jobs);
+  if (check.problem) {
+    std::cerr << request.sweep_file << ": " << *check.problem << "\n";
+    return kExitBadInput;
+  }
+  size_t finished = 0;
+  const std::filesystem::path runs = std::filesystem::path(request.out_dir) / "runs";
+  for (const auto& run : plan.runs()) finished += std::filesystem::exists(runs / run.run_id / "summary.json") ? 1 : 0;
+  std::printf("sweep: %s: %zu runs (%zu points x %llu replications), every point valid; %zu finished in %s\n",
+              request.sweep_file.c_str(), plan.runs().size(), plan.point_count(),
+              static_cast<unsigned long long>(plan.replications()), finished, request.out_dir.c_str());
+  return kExitOk;
+}
+
 }  // namespace
 
 int command_sweep(int argc, char** argv) {
@@ -121,6 +140,8 @@ int command_sweep(int argc, char** argv) {
                                "array task of Slurm or Grid Engine; tables are left to --collect");
   auto* collect_flag = app.add_flag("--collect", request.collect,
                                     "Run nothing: write the tables of the finished runs and name the missing ones");
+  auto* check = app.add_flag("--check", request.check,
+                             "Run and write nothing: check every point of the sweep and count the finished runs");
   auto* mpi = app.add_flag("--mpi", request.mpi, "Under mpirun: rank 0 hands runs out to every rank, then writes the tables");
   app.add_flag("--timings", request.timings, "Also print where the time per run went");
   app.add_option("--stale-after", request.stale_after_s,
@@ -128,6 +149,9 @@ int command_sweep(int argc, char** argv) {
       ->check(CLI::Range(1u, 7u * 24u * 3600u))
       ->capture_default_str();
   shard->excludes(collect_flag);
+  check->excludes(shard);
+  check->excludes(collect_flag);
+  check->excludes(mpi);
   mpi->excludes(shard);
   mpi->excludes(collect_flag);
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
@@ -146,6 +170,7 @@ int command_sweep(int argc, char** argv) {
     if (request.mpi) return sweep_mpi(request);
     const auto plan = load_plan(request);
     if (!plan) return kExitBadInput;
+    if (request.check) return check_only(request, *plan);
     return request.collect ? collect(request, *plan) : sweep_here(request, *plan, slice);
   } catch (const std::exception& e) {
     std::cerr << "sweep: " << e.what() << "\n";

@@ -21,6 +21,7 @@ struct SweepRequest {
   bool write_ledger = false;
   std::string shard;          ///< --shard text: "I/N" or "env"; empty: the whole plan
   bool collect = false;       ///< --collect: run nothing, write the tables
+  bool check = false;         ///< --check: run nothing, write nothing: check every point
   bool mpi = false;           ///< --mpi: rank 0 hands runs out to the ranks of an MPI job
   bool timings = false;       ///< --timings: also print where the time per run went
   unsigned stale_after_s = 600;  ///< a claim from another host without a heartbeat this long is stale

@@ -10,9 +10,12 @@
           we are): results.csv equal to the -j1 sweep's but for wall_s, every
           run started once; bad input under MPI exits 2 and writes nothing.
 
-Every wait is on a file the sweep writes, never on a time.
+  scripts scripts/cluster/slurm_array.sh and htcondor.sub, run through
+          stand-ins for sbatch and condor_submit that start the jobs here.
 
-Usage: test_sweep_cluster.py shards|mpi LATSIM SOURCE_DIR SCRATCH_DIR [MPIEXEC]
+Every wait is on a file the sweep writes or a process, never on a time.
+
+Usage: test_sweep_cluster.py shards|mpi|scripts LATSIM SOURCE_DIR SCRATCH_DIR [MPIEXEC]
 """
 
 import collections
@@ -225,6 +228,106 @@ def mpi():
     check(table(out) == reference, "MPI rerun changed results.csv")
 
 
-{"shards": shards, "mpi": mpi}[MODE]()
+FAKE_SBATCH = r"""#!/usr/bin/python3
+# Stands in for Slurm's sbatch: runs the job at once (array tasks at the same
+# time) with the variables Slurm sets, #SBATCH lines as defaults; the jobs'
+# output goes to stderr, stdout is the job id.
+import os, subprocess, sys
+args, opts = sys.argv[1:], {}
+while args and args[0].startswith("--"):
+    key, _, value = args.pop(0)[2:].partition("=")
+    opts.setdefault(key, value)
+script, *script_args = args
+with open(script) as f:
+    for line in f:
+        if line.startswith("#SBATCH --"):
+            key, _, value = line[len("#SBATCH --"):].strip().partition("=")
+            opts.setdefault(key, value)
+counter = os.path.join(os.path.dirname(os.path.abspath(sys.argv[0])), "jobs")
+job = (int(open(counter).read()) if os.path.exists(counter) else 100) + 1
+open(counter, "w").write(str(job))
+env = dict(os.environ, SLURM_JOB_ID=str(job), SLURM_CPUS_PER_TASK=opts.get("cpus-per-task", "1"))
+for item in opts.get("export", "ALL").split(",")[1:]:
+    key, _, value = item.partition("=")
+    env[key] = value
+if "array" in opts:
+    first, last = map(int, opts["array"].split("-"))
+    tasks = [subprocess.Popen(["bash", script, *script_args], stdout=sys.stderr, env=dict(env,
+             SLURM_ARRAY_JOB_ID=str(job), SLURM_ARRAY_TASK_ID=str(i), SLURM_ARRAY_TASK_MIN=str(first),
+             SLURM_ARRAY_TASK_MAX=str(last), SLURM_ARRAY_TASK_STEP="1", SLURM_ARRAY_TASK_COUNT=str(last - first + 1)))
+             for i in range(first, last + 1)]
+    for task in tasks:
+        task.wait()
+else:
+    subprocess.run(["bash", script, *script_args], env=env, stdout=sys.stderr)
+print(job)
+"""
+
+FAKE_CONDOR_SUBMIT = r"""#!/usr/bin/python3
+# Stands in for condor_submit: expands the submit file's macros, $(Process)
+# and $(Cluster), and runs every job of its queue at once (no file transfer).
+# Command-line name=value pairs replace the file's values.
+import re, subprocess, sys
+overrides = dict(a.split("=", 1) for a in sys.argv[1:] if "=" in a)
+file = [a for a in sys.argv[1:] if "=" not in a][0]
+macros, count = {}, 0
+for line in open(file):
+    line = line.strip()
+    if not line or line.startswith("#"):
+        continue
+    if line.startswith("queue"):
+        count = line.split()[1]
+        continue
+    key, _, value = line.partition("=")
+    macros[key.strip()] = value.strip()
+macros.update(overrides)
+def expand(text, process):
+    for _ in range(10):
+        text = re.sub(r"\$\((\w+)\)", lambda m: str(process) if m[1] == "Process" else "1" if m[1] == "Cluster"
+                      else macros[m[1]], text)
+    return text
+jobs = [subprocess.Popen([expand(macros["executable"], p), *expand(macros["arguments"], p).strip('"').split()])
+        for p in range(int(expand(count, 0)))]
+for job in jobs:
+    job.wait()
+"""
+
+
+def scripts():
+    """The example batch scripts, run through stand-ins for sbatch and condor_submit."""
+    bin_dir = os.path.join(SCRATCH, "bin")
+    os.makedirs(bin_dir)
+    for name, text in (("sbatch", FAKE_SBATCH), ("condor_submit", FAKE_CONDOR_SUBMIT)):
+        with open(os.path.join(bin_dir, name), "w") as f:
+            f.write(text)
+        os.chmod(os.path.join(bin_dir, name), 0o755)
+    env = {**os.environ, "PATH": bin_dir + os.pathsep + os.environ["PATH"], "LATSIM": LATSIM}
+    cluster_dir = os.path.join(SOURCE_DIR, "scripts", "cluster")
+
+    bad = write_sweep("bad.json", {"base": BASE, "axes": [{"pointer": "/tracker/rate_hz", "values": [60, -5]}]})
+    out = os.path.join(SCRATCH, "slurm")
+    proc = subprocess.run([os.path.join(cluster_dir, "slurm_array.sh"), bad, out, "3"], capture_output=True,
+                          text=True, env=env, cwd=SCRATCH)
+    check(proc.returncode == 2 and "/axes/0/values/1" in proc.stderr and not os.path.exists(out),
+          f"slurm_array.sh with a bad sweep: exit {proc.returncode} {proc.stderr}")
+    proc = subprocess.run([os.path.join(cluster_dir, "slurm_array.sh"), sweep, out, "3"], capture_output=True,
+                          text=True, env=env, cwd=SCRATCH)
+    check(proc.returncode == 0, f"slurm_array.sh: exit {proc.returncode} {proc.stderr}")
+    check("every point valid; 0 finished" in proc.stdout, f"slurm_array.sh did not check the sweep: {proc.stdout}")
+    check(all(f"sweep: shard {i}/3 (SLURM_ARRAY_TASK_ID={i} of 3)" in proc.stderr for i in range(3)) and
+          f"collected {RUNS} of {RUNS} runs" in proc.stderr,
+          f"slurm_array.sh: three shards and a collect expected: {proc.stderr}")
+    check(table(out) == reference, "results.csv from slurm_array.sh differs from the -j1 sweep's")
+
+    out = os.path.join(SCRATCH, "condor")
+    proc = subprocess.run(["condor_submit", os.path.join(cluster_dir, "htcondor.sub"), f"latsim={LATSIM}",
+                           f"sweep={sweep}", f"out={out}", "shards=4"], capture_output=True, text=True, env=env,
+                          cwd=SCRATCH)
+    check(proc.returncode == 0 and proc.stdout.count("sweep: shard ") == 4, f"htcondor.sub: {proc.stdout} {proc.stderr}")
+    proc = latsim("sweep", sweep, "--out", out, "--collect")
+    check(proc.returncode == 0 and table(out) == reference, f"collect after htcondor.sub: {proc.stderr}")
+
+
+{"shards": shards, "mpi": mpi, "scripts": scripts}[MODE]()
 print(f"sweep {MODE}: {len(checked) - len(failures)} checks passed, {len(failures)} failed")
 sys.exit(1 if failures else 0)
