@@ -30,39 +30,48 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// Runs the unfinished runs among `selected` on `jobs` threads, longest expected first.
+SweepTally run_here(const SweepPlan& plan, const std::vector<size_t>& selected, const PointCheck& check,
+                    SweepWorkspace& work, unsigned jobs) {
+  SweepTally tally;
+  std::vector<size_t> pending;
+  for (size_t i : selected) {
+    if (work.store.is_finished(plan.runs()[i].run_id)) ++tally.resumed;
+    else pending.push_back(i);
+  }
+  pending = longest_first(pending, check.cost_of_run);
+  ProgressLine progress("sweep", selected.size(), tally.resumed);
+  std::vector<RunAttempt> attempts(pending.size());
+  parallel_for(pending.size(), jobs, [&](size_t i) {
+    attempts[i] = work.executor.execute(RunTask::of(plan, plan.runs()[pending[i]]));
+    progress.advance();
+  });
+  progress.finish();
+  tally.add(plan, pending, attempts);
+  return tally;
+}
+
 // Runs the plan's runs that are in `shard` (all of them without one) on this
 // machine's threads, then writes the tables unless this is one shard of many.
-int sweep_here(const SweepRequest& request, const SweepPlan& plan, const std::optional<Shard>& shard) {
+int sweep_here(const SweepRequest& request, const SweepPlan& plan, const std::optional<Shard>& shard,
+               PhaseTimes phases) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<size_t> selected;
   for (const auto& run : plan.runs())
     if (!shard || shard->contains(run.index)) selected.push_back(run.index);
   const PointCheck check = check_points(plan, selected, request.jobs);
+  phases.check_s = check.wall_s;
+  phases.points = check.points;
   if (check.problem) {
     std::cerr << request.sweep_file << ": " << *check.problem << "\n";
     return kExitBadInput;
   }
 
   SweepWorkspace work(request);
-  const SweepStore& store = work.store;
-  write_file_if_changed(store.out_dir() / "plan.json", plan.to_json().dump(2) + "\n");
-
-  SweepTally tally;
-  std::vector<size_t> pending;
-  for (size_t i : selected) {
-    if (store.is_finished(plan.runs()[i].run_id)) ++tally.resumed;
-    else pending.push_back(i);
-  }
-  pending = longest_first(pending, check.cost_of_run);
-  ProgressLine progress("sweep", selected.size(), tally.resumed);
-  std::vector<RunAttempt> attempts(pending.size());
-  parallel_for(pending.size(), request.jobs, [&](size_t i) {
-    attempts[i] = work.executor.execute(RunTask::of(plan, plan.runs()[pending[i]]));
-    progress.advance();
-  });
-  progress.finish();
-  tally.add(plan, pending, attempts);
-
+  write_file_if_changed(work.store.out_dir() / "plan.json", plan.to_json().dump(2) + "\n");
+  const auto runs_start = std::chrono::steady_clock::now();
+  const SweepTally tally = run_here(plan, selected, check, work, request.jobs);
+  phases.runs_s = seconds_since(runs_start);
   size_t temporaries = work.executor.temporaries_removed();
   if (shard && shard->count > 1) {
     const std::string from = shard->source == request.shard ? "" : " (" + shard->source + ")";
@@ -70,13 +79,17 @@ int sweep_here(const SweepRequest& request, const SweepPlan& plan, const std::op
                 "latsim sweep --collect writes the tables once every shard is done\n",
                 shard->index, shard->count, from.c_str(), selected.size(), plan.runs().size(),
                 tally.counts().c_str(), request.jobs, seconds_since(start));
-    tally.print_notes(temporaries, request.timings);
+    tally.print_notes(temporaries);
+    if (request.timings) phases.print(tally.times, request.jobs);
     return tally.failures.empty() ? kExitOk : kExitFailure;
   }
-  const size_t gathered = write_tables(plan, store, temporaries);
+  const auto tables_start = std::chrono::steady_clock::now();
+  const size_t gathered = write_tables(plan, work.store, temporaries);
+  phases.tables_s = seconds_since(tables_start);
   std::printf("sweep: %zu runs %s on %u thread(s) in %.2f s -> %s\n", plan.runs().size(), tally.counts().c_str(),
-              request.jobs, seconds_since(start), (store.out_dir() / "results.csv").c_str());
-  tally.print_notes(temporaries, request.timings);
+              request.jobs, seconds_since(start), (work.store.out_dir() / "results.csv").c_str());
+  tally.print_notes(temporaries);
+  if (request.timings) phases.print(tally.times, request.jobs);
   return tally.failures.empty() && gathered == plan.runs().size() ? kExitOk : kExitFailure;
 }
 
@@ -89,10 +102,13 @@ int collect(const SweepRequest& request, const SweepPlan& plan) {
   SweepStore store(request.out_dir);
   RunClaims claims(store.claims_dir(), std::chrono::seconds(request.stale_after_s));
   size_t temporaries = 0;
+  const auto start = std::chrono::steady_clock::now();
   const size_t gathered = write_tables(plan, store, temporaries);
+  const double tables_s = seconds_since(start);
   const auto missing = missing_runs(plan, store, claims);
   std::printf("sweep: collected %zu of %zu runs -> %s\n", gathered, plan.runs().size(),
               (store.out_dir() / "results.csv").c_str());
+  if (request.timings) std::printf("sweep: timings: tables %.3f s\n", tables_s);
   if (missing.empty()) return kExitOk;
   std::cerr << "sweep: " << missing.size() << " run(s) not finished; run their shards again:\n";
   constexpr size_t kShown = 20;
@@ -168,10 +184,14 @@ int command_sweep(int argc, char** argv) {
   }
   try {
     if (request.mpi) return sweep_mpi(request);
+    const auto start = std::chrono::steady_clock::now();
     const auto plan = load_plan(request);
     if (!plan) return kExitBadInput;
     if (request.check) return check_only(request, *plan);
-    return request.collect ? collect(request, *plan) : sweep_here(request, *plan, slice);
+    if (request.collect) return collect(request, *plan);
+    PhaseTimes phases;
+    phases.plan_s = seconds_since(start);
+    return sweep_here(request, *plan, slice, phases);
   } catch (const std::exception& e) {
     std::cerr << "sweep: " << e.what() << "\n";
     return kExitFailure;

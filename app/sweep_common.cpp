@@ -57,6 +57,7 @@ std::optional<SweepPlan> load_plan(const SweepRequest& request) {
 }
 
 PointCheck check_points(const SweepPlan& plan, const std::vector<size_t>& run_indices, unsigned jobs) {
+  const auto start = std::chrono::steady_clock::now();
   // One run per point stands for all its replications: they share the scenario.
   std::vector<size_t> firsts;
   std::set<size_t> seen_points;
@@ -81,6 +82,8 @@ PointCheck check_points(const SweepPlan& plan, const std::vector<size_t>& run_in
     if (problems[i]) check.problem = problems[i];
   check.cost_of_run.assign(plan.runs().size(), 0.0);
   for (size_t i : run_indices) check.cost_of_run[i] = point_cost[plan.runs()[i].point];
+  check.points = firsts.size();
+  check.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return check;
 }
 
@@ -131,7 +134,7 @@ std::string SweepTally::counts() const {
   return text;
 }
 
-void SweepTally::print_notes(size_t temporaries_removed, bool timings) const {
+void SweepTally::print_notes(size_t temporaries_removed) const {
   if (temporaries_removed > 0)
     std::cerr << "sweep: removed " << temporaries_removed << " unfinished temporary file(s) of an interrupted sweep\n";
   for (const auto& failure : failures) std::cerr << "sweep: run failed: " << failure << "\n";
@@ -140,7 +143,16 @@ void SweepTally::print_notes(size_t temporaries_removed, bool timings) const {
     for (const auto& holder : holders) std::cerr << " " << holder << (&holder == &holders.back() ? "" : ",");
     std::cerr << "\n";
   }
-  if (timings) std::printf("sweep: %s\n", this->times.describe().c_str());
+}
+
+void PhaseTimes::print(const RunTimes& times, unsigned workers) const {
+  // Points are built on up to `workers` threads at once.
+  const double threads = static_cast<double>(std::clamp<size_t>(points, 1, std::max(1u, workers)));
+  const double per_point_ms = points ? 1e3 * check_s * threads / static_cast<double>(points) : 0.0;
+  std::printf("sweep: timings: plan %.3f s, checking %zu point(s) %.3f s (%.2f ms each on one thread), runs %.3f s, "
+              "tables %.3f s\n",
+              plan_s, points, check_s, per_point_ms, runs_s, tables_s);
+  std::printf("sweep: %s\n", times.describe().c_str());
 }
 
 }  // namespace latsim::app

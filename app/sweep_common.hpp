@@ -38,6 +38,8 @@ std::optional<SweepPlan> load_plan(const SweepRequest& request);
 struct PointCheck {
   std::optional<std::string> problem;  ///< the first bad point in plan order, as the error line shows it
   std::vector<double> cost_of_run;     ///< expected cost by plan index (0 for runs not checked)
+  size_t points = 0;                   ///< distinct points built
+  double wall_s = 0.0;                 ///< building them took
 };
 
 /// Builds every distinct scenario among `run_indices` (once per point) on
@@ -75,8 +77,19 @@ struct SweepTally {
   void add(const SweepPlan& plan, const std::vector<size_t>& indices, const std::vector<RunAttempt>& attempts);
   /// "(3 resumed, 29 run now, 0 failed)", with the rarer counts only when not zero.
   std::string counts() const;
-  /// Prints the failures, the runs left to others, removed temporaries and, when asked, the timings.
-  void print_notes(size_t temporaries_removed, bool timings) const;
+  /// Prints the failures, the runs left to others and removed temporaries.
+  void print_notes(size_t temporaries_removed) const;
+};
+
+/// Where a sweep process's time went, printed with --timings.
+struct PhaseTimes {
+  double plan_s = 0.0;    ///< reading the sweep file and expanding the plan
+  double check_s = 0.0;   ///< building every point once (PointCheck)
+  size_t points = 0;
+  double runs_s = 0.0;    ///< running the runs
+  double tables_s = 0.0;  ///< writing results.csv and results.sqlite
+  /// Two lines: the phases, and the time per run from `times`.
+  void print(const RunTimes& times, unsigned workers) const;
 };
 
 }  // namespace latsim::app

@@ -137,20 +137,9 @@ int serve(const SweepRequest& request) {
   }
 }
 
-// Hands out positions in a list of runs, in order, to whoever asks next.
-class RunQueue {
- public:
-  explicit RunQueue(size_t count) : count_(count) {}
-  std::optional<size_t> next() {
-    const size_t i = next_.fetch_add(1);
-    if (i < count_) return i;
-    return std::nullopt;
-  }
-
- private:
-  size_t count_;
-  std::atomic<size_t> next_{0};
-};
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 // Tells every other rank there is nothing to do (after its first message, so none is left unreceived).
 void stop_all(int size) {
@@ -160,7 +149,91 @@ void stop_all(int size) {
   }
 }
 
-// Rank 0: check the plan, run the dispatcher and `request.jobs` run threads, write the tables.
+/// Rank 0's hand-out of runs, in the order given: its own run threads take
+/// from the same queue as the messages it sends to the other ranks.
+class Dispatcher {
+ public:
+  Dispatcher(const SweepPlan& plan, std::vector<size_t> order, SweepWorkspace& work, unsigned threads, int ranks)
+      : plan_(plan), order_(std::move(order)), work_(work), threads_(threads), ranks_(ranks),
+        attempts_(order_.size()), in_hand_(static_cast<size_t>(ranks), 0), stopped_(static_cast<size_t>(ranks), false) {
+    for (size_t p = 0; p < order_.size(); ++p) position_of_[order_[p]] = p;
+    stopped_[0] = true;  // rank 0's share is taken by its threads
+  }
+
+  /// Runs every run; the attempts come back in the order given.
+  std::vector<RunAttempt> run(ProgressLine& progress) {
+    std::vector<std::thread> pool;
+    for (unsigned t = 0; t < threads_; ++t)
+      pool.emplace_back([&] {
+        while (const auto p = next()) {
+          attempts_[*p] = work_.executor.execute(task(*p));
+          progress.advance();
+        }
+        ++threads_done_;
+      });
+    Backoff backoff;
+    while (!everyone_done()) {
+      if (const auto message = try_receive(MPI_ANY_SOURCE, kToRankZero)) {
+        answer(*message, progress);
+        backoff.reset();
+      } else {
+        backoff.sleep();
+      }
+    }
+    for (auto& thread : pool) thread.join();
+    return std::move(attempts_);
+  }
+  size_t remote_temporaries() const { return remote_temporaries_; }
+
+ private:
+  std::optional<size_t> next() {
+    const size_t p = next_.fetch_add(1);
+    if (p < order_.size()) return p;
+    return std::nullopt;
+  }
+  RunTask task(size_t position) const { return RunTask::of(plan_, plan_.runs()[order_[position]]); }
+
+  // A rank reported a run (or that it is ready): record it, and top its hand up or tell it to stop.
+  void answer(const Message& message, ProgressLine& progress) {
+    const auto r = static_cast<size_t>(message.source);
+    if (message.body.contains("index")) {
+      attempts_[position_of_.at(message.body["index"].get<size_t>())] = RunAttempt::from_json(message.body["attempt"]);
+      remote_temporaries_ += message.body.value("temporaries", size_t{0});
+      --in_hand_[r];
+      progress.advance();
+    }
+    while (!stopped_[r] && in_hand_[r] < kRunsInHand) {
+      if (const auto p = next()) {
+        send(message.source, kToRank, {{"run", task(*p).to_json()}});
+        ++in_hand_[r];
+      } else {
+        send(message.source, kToRank, {{"stop", true}});
+        stopped_[r] = true;
+      }
+    }
+  }
+
+  bool everyone_done() const {
+    for (size_t r = 1; r < static_cast<size_t>(ranks_); ++r)
+      if (!stopped_[r] || in_hand_[r] > 0) return false;
+    return threads_done_ == threads_;
+  }
+
+  const SweepPlan& plan_;
+  std::vector<size_t> order_;
+  SweepWorkspace& work_;
+  unsigned threads_;
+  int ranks_;
+  std::vector<RunAttempt> attempts_;
+  std::map<size_t, size_t> position_of_;  ///< plan index -> position in order_
+  std::vector<size_t> in_hand_;           ///< per rank: runs sent and not yet reported
+  std::vector<bool> stopped_;
+  std::atomic<size_t> next_{0};
+  std::atomic<unsigned> threads_done_{0};
+  size_t remote_temporaries_ = 0;
+};
+
+// Rank 0: check the plan, hand the runs out, write the tables.
 int lead(const SweepRequest& request, int size) {
   const auto start = std::chrono::steady_clock::now();
   const auto plan = load_plan(request);
@@ -168,9 +241,13 @@ int lead(const SweepRequest& request, int size) {
     stop_all(size);
     return kExitBadInput;
   }
+  PhaseTimes phases;
+  phases.plan_s = seconds_since(start);
   std::vector<size_t> all(plan->runs().size());
   for (size_t i = 0; i < all.size(); ++i) all[i] = i;
   const PointCheck check = check_points(*plan, all, request.jobs);
+  phases.check_s = check.wall_s;
+  phases.points = check.points;
   if (check.problem) {
     std::cerr << request.sweep_file << ": " << *check.problem << "\n";
     stop_all(size);
@@ -186,67 +263,23 @@ int lead(const SweepRequest& request, int size) {
     else pending.push_back(i);
   }
   pending = longest_first(pending, check.cost_of_run);
-  std::map<size_t, size_t> position_of;  // plan index -> position in pending
-  for (size_t p = 0; p < pending.size(); ++p) position_of[pending[p]] = p;
-
-  RunQueue queue(pending.size());
-  std::vector<RunAttempt> attempts(pending.size());
+  const auto runs_start = std::chrono::steady_clock::now();
   ProgressLine progress("sweep", plan->runs().size(), tally.resumed);
-  std::atomic<unsigned> threads_done{0};
-  std::vector<std::thread> threads;
-  for (unsigned t = 0; t < request.jobs; ++t)
-    threads.emplace_back([&] {
-      while (const auto p = queue.next()) {
-        attempts[*p] = work.executor.execute(RunTask::of(*plan, plan->runs()[pending[*p]]));
-        progress.advance();
-      }
-      ++threads_done;
-    });
-
-  std::vector<size_t> in_hand(static_cast<size_t>(size), 0);
-  std::vector<bool> stopped(static_cast<size_t>(size), false);
-  stopped[0] = true;
-  size_t remote_temporaries = 0;
-  auto everyone_done = [&] {
-    for (int r = 1; r < size; ++r)
-      if (!stopped[r] || in_hand[r] > 0) return false;
-    return threads_done == request.jobs;
-  };
-  Backoff backoff;
-  while (!everyone_done()) {
-    const auto message = try_receive(MPI_ANY_SOURCE, kToRankZero);
-    if (!message) {
-      backoff.sleep();
-      continue;
-    }
-    backoff.reset();
-    const auto r = static_cast<size_t>(message->source);
-    if (message->body.contains("index")) {
-      attempts[position_of.at(message->body["index"].get<size_t>())] = RunAttempt::from_json(message->body["attempt"]);
-      remote_temporaries += message->body.value("temporaries", size_t{0});
-      --in_hand[r];
-      progress.advance();
-    }
-    while (!stopped[r] && in_hand[r] < kRunsInHand) {
-      if (const auto p = queue.next()) {
-        send(message->source, kToRank, {{"run", RunTask::of(*plan, plan->runs()[pending[*p]]).to_json()}});
-        ++in_hand[r];
-      } else {
-        send(message->source, kToRank, {{"stop", true}});
-        stopped[r] = true;
-      }
-    }
-  }
-  for (auto& thread : threads) thread.join();
+  Dispatcher dispatcher(*plan, pending, work, request.jobs, size);
+  const auto attempts = dispatcher.run(progress);
   progress.finish();
-
+  phases.runs_s = seconds_since(runs_start);
   tally.add(*plan, pending, attempts);
-  size_t temporaries = work.executor.temporaries_removed() + remote_temporaries;
+
+  size_t temporaries = work.executor.temporaries_removed() + dispatcher.remote_temporaries();
+  const auto tables_start = std::chrono::steady_clock::now();
   const size_t gathered = write_tables(*plan, work.store, temporaries);
-  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  phases.tables_s = seconds_since(tables_start);
   std::printf("sweep: %zu runs %s on %d MPI rank(s) x %u thread(s) in %.2f s -> %s\n", plan->runs().size(),
-              tally.counts().c_str(), size, request.jobs, wall_s, (work.store.out_dir() / "results.csv").c_str());
-  tally.print_notes(temporaries, request.timings);
+              tally.counts().c_str(), size, request.jobs, seconds_since(start),
+              (work.store.out_dir() / "results.csv").c_str());
+  tally.print_notes(temporaries);
+  if (request.timings) phases.print(tally.times, request.jobs);
   return tally.failures.empty() && gathered == plan->runs().size() ? kExitOk : kExitFailure;
 }
 
