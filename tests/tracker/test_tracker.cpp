@@ -20,16 +20,6 @@ TrackerParams ntsc_params() {
   return p;
 }
 
-// The rotation vector of noisy * truth^-1 (world-frame perturbation).
-glm::dvec3 rotation_vector_between(const glm::dquat& truth, const glm::dquat& noisy) {
-  glm::dquat d = noisy * glm::conjugate(truth);
-  if (d.w < 0.0) d = -d;
-  const glm::dvec3 v{d.x, d.y, d.z};
-  const double s = glm::length(v);
-  if (s == 0.0) return glm::dvec3{0.0};
-  return v * (2.0 * std::atan2(s, d.w) / s);
-}
-
 }  // namespace
 
 TEST_CASE("tracker sample times are exact at 59.94 Hz after hours", "[tracker]") {

@@ -37,6 +37,19 @@ glm::dquat quat_from_rotation_vector(const glm::dvec3& r_rad) {
   return glm::dquat{std::cos(0.5 * angle), s * r_rad.x, s * r_rad.y, s * r_rad.z};
 }
 
+glm::dvec3 rotation_vector_of(const glm::dquat& q) {
+  const glm::dquat c = q.w < 0.0 ? -q : q;
+  const glm::dvec3 v{c.x, c.y, c.z};
+  const double vec_norm = glm::length(v);
+  if (vec_norm == 0.0) return glm::dvec3{0.0};
+  // v / |v| is a unit axis however small |v| is; the angle comes from atan2.
+  return v * (2.0 * std::atan2(vec_norm, c.w) / vec_norm);
+}
+
+glm::dvec3 rotation_vector_between(const glm::dquat& from, const glm::dquat& to) {
+  return rotation_vector_of(to * glm::conjugate(from));
+}
+
 glm::dquat quat_from_yaw_pitch(double yaw_rad, double pitch_rad) {
   const glm::dquat yaw{std::cos(0.5 * yaw_rad), 0.0, std::sin(0.5 * yaw_rad), 0.0};
   const glm::dquat pitch{std::cos(0.5 * pitch_rad), std::sin(0.5 * pitch_rad), 0.0, 0.0};

@@ -32,6 +32,18 @@ glm::dquat slerp_short(const glm::dquat& q1, const glm::dquat& q2, double t);
 /// The rotation exp(r): angle |r| radians about r/|r| (identity for r = 0).
 glm::dquat quat_from_rotation_vector(const glm::dvec3& r_rad);
 
+/// The rotation vector of q, log(q): angle in [0, pi] times the unit axis, on
+/// the short arc (q and -q give the same vector). Computed from vec(q) and
+/// 2*atan2(|vec|, |w|) like angle_between, so tiny rotations keep full
+/// relative precision; the inverse of quat_from_rotation_vector for angles
+/// below pi.
+glm::dvec3 rotation_vector_of(const glm::dquat& q);
+
+/// The world-frame rotation vector r with exp(r) * from = to (short arc):
+/// rotation_vector_of(to * from^-1). A head turning at angular velocity w
+/// (world axes) for dt seconds moves by r = w * dt.
+glm::dvec3 rotation_vector_between(const glm::dquat& from, const glm::dquat& to);
+
 /// Orientation looking with the given heading and elevation: yaw about the
 /// world y axis (positive turns left, towards -x), then pitch about the
 /// head's x axis (positive looks up). No roll.

@@ -1,0 +1,70 @@
+// Classifying instants of a head motion into still, onset, steady and stop.
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "latsim/des/time.hpp"
+#include "latsim/tracker/motion_source.hpp"
+
+namespace latsim::tracker {
+
+/// The part of a movement an instant belongs to.
+enum class MotionPhase { Still, Onset, Steady, Stop };
+
+/// "still", "onset", "steady", "stop": the suffixes of split figures.
+std::string_view phase_name(MotionPhase phase);
+
+/// Settings of MotionPhaseClassifier.
+struct MotionPhaseParams {
+  /// The head is moving while its angular speed exceeds this.
+  double threshold_deg_s = 20.0;
+  /// How long after the head starts (stops) moving an instant counts as onset (stop).
+  des::Time window = des::Time::ms(200);
+  /// The grid on which the angular speed is measured: the mean speed over
+  /// each interval [k step, (k + 1) step).
+  des::Time step = des::Time::ms(5);
+};
+
+/// Tells, from the true head motion, whether an instant lies within `window`
+/// after the head started moving (onset) or stopped (stop), or otherwise in
+/// steady motion or at rest. The angular speed of grid interval k is the
+/// rotation angle between the poses at its ends over its length; the head
+/// starts moving where that speed rises above the threshold from one
+/// interval to the next, and stops where it falls to or below it. Its state
+/// at time zero is not a transition. The grid is evaluated lazily as later
+/// instants are asked for; only the transitions are kept, so memory grows
+/// with the number of starts and stops, not with time.
+class MotionPhaseClassifier {
+ public:
+  /// Throws std::invalid_argument for a negative or non-finite threshold or a
+  /// non-positive window or step. The motion source must outlive the classifier.
+  MotionPhaseClassifier(const MotionSource& motion, MotionPhaseParams params);
+
+  /// The phase at t >= 0 (earlier times count as time zero).
+  MotionPhase phase_at(des::Time t);
+  /// Starts and stops found so far.
+  int64_t transitions() const { return static_cast<int64_t>(transitions_.size()); }
+  const MotionPhaseParams& params() const { return params_; }
+
+ private:
+  /// Classifies grid interval evaluated_ + 1 and advances to it.
+  bool moving_in_next_interval();
+  void extend_to(int64_t k);
+
+  struct Transition {
+    des::Time at;
+    bool moving;  ///< the state it starts
+  };
+  const MotionSource& motion_;
+  MotionPhaseParams params_;
+  double threshold_rad_s_;
+  bool initial_moving_ = false;
+  int64_t evaluated_ = -1;  ///< last grid interval classified
+  glm::dquat grid_end_{1.0, 0.0, 0.0, 0.0};  ///< orientation at the end of interval evaluated_
+  bool last_moving_ = false;
+  std::vector<Transition> transitions_;
+};
+
+}  // namespace latsim::tracker

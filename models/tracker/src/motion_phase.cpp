@@ -1,0 +1,61 @@
+#include "latsim/tracker/motion_phase.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace latsim::tracker {
+
+std::string_view phase_name(MotionPhase phase) {
+  switch (phase) {
+    case MotionPhase::Still: return "still";
+    case MotionPhase::Onset: return "onset";
+    case MotionPhase::Steady: return "steady";
+    case MotionPhase::Stop: return "stop";
+  }
+  return "still";
+}
+
+MotionPhaseClassifier::MotionPhaseClassifier(const MotionSource& motion, MotionPhaseParams params)
+    : motion_(motion), params_(params), threshold_rad_s_(params.threshold_deg_s * 3.14159265358979323846 / 180.0) {
+  if (!std::isfinite(params.threshold_deg_s) || params.threshold_deg_s < 0.0)
+    throw std::invalid_argument("motion phase threshold must be finite and not negative");
+  if (params.window <= des::Time::zero()) throw std::invalid_argument("motion phase window must be positive");
+  if (params.step <= des::Time::zero()) throw std::invalid_argument("motion phase step must be positive");
+}
+
+bool MotionPhaseClassifier::moving_in_next_interval() {
+  // Interval evaluated_ + 1 starts where the previous one ended.
+  const glm::dquat from = grid_end_;
+  grid_end_ = motion_.pose_at(params_.step * (evaluated_ + 2)).orientation;
+  ++evaluated_;
+  return angle_between(from, grid_end_) > threshold_rad_s_ * params_.step.to_seconds();
+}
+
+void MotionPhaseClassifier::extend_to(int64_t k) {
+  if (evaluated_ < 0) {
+    grid_end_ = motion_.pose_at(des::Time::zero()).orientation;
+    initial_moving_ = last_moving_ = moving_in_next_interval();
+  }
+  while (evaluated_ < k) {
+    const bool moving = moving_in_next_interval();
+    if (moving != last_moving_) transitions_.push_back(Transition{params_.step * evaluated_, moving});
+    last_moving_ = moving;
+  }
+}
+
+MotionPhase MotionPhaseClassifier::phase_at(des::Time t) {
+  if (t < des::Time::zero()) t = des::Time::zero();
+  const int64_t k = t / params_.step;
+  extend_to(k);
+  // The newest transition at or before t decides the state.
+  const auto after = std::upper_bound(transitions_.begin(), transitions_.end(), t,
+                                      [](des::Time v, const Transition& tr) { return v < tr.at; });
+  if (after == transitions_.begin()) return initial_moving_ ? MotionPhase::Steady : MotionPhase::Still;
+  const Transition& last = *std::prev(after);
+  const bool recent = t - last.at < params_.window;
+  if (last.moving) return recent ? MotionPhase::Onset : MotionPhase::Steady;
+  return recent ? MotionPhase::Stop : MotionPhase::Still;
+}
+
+}  // namespace latsim::tracker
