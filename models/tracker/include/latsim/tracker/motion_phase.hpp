@@ -18,10 +18,14 @@ std::string_view phase_name(MotionPhase phase);
 
 /// Settings of MotionPhaseClassifier.
 struct MotionPhaseParams {
-  /// The head is moving while its angular speed exceeds this.
-  double threshold_deg_s = 20.0;
-  /// How long after the head starts (stops) moving an instant counts as onset (stop).
-  des::Time window = des::Time::ms(200);
+  /// The head is moving while its angular speed exceeds this. The default
+  /// lies above the slow drift of a person watching (the bundled recording
+  /// moves at about 24 deg/s typically) and below deliberate head turns.
+  double threshold_deg_s = 40.0;
+  /// How long after the head starts (stops) moving an instant counts as
+  /// onset (stop): about what a predictor needs to see a new velocity (one
+  /// or two samples) plus a typical motion-to-photon latency.
+  des::Time window = des::Time::ms(100);
   /// The grid on which the angular speed is measured: the mean speed over
   /// each interval [k step, (k + 1) step).
   des::Time step = des::Time::ms(5);

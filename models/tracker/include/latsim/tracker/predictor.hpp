@@ -59,9 +59,14 @@ struct KalmanParams {
   /// Process noise: the head's angular acceleration is white noise of this
   /// spectral density amplitude (deg/s^2 per sqrt(Hz)); the angular velocity
   /// then wanders by this many deg/s over one second. Larger values follow
-  /// the samples more closely (less lag, less smoothing).
-  double angular_accel_noise_deg_s2_rthz = 300.0;
-  /// The same for linear acceleration, m/s^2 per sqrt(Hz).
+  /// the samples more closely (less lag, less smoothing). The default gave
+  /// the lowest mean prediction error on the bundled real recording at a
+  /// 40 ms horizon with 0.05 and 0.2 degree tracker noise and 20 to 70
+  /// tried (BENCHMARKS.md, pose prediction).
+  double angular_accel_noise_deg_s2_rthz = 50.0;
+  /// The same for linear acceleration, m/s^2 per sqrt(Hz); about the
+  /// acceleration of a walking head over a step (not tuned on data: the
+  /// bundled recording has no positions).
   double linear_accel_noise_m_s2_rthz = 2.0;
   /// Measurement noise: the tracker's covariance (orientation block for the
   /// orientation filter, position block for the position filter). A host
