@@ -254,6 +254,14 @@ void ProcessPromise::detach() {
   prev_ = next_ = nullptr;
 }
 
+void Simulator::start(Process p, KindId kind) {
+  if (kind >= kinds_.size()) throw_unknown_kind(kind);
+  if (!p.handle_) throw std::logic_error("start() of an empty Process (already started or moved from)");
+  ProcessPromise::Handle h = p.release();
+  h.promise().attach(*this, kind);
+  ProcessPromise::resume(h);
+}
+
 void ProcessPromise::schedule_resume(Handle h, Time t) {
   Simulator& sim = *h.promise().sim_;
   sim.at(t, h.promise().kind_, [h] { resume(h); });

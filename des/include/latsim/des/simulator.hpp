@@ -140,6 +140,9 @@ class Simulator {
   void spawn(Process p);
   /// Starts p at now(); its start and every resumption are events of `kind`.
   void spawn(Process p, KindId kind);
+  /// Runs p at once, inside the running event, until it first waits; its
+  /// resumptions are events of `kind`. Starting costs no event of its own.
+  void start(Process p, KindId kind);
   /// co_await sim.delay(dt): resume dt later (dt >= 0; 0 yields to events already due now).
   DelayAwaitable delay(Time dt);
   /// co_await sim.until(t): resume at absolute time t >= now().
