@@ -112,7 +112,7 @@ int command_fidelity(int argc, char** argv) {
     std::vector<std::string> overrides = request.sets;
     overrides.push_back(axis.pointer + "=" + value);
     try {
-      pipelines::validate_scenario(scenario::ScenarioDocument::load(request.scenario_file, overrides));
+      pipelines::validate_scenario(pipelines::load_scenario(request.scenario_file, overrides));
     } catch (const scenario::ScenarioError& e) {
       std::cerr << request.scenario_file << ": " << e.pointer() << ": " << e.message() << " (at " << axis.pointer
                 << "=" << value << ")\n";

@@ -1,4 +1,4 @@
-// latsim run / validate / capacity.
+// latsim run / validate / capacity / schema.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -25,6 +25,11 @@ std::vector<std::string> command_line_of(int argc, char** argv) {
 int bad_input(const std::string& file, const scenario::ScenarioError& e) {
   std::fprintf(stderr, "%s: %s\n", file.c_str(), e.what());
   return kExitBadInput;
+}
+
+// Legal but doubtful input, one line each on stderr.
+void print_warnings(const std::string& file, const std::vector<std::string>& warnings) {
+  for (const auto& w : warnings) std::fprintf(stderr, "%s: warning: %s\n", file.c_str(), w.c_str());
 }
 
 }  // namespace
@@ -55,7 +60,7 @@ int command_run(int argc, char** argv) {
   opt.command_line = command_line_of(argc, argv);
   nlohmann::json summary;
   try {
-    const auto doc = scenario::ScenarioDocument::load(file, sets);
+    const auto doc = pipelines::load_scenario(file, sets);
     // Validate fully before touching the output directory: bad input writes nothing.
     pipelines::validate_scenario(doc);
     summary = pipelines::run_scenario(doc, opt);
@@ -77,6 +82,7 @@ int command_run(int argc, char** argv) {
     std::printf("  events %llu, wall %.3f s\n", static_cast<unsigned long long>(summary["events"].get<uint64_t>()),
                 summary["wall_s"].get<double>());
   }
+  print_warnings(file, summary["warnings"].get<std::vector<std::string>>());
   return kExitOk;
 }
 
@@ -84,14 +90,18 @@ int command_validate(int argc, char** argv) {
   CLI::App app{"Check scenario files without running them", "latsim validate"};
   std::vector<std::string> files;
   std::vector<std::string> sets;
+  bool resolved = false;
   app.add_option("scenarios", files, "scenario JSON files")->required();
   app.add_option("--set", sets, "override a value: /json/pointer=value (repeatable)");
+  app.add_flag("--resolved", resolved, "print each scenario as it would run (every default applied) instead of ok");
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
   int rc = kExitOk;
   for (const auto& file : files) {
     try {
-      pipelines::validate_scenario(scenario::ScenarioDocument::load(file, sets));
-      std::printf("%s: ok\n", file.c_str());
+      const auto doc = pipelines::load_scenario(file, sets);
+      print_warnings(file, pipelines::validate_scenario(doc));
+      if (resolved) std::printf("%s\n", doc.resolved().dump(2).c_str());
+      else std::printf("%s: ok\n", file.c_str());
     } catch (const scenario::ScenarioError& e) {
       rc = bad_input(file, e);
     } catch (const std::exception& e) {
@@ -130,7 +140,7 @@ int command_capacity(int argc, char** argv) {
     auto misses_at = [&](int64_t n) {
       std::vector<std::string> s = sets;
       s.push_back(pointer + "=" + std::to_string(n));
-      const auto summary = pipelines::run_scenario(scenario::ScenarioDocument::load(file, s), pipelines::RunOptions{});
+      const auto summary = pipelines::run_scenario(pipelines::load_scenario(file, s), pipelines::RunOptions{});
       const auto& f = summary["figures"];
       if (!f.contains(metric)) throw scenario::ScenarioError(pointer, "this pipeline reports no \"" + metric + "\"");
       const double misses = f[metric].get<double>();
@@ -157,6 +167,19 @@ int command_capacity(int argc, char** argv) {
     std::fprintf(stderr, "%s: %s\n", file.c_str(), e.what());
     return kExitFailure;
   }
+  return kExitOk;
+}
+
+int command_schema(int argc, char** argv) {
+  CLI::App app{"Print every scenario key with its type, default, range, unit and meaning", "latsim schema"};
+  std::string format = "json-schema";
+  app.add_option("--format", format, "json-schema (for editors and validators) or markdown (the reference)")
+      ->check(CLI::IsMember({"json-schema", "markdown"}))
+      ->capture_default_str();
+  if (const auto rc = parse_options(app, argc, argv)) return *rc;
+  const scenario::ObjectSchema schema = pipelines::scenario_schema();
+  if (format == "markdown") std::fputs(scenario::markdown_reference(schema).c_str(), stdout);
+  else std::printf("%s\n", scenario::json_schema(schema).dump(2).c_str());
   return kExitOk;
 }
 

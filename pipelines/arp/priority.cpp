@@ -8,10 +8,10 @@
 #include <vector>
 
 #include "latsim/arp/priority_model.hpp"
-#include "latsim/arp/scene_config.hpp"
-#include "latsim/pipelines/arp.hpp"
+#include "latsim/des/periodic.hpp"
 #include "latsim/pipelines/latency_recorder.hpp"
 #include "latsim/pipelines/timeline.hpp"
+#include "latsim/renderer/scene_spec.hpp"
 
 namespace latsim::pipelines {
 namespace {
@@ -19,75 +19,68 @@ namespace {
 /// Drives a PriorityModel from the host's samples and shows its composite image.
 class PriorityPipeline final : public Pipeline {
  public:
-  std::string name() const override { return "priority"; }
+  /// An object whose own animation limits how long its image stays valid.
+  struct Animated {
+    std::string object;
+    double validity_s = 1.0;
+    std::string pointer;  ///< where the scenario names it, for errors
+  };
+  struct Params {
+    arp::PriorityParams model;
+    int face_px = 256;
+    double threshold_angle_deg = 0.0;
+    des::Time render_fixed = des::Time::ms(1);
+    des::Time render_per_object = des::Time::us(20);
+    std::vector<Animated> animated;
+  };
+
+  explicit PriorityPipeline(const Params& p) : p_(p) {}
 
   void start(RunContext& ctx) override {
     ctx_ = &ctx;
-    const auto& p = ctx.pipeline;
-    arp::PriorityParams params;
-    params.base_period = p.rate_as_period("max_update_rate_hz", "60");
-    params.memory_count = static_cast<int>(p.integer("memory_count", 4, 1, 16));
-    const int face_px = static_cast<int>(p.integer("face_px", 256, 1, 8192));
-    // Default threshold: one texel of the cube memory at a face centre.
-    params.threshold_rad = p.number_in("threshold_angle_deg", 90.0 / face_px, 1e-9, 90.0) * kDegToRad;
-    fixed_time_ = p.duration_ms("render_fixed_ms", 1.0);
-    per_object_ = des::Time::from_us(p.non_negative("render_per_object_us", 20.0));
-    const renderer::Scene scene = arp::scene_from_config(ctx.root.child("scene"));
+    const renderer::Scene scene = renderer::make_scene(ctx.scene->geometry);
     std::vector<arp::PriorityObject> objects;
     for (const auto& obj : scene.objects()) objects.push_back({obj.bounds, 0.0, glm::dvec3(0.0)});
-    const std::vector<scenario::ConfigNode> animated =
-        p.has("animated") ? p.objects("animated") : std::vector<scenario::ConfigNode>{};
-    for (const auto& a : animated) {
-      const std::string object = a.string("object");
-      const double validity_s = a.positive("validity_s");
+    for (const Animated& a : p_.animated) {
       try {
-        objects.at(scene.find_object(object)).animation_validity_s = validity_s;
+        objects.at(scene.find_object(a.object)).animation_validity_s = a.validity_s;
       } catch (const renderer::SceneError&) {
-        a.fail("object", "the scene has no object \"" + object + "\"");
+        throw scenario::ScenarioError(a.pointer, "the scene has no object \"" + a.object + "\"");
       }
     }
     object_count_ = static_cast<int64_t>(objects.size());
-    model_.emplace(std::move(objects), params);
-    schedule_ = des::PeriodicSchedule(des::Time::zero(), params.base_period);
-    kind_tick_ = ctx.sim.kind("arp.priority_tick");
+    model_.emplace(std::move(objects), p_.model);
     kind_done_ = ctx.sim.kind("arp.priority_render");
-    schedule_tick(0);
+    ticks_.emplace(ctx.sim, des::PeriodicSchedule(des::Time::zero(), p_.model.base_period),
+                   ctx.sim.kind("arp.priority_tick"), [this](int64_t k) { tick(k); });
+    ticks_->start(0, ctx.duration);
   }
 
-  void finish(RunContext& ctx, nlohmann::json& figures) override {
+  void finish(RunContext& ctx) override {
     const double duration_s = ctx.duration.to_seconds();
-    nlohmann::json memories = nlohmann::json::array();
+    LatencyRecorder& r = ctx.recorder;
     int64_t rendered = 0;
     const auto lists = model_->objects_per_memory();
     for (int m = 0; m < model_->memories().count(); ++m) {
       const arp::MemoryCounters& c = model_->counters()[static_cast<size_t>(m)];
-      memories.push_back({{"memory", m},
-                          {"nominal_rate_hz", model_->memories().rate_hz(m)},
-                          {"update_rate_hz", static_cast<double>(c.renders) / duration_s},
-                          {"segments", c.renders > 0 ? static_cast<double>(c.objects_rendered) / c.renders : 0.0},
-                          {"objects_at_end", lists[static_cast<size_t>(m)].size()},
-                          {"renders", c.renders}});
+      const std::string at = "memories." + std::to_string(m) + ".";
+      r.set(at + "memory", int64_t{m});
+      r.set(at + "nominal_rate_hz", model_->memories().rate_hz(m));
+      r.set(at + "update_rate_hz", static_cast<double>(c.renders) / duration_s);
+      r.set(at + "segments", c.renders > 0 ? static_cast<double>(c.objects_rendered) / c.renders : 0.0);
+      r.set(at + "objects_at_end", static_cast<int64_t>(lists[static_cast<size_t>(m)].size()));
+      r.set(at + "renders", c.renders);
       rendered += c.objects_rendered;
     }
-    figures["memories"] = memories;
-    figures["render_load"] = static_cast<double>(rendered) / duration_s;
+    r.set("render_load", static_cast<double>(rendered) / duration_s);
     // What redrawing every object at the maximum rate would cost, for comparison.
-    figures["render_load_all_at_max_rate"] = static_cast<double>(object_count_) / model_->memories().period_s(0);
-    figures["promotions"] = model_->promotions();
-    figures["demotions"] = model_->demotions();
+    r.set("render_load_all_at_max_rate", static_cast<double>(object_count_) / model_->memories().period_s(0));
+    r.set("promotions", model_->promotions());
+    r.set("demotions", model_->demotions());
   }
 
  private:
-  static constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
-
-  void schedule_tick(int64_t k) {
-    const des::Time at = schedule_.at(k);
-    if (at >= ctx_->duration) return;
-    ctx_->sim.at(at, kind_tick_, [this, k] { tick(k); });
-  }
-
   void tick(int64_t k) {
-    schedule_tick(k + 1);
     const auto sample = ctx_->host.newest_at(ctx_->sim.now());
     if (!sample) return;
     // Velocity from the two newest distinct samples; zero until there are two.
@@ -102,7 +95,7 @@ class PriorityPipeline final : public Pipeline {
     const arp::PriorityTick t = model_->tick(k, now, sample->pose.position_m, velocity_m_s_);
     if (t.updated_memories.empty()) return;
     ctx_->recorder.add("objects_rendered_per_tick", static_cast<double>(t.objects_rendered));
-    const des::Time end = now + fixed_time_ + per_object_ * t.objects_rendered;
+    const des::Time end = now + p_.render_fixed + p_.render_per_object * t.objects_rendered;
     const tracker::TrackerSample s = *sample;
     ctx_->sim.at(end, kind_done_, [this, s, now, k] { present(s, now, k); });
   }
@@ -111,20 +104,50 @@ class PriorityPipeline final : public Pipeline {
     ctx_->present_display_memory(k, s, start, "priority");
   }
 
+  Params p_;
   RunContext* ctx_ = nullptr;
   std::optional<arp::PriorityModel> model_;
-  des::PeriodicSchedule schedule_;
-  des::Time fixed_time_;
-  des::Time per_object_;
+  std::optional<des::Periodic> ticks_;
   int64_t object_count_ = 0;
-  des::KindId kind_tick_ = 0;
   des::KindId kind_done_ = 0;
   std::optional<tracker::TrackerSample> last_;
   glm::dvec3 velocity_m_s_{0.0};
 };
 
+constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+
+void bind(scenario::Section& s, PriorityPipeline::Params& p, const params::SharedParams& shared) {
+  s.rate("max_update_rate_hz", p.model.base_period, {.unit = "Hz", .doc = "rate of the fastest display memory (and of the ticks)"});
+  s.integer("memory_count", p.model.memory_count, {.min = 1.0, .max = 16.0, .doc = "display memories at rates halving from the fastest"});
+  s.integer("face_px", p.face_px, {.unit = "px", .min = 1.0, .max = 8192.0, .doc = "cube display memory face size"});
+  // Default threshold: one texel of the cube memory at a face centre.
+  p.threshold_angle_deg = 90.0 / p.face_px;
+  s.number("threshold_angle_deg", p.threshold_angle_deg,
+           {.unit = "deg", .min = 1e-9, .max = 90.0, .doc = "error an image may reach before it is redrawn",
+            .default_doc = "90 / face_px (one texel)"});
+  p.model.threshold_rad = p.threshold_angle_deg * kDegToRad;
+  s.duration("render_fixed_ms", p.render_fixed, {.unit = "ms", .doc = "fixed time per render"});
+  s.duration("render_per_object_us", p.render_per_object, {.unit = "us", .doc = "time per object rendered"});
+  s.objects("animated", p.animated,
+            [](scenario::Section& a, PriorityPipeline::Animated& v) {
+              a.doc("An object whose own animation limits how long its image stays valid.");
+              a.text("object", v.object, {.required = true, .doc = "the scene object's name"});
+              v.pointer = scenario::join_pointer(a.pointer(), "object");
+              a.number("validity_s", v.validity_s,
+                       {.unit = "s", .min = 0.0, .above_min = true, .required = true, .doc = "how long its image stays valid"});
+            },
+            {.doc = "animated objects (none when absent)"});
+  s.check_pointer("/scene", shared.scene.has_value(), "priority rendering needs a scene");
+}
+
 }  // namespace
 
-std::unique_ptr<Pipeline> make_priority_pipeline() { return std::make_unique<PriorityPipeline>(); }
+PipelineEntry priority_pipeline() {
+  return pipeline_entry<PriorityPipeline>(
+      "priority",
+      "Priority rendering on address recalculation: each object's validity period is estimated at every tick of "
+      "the maximum update rate, objects move between display memories updated at harmonic rates, and a memory is "
+      "redrawn only when one of its images would expire (see docs/arp.md). Needs a /scene.");
+}
 
 }  // namespace latsim::pipelines

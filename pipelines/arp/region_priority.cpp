@@ -10,15 +10,15 @@
 #include <string>
 #include <vector>
 
+#include "arp/frames.hpp"
 #include "latsim/arp/memory_frames.hpp"
 #include "latsim/arp/region_priority_model.hpp"
-#include "latsim/arp/scene_config.hpp"
+#include "latsim/des/periodic.hpp"
 #include "latsim/des/stats.hpp"
-#include "latsim/pipelines/arp.hpp"
 #include "latsim/pipelines/latency_recorder.hpp"
-#include "latsim/pipelines/runner.hpp"
+#include "latsim/pipelines/run_files.hpp"
 #include "latsim/pipelines/timeline.hpp"
-#include "latsim/renderer/png_writer.hpp"
+#include "latsim/renderer/scene_spec.hpp"
 
 namespace latsim::pipelines {
 namespace {
@@ -47,83 +47,67 @@ std::string fixed(double v, int digits) {
 /// Drives region priority models from the host's samples and reports them.
 class RegionPriorityPipeline final : public Pipeline {
  public:
-  std::string name() const override { return "region_priority"; }
+  struct Params {
+    des::RationalSeconds period{1, 60};
+    double region_size_m = 2.0;
+    bool segmentation = true;
+    arp::RegionPriorityParams model;
+    des::Time render_fixed = des::Time::ms(1);
+    des::Time render_per_segment = des::Time::us(20);
+    FrameOptions frames;
+  };
+
+  explicit RegionPriorityPipeline(const Params& p) : p_(p) {}
 
   void start(RunContext& ctx) override {
     ctx_ = &ctx;
-    const auto& p = ctx.pipeline;
-    period_ = p.rate_as_period("max_update_rate_hz", "60");
-    face_px_ = static_cast<int>(p.integer("face_px", 256, 1, 8192));
-    const double region_size_m = p.positive("region_size_m", 2.0);
-    const bool segmentation = p.boolean("segmentation", true);
-    arp::RegionPriorityParams params;
-    params.threshold_rad = p.number_in("threshold_angle_deg", 90.0 / face_px_, 1e-9, 90.0) * kDegToRad;
-    params.swap_margin_m = p.non_negative("swap_margin_m", 0.25 * region_size_m);
-    params.warping = p.boolean("warping", false);
-    params.warp_falloff_m = p.non_negative("warp_falloff_m", 0.5 * region_size_m);
-    params.outer_rings.clear();
-    for (double r : p.numbers("outer_rings", {1, 2, 4})) params.outer_rings.push_back(static_cast<int>(r));
-    fixed_time_ = p.duration_ms("render_fixed_ms", 1.0);
-    per_segment_ = des::Time::from_us(p.non_negative("render_per_segment_us", 20.0));
-    background_ = glm::vec3(1.0f);
-    const std::vector<double> bg = p.numbers("background", {1.0, 1.0, 1.0});
-    if (bg.size() != 3) p.fail("background", "a colour needs three linear components [r, g, b]");
-    background_ = glm::vec3(static_cast<float>(bg[0]), static_cast<float>(bg[1]), static_cast<float>(bg[2]));
-    frame_times_s_ = p.numbers("frame_times_s", {});
-    threads_ = static_cast<int>(p.integer("frame_threads", 1, 1, 256));
-    // The display's field of view, read where the runner reads it.
-    if (const auto display = ctx.root.optional_child("display")) hfov_deg_ = display->number("hfov_deg", 90.0);
-
-    scene_ = arp::scene_from_config(ctx.root.child("scene"));
-    grid_.emplace(scene_.bounds(), region_size_m);
+    scene_ = renderer::make_scene(ctx.scene->geometry);
+    grid_.emplace(scene_.bounds(), p_.region_size_m);
     segmented_ = std::make_unique<arp::SegmentedScene>(arp::segment_scene(scene_, *grid_));
     whole_ = std::make_unique<arp::SegmentedScene>(arp::whole_objects(scene_, *grid_));
-    add_variant(segmentation, params.warping, params);
-    add_variant(!segmentation, params.warping, params);
+    const arp::RegionPriorityParams& params = p_.model;
+    add_variant(p_.segmentation, params.warping, params);
+    add_variant(!p_.segmentation, params.warping, params);
     add_variant(true, !params.warping, params);
-    if (!segmentation) add_variant(true, params.warping, params);
+    if (!p_.segmentation) add_variant(true, params.warping, params);
     memory_sample_.assign(static_cast<size_t>(variants_[0].model->memory_count()), std::nullopt);
 
     const auto& raster = ctx.display.timing().params();
-    screen_.emplace(hfov_deg_, raster.width_px, raster.height_px);
-    schedule_ = des::PeriodicSchedule(des::Time::zero(), period_);
-    kind_tick_ = ctx.sim.kind("arp.region_tick");
+    screen_.emplace(ctx.display_params.hfov_deg, raster.width_px, raster.height_px);
+    const des::KindId kind_tick = ctx.sim.kind("arp.region_tick");
     kind_done_ = ctx.sim.kind("arp.region_render");
-    kind_frame_ = ctx.sim.kind("arp.frame");
-    schedule_tick(0);
+    ticks_.emplace(ctx.sim, des::PeriodicSchedule(des::Time::zero(), p_.period), kind_tick, [this](int64_t k) { tick(k); });
+    ticks_->start(0, ctx.duration);
     ctx.display.on_retrace([this](int64_t field, des::Time) { record_memory_ages(field); });
-    if ((ctx.frames != nullptr || !frame_times_s_.empty()) && !ctx.out_dir.empty()) {
-      for (double t : frame_times_s_) {
-        const des::Time at = des::Time::from_seconds(t);
-        if (at >= des::Time::zero() && at < ctx.duration) ctx.sim.at(at, kind_frame_, [this] { write_frames(); }, 10);
-      }
-    }
+    if ((ctx.frames != nullptr || !p_.frames.times_s.empty()) && ctx.files.enabled())
+      schedule_frames(ctx, p_.frames, [this] { write_frames(); });
   }
 
-  void finish(RunContext& ctx, nlohmann::json& figures) override {
+  void finish(RunContext& ctx) override {
     const double duration_s = ctx.duration.to_seconds();
+    LatencyRecorder& r = ctx.recorder;
     const Variant& primary = variants_[0];
-    figures["memories"] = memory_figures(primary, duration_s);
+    report_memories(r, "memories.", primary, duration_s);
     int64_t rendered = 0;
     for (const auto& m : primary.model->memories()) rendered += m.segments_rendered;
-    figures["render_load"] = static_cast<double>(rendered) / duration_s;
-    figures["region_swaps"] = primary.model->swaps();
-    figures["segments_in_scene"] = primary.model->scene().segments.size();
-    figures["shared_vertices"] = primary.model->scene().shared_vertices.size();
-    nlohmann::json variants = nlohmann::json::array();
-    for (const Variant& v : variants_) {
+    r.set("render_load", static_cast<double>(rendered) / duration_s);
+    r.set("region_swaps", primary.model->swaps());
+    r.set("segments_in_scene", static_cast<int64_t>(primary.model->scene().segments.size()));
+    r.set("shared_vertices", static_cast<int64_t>(primary.model->scene().shared_vertices.size()));
+    for (size_t i = 0; i < variants_.size(); ++i) {
+      const Variant& v = variants_[i];
+      const std::string at = "variants." + std::to_string(i) + ".";
       int64_t n = 0;
       for (const auto& m : v.model->memories()) n += m.segments_rendered;
       const auto s = v.tear_gap_px.summary();
-      variants.push_back({{"segmentation", v.segmented},
-                          {"warping", v.warping},
-                          {"memories", memory_figures(v, duration_s)},
-                          {"render_load", static_cast<double>(n) / duration_s},
-                          {"tear_gap_max_px", s.max},
-                          {"tear_gap_p99_px", v.tear_gap_px.quantile(0.99)},
-                          {"tear_gap_samples", s.count}});
+      r.set(at + "segmentation", v.segmented);
+      r.set(at + "warping", v.warping);
+      report_memories(r, at + "memories.", v, duration_s);
+      r.set(at + "render_load", static_cast<double>(n) / duration_s);
+      r.set(at + "tear_gap_max_px", s.max);
+      r.set(at + "tear_gap_p99_px", v.tear_gap_px.quantile(0.99));
+      r.set(at + "tear_gap_samples", static_cast<int64_t>(s.count));
     }
-    figures["variants"] = variants;
     write_tables(ctx, duration_s);
   }
 
@@ -147,29 +131,21 @@ class RegionPriorityPipeline final : public Pipeline {
     return nullptr;
   }
 
-  nlohmann::json memory_figures(const Variant& v, double duration_s) const {
-    nlohmann::json out = nlohmann::json::array();
+  void report_memories(LatencyRecorder& r, const std::string& prefix, const Variant& v, double duration_s) const {
     const auto lists = v.model->segments_per_memory();
     for (int m = 0; m < v.model->memory_count(); ++m) {
       const arp::RegionMemoryState& st = v.model->memories()[static_cast<size_t>(m)];
-      out.push_back({{"memory", m},
-                     {"update_rate_hz", static_cast<double>(st.renders) / duration_s},
-                     {"segments", st.renders > 0 ? static_cast<double>(st.segments_rendered) / st.renders : 0.0},
-                     {"segments_at_end", lists[static_cast<size_t>(m)].size()},
-                     {"regions_at_end", v.model->map().regions_of_memory(m).size()},
-                     {"renders", st.renders}});
+      const std::string at = prefix + std::to_string(m) + ".";
+      r.set(at + "memory", int64_t{m});
+      r.set(at + "update_rate_hz", static_cast<double>(st.renders) / duration_s);
+      r.set(at + "segments", st.renders > 0 ? static_cast<double>(st.segments_rendered) / st.renders : 0.0);
+      r.set(at + "segments_at_end", static_cast<int64_t>(lists[static_cast<size_t>(m)].size()));
+      r.set(at + "regions_at_end", static_cast<int64_t>(v.model->map().regions_of_memory(m).size()));
+      r.set(at + "renders", st.renders);
     }
-    return out;
-  }
-
-  void schedule_tick(int64_t k) {
-    const des::Time at = schedule_.at(k);
-    if (at >= ctx_->duration) return;
-    ctx_->sim.at(at, kind_tick_, [this, k] { tick(k); });
   }
 
   void tick(int64_t k) {
-    schedule_tick(k + 1);
     const auto sample = ctx_->host.newest_at(ctx_->sim.now());
     if (!sample) return;
     const des::Time now = ctx_->sim.now();
@@ -190,7 +166,7 @@ class RegionPriorityPipeline final : public Pipeline {
     }
     if (primary_tick.updated.empty()) return;
     for (int m : primary_tick.updated) memory_sample_[static_cast<size_t>(m)] = *sample;
-    const des::Time end = now + fixed_time_ + per_segment_ * primary_tick.segments_rendered;
+    const des::Time end = now + p_.render_fixed + p_.render_per_segment * primary_tick.segments_rendered;
     const tracker::TrackerSample s = *sample;
     ctx_->sim.at(end, kind_done_, [this, s, now, k] { present(s, now, k); });
   }
@@ -235,7 +211,7 @@ class RegionPriorityPipeline final : public Pipeline {
     if (!newest) return;
     const glm::dquat head = newest->pose.orientation;
     const auto& raster = ctx_->display.timing().params();
-    const renderer::Camera camera(hfov_deg_, raster.width_px, raster.height_px);
+    const renderer::Camera camera(ctx_->display_params.hfov_deg, raster.width_px, raster.height_px);
     const std::string stem = "region_frame_" + std::to_string(static_cast<int64_t>(ctx_->sim.now().to_ms())) + "ms";
     const Variant& primary = variants_[0];
     const std::vector<renderer::CubeMap> cubes = renderer_for(primary).render(*primary.model);
@@ -243,11 +219,11 @@ class RegionPriorityPipeline final : public Pipeline {
     for (size_t m = 0; m < cubes.size(); ++m) {
       all.push_back(&cubes[m]);
       const renderer::CubeMap* one[] = {&cubes[m]};
-      const renderer::Frame f = arp::view_through_cubes(one, camera, head, background_);
-      renderer::write_png(ctx_->out_dir / (stem + "_memory" + std::to_string(m) + ".png"), f.colour);
+      const renderer::Frame f = arp::view_through_cubes(one, camera, head, p_.frames.background);
+      ctx_->files.write_png(stem + "_memory" + std::to_string(m) + ".png", f.colour);
     }
-    const renderer::Frame composite = arp::view_through_cubes(all, camera, head, background_);
-    renderer::write_png(ctx_->out_dir / (stem + "_composite.png"), composite.colour);
+    const renderer::Frame composite = arp::view_through_cubes(all, camera, head, p_.frames.background);
+    ctx_->files.write_png(stem + "_composite.png", composite.colour);
     // Close-ups at the widest tear of the unwarped segmented model, and the warped model at the same spot.
     const Variant* torn = find(true, false);
     const Variant* warped = find(true, true);
@@ -257,20 +233,23 @@ class RegionPriorityPipeline final : public Pipeline {
       const std::vector<renderer::CubeMap> vc = renderer_for(*v).render(*v->model);
       std::vector<const renderer::CubeMap*> ptrs;
       for (const auto& c : vc) ptrs.push_back(&c);
-      const renderer::Frame f = arp::view_through_cubes(ptrs, camera, head, background_);
+      const renderer::Frame f = arp::view_through_cubes(ptrs, camera, head, p_.frames.background);
       const std::string tag = v->warping ? "_warped" : "_torn";
-      renderer::write_png(ctx_->out_dir / (stem + tag + ".png"), f.colour);
-      renderer::write_png(ctx_->out_dir / (stem + tag + "_closeup.png"), arp::close_up(f.colour, at[0], at[1], 24, 8));
+      ctx_->files.write_png(stem + tag + ".png", f.colour);
+      ctx_->files.write_png(stem + tag + "_closeup.png", arp::close_up(f.colour, at[0], at[1], 24, 8));
     }
   }
 
   const arp::MemoryRenderer& renderer_for(const Variant& v) {
     auto& slot = v.segmented ? segmented_renderer_ : whole_renderer_;
-    if (!slot) slot = std::make_unique<arp::MemoryRenderer>(v.segmented ? *segmented_ : *whole_, face_px_, background_, threads_);
+    if (!slot)
+      slot = std::make_unique<arp::MemoryRenderer>(v.segmented ? *segmented_ : *whole_, p_.frames.face_px,
+                                                   p_.frames.background, p_.frames.threads);
     return *slot;
   }
 
   void write_tables(RunContext& ctx, double duration_s) const {
+    if (!ctx.files.enabled()) return;
     const Variant& primary = variants_[0];
     const Variant* seg = find(true, primary.warping);
     const Variant* whole = find(false, primary.warping);
@@ -300,21 +279,13 @@ class RegionPriorityPipeline final : public Pipeline {
       csv << '"' << v.label() << "\"," << fixed(s.max, 6) << ',' << fixed(v.tear_gap_px.quantile(0.99), 6) << ','
           << s.count << '\n';
     }
-    if (ctx.out_dir.empty()) return;
-    write_file_atomically(ctx.out_dir / "arp_memories.csv", csv.str());
-    write_file_atomically(ctx.out_dir / "arp_memories.md", md.str());
+    ctx.files.write_text("arp_memories.csv", csv.str());
+    ctx.files.write_text("arp_memories.md", md.str());
   }
 
+  Params p_;
   RunContext* ctx_ = nullptr;
-  des::RationalSeconds period_;
-  des::PeriodicSchedule schedule_;
-  int face_px_ = 256;
-  int threads_ = 1;
-  double hfov_deg_ = 90.0;
-  glm::vec3 background_{1.0f};
-  std::vector<double> frame_times_s_;
-  des::Time fixed_time_;
-  des::Time per_segment_;
+  std::optional<des::Periodic> ticks_;
   renderer::Scene scene_;
   std::optional<renderer::RegionGrid> grid_;
   std::unique_ptr<arp::SegmentedScene> segmented_;
@@ -324,13 +295,44 @@ class RegionPriorityPipeline final : public Pipeline {
   std::optional<arp::ScreenProjection> screen_;
   std::unique_ptr<arp::MemoryRenderer> segmented_renderer_;
   std::unique_ptr<arp::MemoryRenderer> whole_renderer_;
-  des::KindId kind_tick_ = 0;
   des::KindId kind_done_ = 0;
-  des::KindId kind_frame_ = 0;
 };
+
+void bind(scenario::Section& s, RegionPriorityPipeline::Params& p, const params::SharedParams& shared) {
+  arp::RegionPriorityParams& m = p.model;
+  s.rate("max_update_rate_hz", p.period, {.unit = "Hz", .doc = "rate of the fastest display memory (and of the ticks)"});
+  bind(s, p.frames);
+  s.number("region_size_m", p.region_size_m, {.unit = "m", .min = 0.0, .above_min = true, .doc = "edge of a square floor region"});
+  s.flag("segmentation", p.segmentation, {.doc = "cut objects at region boundaries; false: whole objects"});
+  // Default threshold: one texel of the cube memory at a face centre.
+  double threshold_deg = 90.0 / p.frames.face_px;
+  s.number("threshold_angle_deg", threshold_deg,
+           {.unit = "deg", .min = 1e-9, .max = 90.0, .doc = "error an image may reach before it is redrawn",
+            .default_doc = "90 / face_px (one texel)"});
+  m.threshold_rad = threshold_deg * kDegToRad;
+  m.swap_margin_m = 0.25 * p.region_size_m;
+  s.number("swap_margin_m", m.swap_margin_m,
+           {.unit = "m", .min = 0.0, .doc = "hysteresis before a region changes memory", .default_doc = "region_size_m / 4"});
+  s.flag("warping", m.warping, {.doc = "edge vertices follow the slower neighbour's viewpoint, closing tears"});
+  m.warp_falloff_m = 0.5 * p.region_size_m;
+  s.number("warp_falloff_m", m.warp_falloff_m,
+           {.unit = "m", .min = 0.0, .doc = "distance over which warping fades", .default_doc = "region_size_m / 2"});
+  std::vector<double> rings(m.outer_rings.begin(), m.outer_rings.end());
+  s.numbers("outer_rings", rings, {.doc = "ring limits, one per display memory after the first"});
+  m.outer_rings.assign(rings.begin(), rings.end());
+  s.duration("render_fixed_ms", p.render_fixed, {.unit = "ms", .doc = "fixed time per render"});
+  s.duration("render_per_segment_us", p.render_per_segment, {.unit = "us", .doc = "time per segment rendered"});
+  s.check_pointer("/scene", shared.scene.has_value(), "region priority rendering needs a scene");
+}
 
 }  // namespace
 
-std::unique_ptr<Pipeline> make_region_priority_pipeline() { return std::make_unique<RegionPriorityPipeline>(); }
+PipelineEntry region_priority_pipeline() {
+  return pipeline_entry<RegionPriorityPipeline>(
+      "region_priority",
+      "Region priority rendering on address recalculation: floor regions near the user go to faster display "
+      "memories; shadow models with segmentation or warping flipped run on the same positions for comparison "
+      "(see docs/arp.md). Needs a /scene.");
+}
 
 }  // namespace latsim::pipelines

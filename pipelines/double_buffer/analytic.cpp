@@ -1,4 +1,4 @@
-#include "latsim/pipelines/double_buffer_analytic.hpp"
+#include "double_buffer/analytic.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -43,7 +43,7 @@ std::optional<des::RationalSeconds> rational_lcm(des::RationalSeconds x, des::Ra
 
 }  // namespace
 
-std::optional<nlohmann::json> analytic_double_buffer(const display::RasterTiming& timing,
+std::optional<AnalyticLatency> analytic_double_buffer(const display::RasterTiming& timing,
                                                      const tracker::TrackerParams& tp,
                                                      const tracker::Transport& transport, des::Time render_time) {
   if (tp.jitter > des::Time::zero()) return std::nullopt;
@@ -114,12 +114,7 @@ std::optional<nlohmann::json> analytic_double_buffer(const display::RasterTiming
     // One whole hyperperiod of phases seen (and the frame pattern repeats).
     if ((timing.field_start(s) - origin).to_seconds() >= hyper_s) break;
   }
-  return nlohmann::json{{"method", "phase enumeration over one hyperperiod (no events)"},
-                        {"link", link},
-                        {"hyperperiod_s", hyper_s},
-                        {"frames", frames},
-                        {"complete", frames < kMaxFrames},
-                        {"motion_to_photon_ms", {{"min", min_ms}, {"mean", sum_ms / count}, {"max", max_ms}}}};
+  return AnalyticLatency{link, hyper_s, frames, frames < kMaxFrames, min_ms, sum_ms / count, max_ms};
 }
 
 }  // namespace latsim::pipelines

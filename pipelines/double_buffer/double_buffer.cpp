@@ -4,12 +4,12 @@
 #include <deque>
 #include <memory>
 
-#include "latsim/pipelines/double_buffer.hpp"
-#include "latsim/pipelines/double_buffer_analytic.hpp"
+#include "double_buffer/analytic.hpp"
+#include "latsim/des/handoff.hpp"
+#include "latsim/des/process.hpp"
 #include "latsim/pipelines/latency_recorder.hpp"
 #include "latsim/pipelines/render_cost.hpp"
 #include "latsim/pipelines/timeline.hpp"
-#include "latsim/tracker/config.hpp"
 
 namespace latsim::pipelines {
 
@@ -18,38 +18,39 @@ namespace {
 /// Renders frames back to back on one renderer and hands them to the display.
 class DoubleBufferPipeline final : public Pipeline {
  public:
-  std::string name() const override { return "double_buffer"; }
+  struct Params {
+    bool vsync = true;
+    int queued_frames = 0;
+    RenderCost::Params render;
+    RenderCost cost;  ///< the render terms applied to the scene and display
+  };
+
+  explicit DoubleBufferPipeline(const Params& p) : p_(p) {}
 
   void start(RunContext& ctx) override {
     ctx_ = &ctx;
-    const auto& p = ctx.pipeline;
-    vsync_ = p.boolean("vsync", true);
-    queued_frames_ = static_cast<int>(p.integer("queued_frames", 0, 0, 16));
-    const auto render = p.child("render");
-    std::optional<scenario::ConfigNode> scene = ctx.root.optional_child("scene");
-    cost_ = RenderCost::from_config(render, scene ? &*scene : nullptr, ctx.display.timing().params().width_px,
-                                    ctx.display.timing().params().height_px, ctx.display.eyes());
-    if (!vsync_ && cost_.nominal_frame_time() == des::Time::zero())
-      p.fail("vsync", "without vsync the renderer runs back to back, so frames need a render time above zero");
     stream_ = std::make_unique<des::RandomStream>(ctx.stream("renderer"));
-    kind_frame_ = ctx.sim.kind("renderer.frame");
-    if (vsync_) ctx.display.on_retrace([this](int64_t field, des::Time t) { retrace(field, t); });
-    begin_frame();
+    const des::KindId kind_frame = ctx.sim.kind("renderer.frame");
+    if (p_.vsync) ctx.display.on_retrace([this](int64_t, des::Time now) { retrace(now); });
+    ctx.sim.start(renderer(), kind_frame);
   }
 
-  void finish(RunContext& ctx, nlohmann::json& figures) override {
-    figures["frames_rendered"] = frames_done_;
-    figures["missed_refreshes"] = missed_refreshes_;
-    figures["nominal_frame_time_ms"] = cost_.nominal_frame_time().to_ms();
-    if (vsync_ && queued_frames_ == 0 && !cost_.varies()) {
-      // The same models, rebuilt from the scenario, but asked for phases only.
-      const auto tracker = tracker::parse_tracker(ctx.root.child("tracker"));
-      std::unique_ptr<tracker::Transport> link = ctx.root.has("transport")
-                                                     ? tracker::make_transport(ctx.root.child("transport"))
-                                                     : std::make_unique<tracker::DirectLink>();
-      if (auto a = analytic_double_buffer(ctx.display.timing(), tracker, *link, cost_.nominal_frame_time()))
-        figures["analytic"] = *a;
-    }
+  void finish(RunContext& ctx) override {
+    ctx.recorder.set("frames_rendered", frames_done_);
+    ctx.recorder.set("missed_refreshes", missed_refreshes_);
+    ctx.recorder.set("nominal_frame_time_ms", p_.cost.nominal_frame_time().to_ms());
+    if (!p_.vsync || p_.queued_frames != 0 || p_.cost.varies()) return;
+    const auto a = analytic_double_buffer(ctx.display.timing(), ctx.tracker, ctx.transport, p_.cost.nominal_frame_time());
+    if (!a) return;
+    LatencyRecorder& r = ctx.recorder;
+    r.set("analytic.method", std::string("phase enumeration over one hyperperiod (no events)"));
+    r.set("analytic.link", a->link);
+    r.set("analytic.hyperperiod_s", a->hyperperiod_s);
+    r.set("analytic.frames", a->frames);
+    r.set("analytic.complete", a->complete);
+    r.set("analytic.motion_to_photon_ms.min", a->min_ms);
+    r.set("analytic.motion_to_photon_ms.mean", a->mean_ms);
+    r.set("analytic.motion_to_photon_ms.max", a->max_ms);
   }
 
  private:
@@ -59,23 +60,30 @@ class DoubleBufferPipeline final : public Pipeline {
     des::Time render_end;
   };
 
-  void begin_frame() {
-    const auto sample = ctx_->host.newest_at(ctx_->sim.now());
-    if (!sample) {
-      waiting_for_pose_ = true;  // retried at the next retrace
-      if (!vsync_) ctx_->sim.after(des::Time::ms(1), kind_frame_, [this] { begin_frame(); });
-      return;
+  // The renderer: wait for a pose, render, hand the image over; without
+  // vsync it replaces the front buffer at once, otherwise it waits in the
+  // swap queue and the renderer waits while the queue is full.
+  des::Process renderer() {
+    for (;;) {
+      std::optional<tracker::TrackerSample> sample;
+      while (!(sample = ctx_->host.newest_at(ctx_->sim.now()))) {
+        if (p_.vsync) co_await retrace_;  // retried at the next retrace
+        else co_await ctx_->sim.delay(des::Time::ms(1));
+      }
+      const des::Time start = ctx_->sim.now();
+      co_await ctx_->sim.delay(p_.cost.frame_time(*stream_));
+      Done done = complete(*sample, start);
+      if (!p_.vsync) {
+        // No vsync: the new image replaces the front buffer mid-scan.
+        for (int eye = 0; eye < ctx_->display.eyes(); ++eye) ctx_->display.present_now(eye, done.ids[eye]);
+        continue;
+      }
+      queue_.push_back(std::move(done));
+      while (static_cast<int>(queue_.size()) > p_.queued_frames) co_await retrace_;
     }
-    waiting_for_pose_ = false;
-    busy_ = true;
-    const des::Time start = ctx_->sim.now();
-    const des::Time end = start + cost_.frame_time(*stream_);
-    const tracker::TrackerSample s = *sample;
-    ctx_->sim.at(end, kind_frame_, [this, s, start] { complete(s, start); });
   }
 
-  void complete(const tracker::TrackerSample& s, des::Time start) {
-    busy_ = false;
+  Done complete(const tracker::TrackerSample& s, des::Time start) {
     const des::Time now = ctx_->sim.now();
     Done done{{}, frame_, now};
     for (int eye = 0; eye < ctx_->display.eyes(); ++eye) {
@@ -85,47 +93,57 @@ class DoubleBufferPipeline final : public Pipeline {
     if (ctx_->timeline) ctx_->timeline->add("RENDER", frame_, -1, "renderer", start, now);
     ++frame_;
     ++frames_done_;
-    if (!vsync_) {
-      // No vsync: the new image replaces the front buffer mid-scan.
-      for (int eye = 0; eye < ctx_->display.eyes(); ++eye) ctx_->display.present_now(eye, done.ids[eye]);
-      begin_frame();
-      return;
-    }
-    queue_.push_back(std::move(done));
-    if (static_cast<int>(queue_.size()) <= queued_frames_) begin_frame();
+    return done;
   }
 
-  void retrace(int64_t, des::Time now) {
+  // Called at the retrace before scanout: the swap takes effect for this field.
+  void retrace(des::Time now) {
     if (queue_.empty()) {
       if (shown_any_) ++missed_refreshes_;
     } else {
       const Done d = std::move(queue_.front());
       queue_.pop_front();
-      // Called at the retrace before scanout: the swap takes effect for this field.
       for (int eye = 0; eye < ctx_->display.eyes(); ++eye) ctx_->display.present_now(eye, d.ids[eye]);
       if (ctx_->timeline) ctx_->timeline->add("QUEUED", d.frame, -1, "swapchain", d.render_end, now);
       shown_any_ = true;
     }
-    if (!busy_ && (waiting_for_pose_ || static_cast<int>(queue_.size()) <= queued_frames_)) begin_frame();
+    retrace_.resume();
   }
 
+  Params p_;
   RunContext* ctx_ = nullptr;
-  bool vsync_ = true;
-  int queued_frames_ = 0;
-  RenderCost cost_;
   std::unique_ptr<des::RandomStream> stream_;
-  des::KindId kind_frame_ = 0;
+  des::Handoff retrace_;
   std::deque<Done> queue_;
-  bool busy_ = false;
-  bool waiting_for_pose_ = false;
   bool shown_any_ = false;
   int64_t frame_ = 0;
   int64_t frames_done_ = 0;
   int64_t missed_refreshes_ = 0;
 };
 
+void bind(scenario::Section& s, DoubleBufferPipeline::Params& p, const params::SharedParams& shared) {
+  s.flag("vsync", p.vsync,
+         {.doc = "swap at the next retrace after completion; false: swap at once (tearing; needs a render time above "
+                 "zero)"});
+  s.integer("queued_frames", p.queued_frames, {.min = 0.0, .max = 16.0, .doc = "render-ahead: frames that may wait for display"});
+  s.object("render", p.render, [](scenario::Section& r, RenderCost::Params& v) { bind(r, v); },
+           {.required = true, .doc = "the renderer's cost per frame"});
+  const display::RasterParams& raster = shared.display.raster;
+  p.cost = RenderCost::for_scene(p.render, shared.scene ? &*shared.scene : nullptr, raster.width_px, raster.height_px,
+                                 shared.host.stereo ? 2 : 1);
+  s.check("vsync", p.vsync || p.cost.nominal_frame_time() > des::Time::zero(),
+          "without vsync the renderer runs back to back, so frames need a render time above zero");
+}
+
 }  // namespace
 
-std::unique_ptr<Pipeline> make_double_buffer_pipeline() { return std::make_unique<DoubleBufferPipeline>(); }
+PipelineEntry double_buffer_pipeline() {
+  return pipeline_entry<DoubleBufferPipeline>(
+      "double_buffer",
+      "Conventional double buffering: render with the newest pose, swap at the next retrace after completion "
+      "(optionally rendering ahead, or swapping at once without vsync). Where the configuration is tractable (no "
+      "jitter, constant render time, vsync, no render-ahead, no queueing on the serial line) `figures.analytic` "
+      "gives the min / mean / max motion-to-photon latency by phase enumeration, beside the simulated distribution.");
+}
 
 }  // namespace latsim::pipelines

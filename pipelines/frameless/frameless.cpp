@@ -8,13 +8,14 @@
 // consecutive pixels on one image from one pose and swaps it in at the next
 // retrace. Pixels are simulated exactly but handled in chunks, one event per
 // chunk, so the event count stays far below one per pixel.
-#include "latsim/pipelines/frameless.hpp"
+#include "frameless/frameless_order.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <deque>
 #include <optional>
 
+#include "latsim/des/process.hpp"
 #include "latsim/pipelines/frame_capture.hpp"
 #include "latsim/pipelines/latency_recorder.hpp"
 #include "latsim/pipelines/timeline.hpp"
@@ -49,19 +50,48 @@ enum class Mode { Normal, LowResolution, DoubleBufferFallback };
 /// supplies its per-pixel poses to a frame capture.
 class FramelessPipeline final : public Pipeline, public display::ScanoutListener, public PixelSource {
  public:
-  std::string name() const override { return "frameless"; }
+  /// The /pipeline keys, and what they fix before the run.
+  struct Params {
+    bool double_buffer = false;
+    std::optional<double> pixels_per_s;
+    double full_images_per_s = 5.0;
+    int64_t chunk_pixels = 2048;
+    int64_t sample_pixels = 1024;
+    double registration_depth_m = 2.0;
+    /// What happens when the head moves fast (nothing when absent).
+    struct Fallback {
+      Mode kind = Mode::LowResolution;
+      double trigger_deg = 20.0;
+      double trigger_m = 0.5;
+      int block_px = 4;
+    };
+    std::optional<Fallback> fallback;
+    int64_t budget_px_s = 1;  ///< whole pixels per second (an exact rational period)
+  };
+
+  explicit FramelessPipeline(const Params& p)
+      : double_buffer_(p.double_buffer),
+        budget_px_s_(p.budget_px_s),
+        chunk_px_(p.chunk_pixels),
+        depth_m_(p.registration_depth_m),
+        fallback_(p.fallback ? p.fallback->kind : Mode::Normal),
+        trigger_deg_(p.fallback ? p.fallback->trigger_deg : 20.0),
+        trigger_m_(p.fallback ? p.fallback->trigger_m : 0.5),
+        block_px_(p.fallback ? p.fallback->block_px : 4),
+        sample_pixels_(p.sample_pixels) {}
 
   void start(RunContext& ctx) override {
     ctx_ = &ctx;
-    read_parameters(ctx);
-    kind_chunk_ = ctx.sim.kind("frameless.chunk");
-    kind_image_ = ctx.sim.kind("frameless.image");
+    size_to_display(ctx);
+    const des::KindId kind_chunk = ctx.sim.kind("frameless.chunk");
+    const des::KindId kind_image = ctx.sim.kind("frameless.image");
     schedule_ = des::PeriodicSchedule(ctx.sim.now(), des::RationalSeconds{1, budget_px_s_});
     pick_sampled_pixels(ctx.stream("frameless.samples"));
     ctx.display.add_listener(this);
     ctx.display.on_retrace([this](int64_t field, des::Time t) { retrace(field, t); });
     if (double_buffer_) {
-      ctx.sim.at(schedule_.at(0), kind_image_, [this] { image_done(-1); });
+      // Its first event, at the start of the budget, begins image 0.
+      ctx.sim.spawn(images(), kind_image);
       return;
     }
     order_.emplace(pixels_, ctx.stream("frameless"));
@@ -72,23 +102,24 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
     if (fallback_ != Mode::Normal)
       ctx.host.on_delivery([this](const tracker::TrackerSample& s, des::Time t) { delivered(s, t); });
     if (ctx.frames) ctx.frames->set_pixel_source(this);
-    schedule_chunk();
+    ctx.sim.start(pixel_stream(), kind_chunk);
   }
 
-  void finish(RunContext& ctx, nlohmann::json& figures) override {
+  void finish(RunContext& ctx) override {
     if (ctx.frames) ctx.frames->set_pixel_source(nullptr);
     const double cycle_ms = static_cast<double>(pixels_) / static_cast<double>(budget_px_s_) * 1e3;
-    figures["frameless"] = {{"strategy", double_buffer_ ? "double_buffer" : "frameless"},
-                            {"pixels_per_s", budget_px_s_},
-                            {"pixels_per_cycle", pixels_},
-                            {"cycle_ms", cycle_ms},
-                            {"pixels_computed", computed_units_},
-                            {"images_rendered", images_},
-                            {"fallbacks", fallbacks_},
-                            {"sampled_pixels", sampled_count_},
-                            {"chunk_pixels", chunk_px_}};
+    LatencyRecorder& r = ctx.recorder;
+    r.set("frameless.strategy", std::string(double_buffer_ ? "double_buffer" : "frameless"));
+    r.set("frameless.pixels_per_s", budget_px_s_);
+    r.set("frameless.pixels_per_cycle", int64_t{pixels_});
+    r.set("frameless.cycle_ms", cycle_ms);
+    r.set("frameless.pixels_computed", computed_units_);
+    r.set("frameless.images_rendered", images_);
+    r.set("frameless.fallbacks", fallbacks_);
+    r.set("frameless.sampled_pixels", int64_t{sampled_count_});
+    r.set("frameless.chunk_pixels", chunk_px_);
     // Frameless shows no whole images; its "frame rate" is full update cycles per second.
-    if (!double_buffer_) figures["frame_rate_hz"] = 1e3 / cycle_ms;
+    if (!double_buffer_) r.set("frame_rate_hz", 1e3 / cycle_ms);
   }
 
   void on_scanout(const display::ScanoutSpan& span) override {
@@ -127,45 +158,15 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
   }
 
  private:
-  void read_parameters(RunContext& ctx) {
-    const auto& p = ctx.pipeline;
-    double_buffer_ = p.choice("strategy", "frameless", {"frameless", "double_buffer"}) == "double_buffer";
+  void size_to_display(RunContext& ctx) {
     width_ = ctx.display.timing().params().width_px;
     height_ = ctx.display.timing().params().height_px;
     eyes_ = ctx.display.eyes();
-    const int64_t pixels = int64_t{width_} * height_ * eyes_;
-    if (pixels > int64_t{1} << 30) p.fail("type", "frameless rendering supports at most 2^30 pixels (all eyes)");
-    pixels_ = static_cast<int32_t>(pixels);
-    double budget = 0.0;
-    if (p.has("pixels_per_s")) {
-      if (p.has("full_images_per_s")) p.fail("pixels_per_s", "give pixels_per_s or full_images_per_s, not both");
-      budget = p.positive("pixels_per_s");
-    } else {
-      budget = p.positive("full_images_per_s", 5.0) * static_cast<double>(pixels_);
-    }
-    // Whole pixels per second keep the pixel schedule an exact rational period.
-    budget_px_s_ = std::llround(budget);
-    if (budget_px_s_ < 1 || budget > 1e12)
-      p.fail(p.has("pixels_per_s") ? "pixels_per_s" : "full_images_per_s",
-             "the pixel budget must lie between 1 and 1e12 pixels per second");
-    chunk_px_ = p.integer("chunk_pixels", 2048, 1, int64_t{1} << 30);
-    sampled_count_ = static_cast<int32_t>(std::min<int64_t>(p.integer("sample_pixels", 1024, 0, 1 << 30), pixels_));
-    depth_m_ = p.positive("registration_depth_m", 2.0);
-    const double hfov_deg = ctx.root.child("display").number_in("hfov_deg", 90.0, 1.0, 179.0);
+    pixels_ = static_cast<int32_t>(int64_t{width_} * height_ * eyes_);
+    sampled_count_ = static_cast<int32_t>(std::min<int64_t>(sample_pixels_, pixels_));
+    const double hfov_deg = ctx.display_params.hfov_deg;
     camera_.emplace(hfov_deg, width_, height_);
     rad_per_px_ = 2.0 * std::tan(hfov_deg * kPi / 360.0) / width_;
-    fallback_ = Mode::Normal;
-    if (auto f = p.optional_child("fallback")) {
-      const std::string kind = f->choice("kind", "low_resolution", {"none", "low_resolution", "double_buffer"});
-      fallback_ = kind == "low_resolution" ? Mode::LowResolution
-                  : kind == "double_buffer" ? Mode::DoubleBufferFallback
-                                            : Mode::Normal;
-      trigger_deg_ = f->positive("trigger_deg", 20.0);
-      trigger_m_ = f->positive("trigger_m", 0.5);
-      block_px_ = static_cast<int>(f->integer("block_px", 4, 2, 256));
-      if (double_buffer_ && fallback_ != Mode::Normal)
-        f->fail("kind", "the double_buffer strategy has no fallback; use \"kind\": \"none\" or strategy frameless");
-    }
   }
 
   size_t pixel_id(int eye, int x, int row) const {
@@ -201,14 +202,14 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
 
   // ---- frameless: the pixel stream -------------------------------------
 
-  void schedule_chunk() {
-    const des::Time t = schedule_.at(next_unit_ + chunk_px_);
-    if (t < ctx_->duration) ctx_->sim.at(t, kind_chunk_, [this] { chunk(); });
-  }
-
-  void chunk() {
-    advance_to(ctx_->sim.now());
-    schedule_chunk();
+  /// Computes the pixel stream a chunk at a time (retraces also catch it up).
+  des::Process pixel_stream() {
+    for (;;) {
+      const des::Time t = schedule_.at(next_unit_ + chunk_px_);
+      if (t >= ctx_->duration) co_return;
+      co_await ctx_->sim.until(t);
+      advance_to(ctx_->sim.now());
+    }
   }
 
   /// Computes every pixel whose computation ends at or before t.
@@ -343,26 +344,25 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
 
   // ---- double buffering at the same budget -----------------------------
 
-  /// Image `image` (-1: none yet) has just been completed; present it and start the next.
-  void image_done(int64_t image) {
-    const des::Time now = ctx_->sim.now();
-    if (image >= 0 && pending_sample_) {
+  /// Image after image, each from the newest pose when it starts (none yet:
+  /// it renders nothing), presented when its pixels are spent.
+  des::Process images() {
+    for (int64_t image = 0;; ++image) {
+      const std::optional<tracker::TrackerSample> sample = ctx_->host.newest_at(ctx_->sim.now());
+      const des::Time end = schedule_.at((image + 1) * pixels_);
+      if (end >= ctx_->duration) co_return;
+      co_await ctx_->sim.until(end);
+      if (!sample) continue;
+      const des::Time start = schedule_.at(image * pixels_), now = ctx_->sim.now();
       for (int eye = 0; eye < eyes_; ++eye) {
-        ImageRecord rec = ctx_->image_record(image, eye, *pending_sample_, schedule_.at(image * pixels_), now);
+        ImageRecord rec = ctx_->image_record(image, eye, *sample, start, now);
         ctx_->display.present_at_next_retrace(eye, ctx_->recorder.register_image(rec));
       }
       ++images_;
       computed_units_ += pixels_;
-      if (ctx_->timeline) ctx_->timeline->add("RENDER", image, -1, "renderer", rec_start(image), now);
+      if (ctx_->timeline) ctx_->timeline->add("RENDER", image, -1, "renderer", start, now);
     }
-    const int64_t next = image + 1;
-    // The next image starts now, from the newest pose (none yet: it renders nothing).
-    pending_sample_ = ctx_->host.newest_at(now);
-    const des::Time end = schedule_.at((next + 1) * pixels_);
-    if (end < ctx_->duration) ctx_->sim.at(end, kind_image_, [this, next] { image_done(next); });
   }
-
-  des::Time rec_start(int64_t image) const { return schedule_.at(image * pixels_); }
 
   void registration(int eye, int x, int row, const PixelState& st, const tracker::TrackerSample& s, des::Time photon) {
     const tracker::Pose drawn = ctx_->eye_pose(s, eye);
@@ -379,18 +379,18 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
 
   RunContext* ctx_ = nullptr;
   bool double_buffer_ = false;
-  int width_ = 0, height_ = 0, eyes_ = 1;
-  int32_t pixels_ = 0;
   int64_t budget_px_s_ = 1;
   int64_t chunk_px_ = 2048;
-  int32_t sampled_count_ = 0;
   double depth_m_ = 2.0;
-  double rad_per_px_ = 0.0;
-  std::optional<renderer::Camera> camera_;
   Mode fallback_ = Mode::Normal;
   double trigger_deg_ = 20.0, trigger_m_ = 0.5;
   int block_px_ = 4;
-  des::KindId kind_chunk_ = 0, kind_image_ = 0;
+  int64_t sample_pixels_ = 1024;
+  int width_ = 0, height_ = 0, eyes_ = 1;
+  int32_t pixels_ = 0;
+  int32_t sampled_count_ = 0;
+  double rad_per_px_ = 0.0;
+  std::optional<renderer::Camera> camera_;
   des::PeriodicSchedule schedule_;
   std::vector<std::vector<int>> sampled_;  ///< per (eye, row): sampled columns, sorted
 
@@ -417,7 +417,6 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
   int64_t cached_until_ = -1;
 
   // Double-buffering state.
-  std::optional<tracker::TrackerSample> pending_sample_;
   int64_t last_front_ = -1;
 
   int64_t computed_units_ = 0;
@@ -425,8 +424,58 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
   int64_t fallbacks_ = 0;
 };
 
+void bind(scenario::Section& s, FramelessPipeline::Params& p, const params::SharedParams& shared) {
+  s.choice("strategy", p.double_buffer, {{"frameless", false}, {"double_buffer", true}},
+           {.doc = "frameless: each pixel from the newest pose; double_buffer: whole images at the same budget"});
+  const int64_t pixels = int64_t{shared.display.raster.width_px} * shared.display.raster.height_px *
+                         (shared.host.stereo ? 2 : 1);
+  s.check("type", pixels <= int64_t{1} << 30, "frameless rendering supports at most 2^30 pixels (all eyes)");
+  s.check("pixels_per_s", !(s.has("pixels_per_s") && s.has("full_images_per_s")),
+          "give pixels_per_s or full_images_per_s, not both");
+  s.number("pixels_per_s", p.pixels_per_s,
+           {.unit = "px/s", .min = 0.0, .above_min = true, .doc = "pixel budget (instead of full_images_per_s)"});
+  if (!p.pixels_per_s || s.describing())
+    s.number("full_images_per_s", p.full_images_per_s,
+             {.min = 0.0, .above_min = true, .doc = "pixel budget in whole images (width × height × eyes) per second"});
+  const double budget = p.pixels_per_s ? *p.pixels_per_s : p.full_images_per_s * static_cast<double>(pixels);
+  // Whole pixels per second keep the pixel schedule an exact rational period.
+  p.budget_px_s = std::llround(budget);
+  s.check(p.pixels_per_s ? "pixels_per_s" : "full_images_per_s", p.budget_px_s >= 1 && budget <= 1e12,
+          "the pixel budget must lie between 1 and 1e12 pixels per second");
+  s.integer("chunk_pixels", p.chunk_pixels,
+            {.unit = "px", .min = 1.0, .max = 1073741824.0, .doc = "pixels computed per event (exact either way)"});
+  s.integer("sample_pixels", p.sample_pixels,
+            {.unit = "px", .min = 0.0, .max = 1073741824.0, .doc = "pixels where ages and registration are sampled"});
+  s.number("registration_depth_m", p.registration_depth_m,
+           {.unit = "m", .min = 0.0, .above_min = true, .doc = "depth at which a pixel's surface point is taken"});
+  const bool double_buffer = p.double_buffer;
+  using Fallback = FramelessPipeline::Params::Fallback;
+  s.optional_object("fallback", p.fallback,
+                    [double_buffer](scenario::Section& f, Fallback& v) {
+                      f.doc("What frameless rendering does when the head moves fast.");
+                      f.choice("kind", v.kind,
+                               {{"none", Mode::Normal},
+                                {"low_resolution", Mode::LowResolution},
+                                {"double_buffer", Mode::DoubleBufferFallback}},
+                               {.doc = "none, a low-resolution pass, or one whole image"});
+                      f.number("trigger_deg", v.trigger_deg,
+                               {.unit = "deg", .min = 0.0, .above_min = true, .doc = "rotation between deliveries that triggers it"});
+                      f.number("trigger_m", v.trigger_m,
+                               {.unit = "m", .min = 0.0, .above_min = true, .doc = "translation between deliveries that triggers it"});
+                      f.integer("block_px", v.block_px, {.unit = "px", .min = 2.0, .max = 256.0, .doc = "low resolution: block size"});
+                      f.check("kind", !(double_buffer && v.kind != Mode::Normal),
+                              "the double_buffer strategy has no fallback; use \"kind\": \"none\" or strategy frameless");
+                    },
+                    {.doc = "fallback on fast motion (none when absent)"});
+}
+
 }  // namespace
 
-std::unique_ptr<Pipeline> make_frameless_pipeline() { return std::make_unique<FramelessPipeline>(); }
+PipelineEntry frameless_pipeline() {
+  return pipeline_entry<FramelessPipeline>(
+      "frameless",
+      "Frameless rendering beside double buffering on one pixel budget (Bishop et al.): each pixel computed from "
+      "the newest pose and shown at the next refresh, in a randomised order without replacement (see docs/frames.md).");
+}
 
 }  // namespace latsim::pipelines

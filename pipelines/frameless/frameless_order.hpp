@@ -1,14 +1,10 @@
-// Frameless rendering beside double buffering at the same pixel budget
-// (Bishop et al.'s comparison): each pixel is computed from the newest pose
-// and shown at the next refresh, in a randomised order without replacement.
+// The randomised order in which frameless rendering updates pixels.
 #pragma once
 
 #include <cstdint>
-#include <memory>
 #include <vector>
 
 #include "latsim/des/random.hpp"
-#include "latsim/pipelines/pipeline.hpp"
 
 namespace latsim::pipelines {
 
@@ -28,14 +24,5 @@ class FramelessOrder {
  private:
   std::vector<int32_t> table_;
 };
-
-/// /pipeline: {"type": "frameless",
-///   "strategy": "frameless" | "double_buffer",
-///   "pixels_per_s": N  or  "full_images_per_s": 5 (x width x height x eyes),
-///   "chunk_pixels": 2048, "sample_pixels": 1024, "registration_depth_m": 2,
-///   "fallback": {"kind": "none" | "low_resolution" | "double_buffer",
-///                "trigger_deg": 20, "trigger_m": 0.5, "block_px": 4}}.
-/// See docs/frames.md for what each figure means.
-std::unique_ptr<Pipeline> make_frameless_pipeline();
 
 }  // namespace latsim::pipelines

@@ -2,9 +2,8 @@
 // by an asynchronous host.
 #include <memory>
 
-#include "latsim/pipelines/pxpl5.hpp"
 #include "latsim/pxpl5/slats_engine.hpp"
-#include "latsim/pxpl5/workload.hpp"
+#include "pxpl5/wiring.hpp"
 
 namespace latsim::pipelines {
 
@@ -13,15 +12,18 @@ namespace {
 /// "pxpl5_slats": one GP, both eyes per pass, static region binding, one field of latency.
 class Pxpl5SlatsPipeline final : public Pipeline {
  public:
-  std::string name() const override { return "pxpl5_slats"; }
+  struct Params {
+    pxpl5::SlatsParams slats;
+    pxpl5::Workload workload;
+  };
+
+  explicit Pxpl5SlatsPipeline(const Params& p) : p_(p) {}
 
   void start(RunContext& ctx) override {
     wiring_ = std::make_unique<Pxpl5Wiring>(ctx);
-    const pxpl5::SlatsParams params = pxpl5::SlatsParams::read(ctx.pipeline, ctx.stereo);
     // Slats renders one bin of every triangle, so only the count matters.
-    const pxpl5::Workload workload = pxpl5::Workload::read(ctx.root.child("scene"));
-    engine_ = std::make_unique<pxpl5::SlatsEngine>(ctx.sim, params, wiring_->field_timing(), wiring_->grid(),
-                                                   workload.triangles, wiring_->hooks());
+    engine_ = std::make_unique<pxpl5::SlatsEngine>(ctx.sim, p_.slats, wiring_->field_timing(), wiring_->grid(),
+                                                   p_.workload.triangles, wiring_->hooks());
     // SEND is asynchronous: every sample the host sees goes to the GP.
     ctx.host.on_delivery([this](const tracker::TrackerSample& s, des::Time) {
       engine_->host_sample(wiring_->remember(s));
@@ -29,18 +31,39 @@ class Pxpl5SlatsPipeline final : public Pipeline {
     engine_->start(ctx.sim.now() + ctx.duration);
   }
 
-  void finish(RunContext& ctx, nlohmann::json& figures) override {
-    wiring_->add_figures(figures, engine_->utilisation(ctx.duration), engine_->missed_fields(),
-                         engine_->torn_fields(), engine_->fields_shown());
+  void finish(RunContext& ctx) override {
+    wiring_->report(engine_->utilisation(ctx.duration), engine_->missed_fields(), engine_->torn_fields(),
+                    engine_->fields_shown());
   }
 
  private:
+  Params p_;
   std::unique_ptr<Pxpl5Wiring> wiring_;
   std::unique_ptr<pxpl5::SlatsEngine> engine_;
 };
 
+void bind(scenario::Section& s, Pxpl5SlatsPipeline::Params& p, const params::SharedParams& shared) {
+  pxpl5::SlatsParams& q = p.slats;
+  bind_hardware(s, q.hw);
+  s.duration("gp_us_per_triangle", q.gp_time_per_triangle,
+             {.unit = "us", .doc = "both eyes, one pass: transform, clip, light, set up plane equations twice"});
+  s.duration("gp_field_overhead_us", q.gp_field_overhead, {.unit = "us", .doc = "take the newest transforms, set up, flush"});
+  s.duration("region_finish_us", q.region_finish_time, {.unit = "us", .doc = "Gouraud: no deferred shading, just wrap up"});
+  s.duration("host_compute_us", q.host_compute_time, {.unit = "us", .doc = "host: both eyes' viewing transforms"});
+  s.integer("host_message_words", q.host_message_words, {.min = 0.0, .max = 1048576.0, .doc = "host to processor message"});
+  s.flag("copy_optimisation", q.copy_optimisation,
+         {.doc = "lower regions may arrive until the beam reaches them; false: every region by the retrace"});
+  s.flag("backup_field", q.backup_field, {.doc = "show a backup of the last complete field instead of a torn one"});
+  bind_pxpl5_scene(s, shared, q.hw, q.stereo, p.workload);
+}
+
 }  // namespace
 
-std::unique_ptr<Pipeline> make_pxpl5_slats_pipeline() { return std::make_unique<Pxpl5SlatsPipeline>(); }
+PipelineEntry pxpl5_slats_pipeline() {
+  return pipeline_entry<Pxpl5SlatsPipeline>(
+      "pxpl5_slats",
+      "Pixel-Planes 5 Slats: field-synchronous rendering of both eyes by one processor with static region binding, "
+      "fed by an asynchronous host; one field of rendering latency (see docs/pxpl5.md). Reads /scene's `triangles`.");
+}
 
 }  // namespace latsim::pipelines

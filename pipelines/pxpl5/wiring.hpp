@@ -8,20 +8,21 @@
 #include <memory>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
 #include "latsim/des/stats.hpp"
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/pxpl5/engine_hooks.hpp"
 #include "latsim/pxpl5/field_timing.hpp"
 #include "latsim/pxpl5/hardware.hpp"
+#include "latsim/pxpl5/workload.hpp"
 
 namespace latsim::pipelines {
 
-/// Adds "pxpl5_rc" and "pxpl5_slats" to the registry.
-void register_pxpl5_pipelines(PipelineRegistry& registry);
-/// A new "pxpl5_slats" pipeline (defined with it in pxpl5_slats.cpp).
-std::unique_ptr<Pipeline> make_pxpl5_slats_pipeline();
+/// Declares the /pipeline keys both Pixel-Planes 5 pipelines share.
+void bind_hardware(scenario::Section& s, pxpl5::HardwareParams& p);
+/// Declares what both read from the shared sections: stereo and the /scene
+/// workload (both required); `stereo` and `workload` are filled from them.
+void bind_pxpl5_scene(scenario::Section& s, const params::SharedParams& shared, const pxpl5::HardwareParams& hw,
+                      bool& stereo, pxpl5::Workload& workload);
 
 /// Connects a pxpl5 engine to a run: host samples in, images to the recorder
 /// and display, stage intervals to the timeline, named samples to figures.
@@ -39,9 +40,9 @@ class Pxpl5Wiring {
   pxpl5::EngineHooks hooks();
   /// Remembers a sample the host delivered and returns its token.
   int64_t remember(const tracker::TrackerSample& sample);
-  /// Writes the collected distributions and the given counts into `figures`.
-  void add_figures(nlohmann::json& figures, const pxpl5::Utilisation& utilisation, int64_t missed_fields,
-                   int64_t torn_fields, int64_t frames_completed) const;
+  /// Reports the collected distributions and the given counts to the recorder.
+  void report(const pxpl5::Utilisation& utilisation, int64_t missed_fields, int64_t torn_fields,
+              int64_t frames_completed) const;
 
  private:
   void present(const pxpl5::FrameReady& frame);

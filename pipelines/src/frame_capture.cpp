@@ -9,51 +9,14 @@
 #include <vector>
 
 #include "latsim/pipelines/latency_recorder.hpp"
+#include "latsim/pipelines/run_files.hpp"
 #include "latsim/renderer/camera.hpp"
 #include "latsim/renderer/image_ops.hpp"
-#include "latsim/renderer/obj_loader.hpp"
-#include "latsim/renderer/png_writer.hpp"
 #include "latsim/renderer/ray_caster.hpp"
-#include "latsim/renderer/scene_generators.hpp"
 
 namespace latsim::pipelines {
 
 namespace {
-
-/// What /scene asks to be ray-cast: read while the run is built (so unknown
-/// keys are caught up front), loaded only when the first field is cast.
-struct SceneSpec {
-  std::string type = "gallery";
-  std::filesystem::path file;
-  renderer::GalleryParams gallery;
-};
-
-SceneSpec read_scene(const scenario::ConfigNode* node) {
-  SceneSpec s;
-  if (node == nullptr) return s;
-  // The same default and the same gallery keys as the address recalculation
-  // pipelines, because /scene is one object shared by every reader.
-  s.type = node->choice("type", "gallery", {"gallery", "room", "test_pattern", "obj"});
-  if (s.type == "obj") {
-    s.file = node->has("path") && !node->has("file") ? node->path("path") : node->path("file");
-  } else if (s.type == "gallery") {
-    renderer::GalleryParams& p = s.gallery;
-    p.size_x_m = node->positive("size_x_m", p.size_x_m);
-    p.size_z_m = node->positive("size_z_m", p.size_z_m);
-    p.height_m = node->positive("height_m", p.height_m);
-    p.partition_count = static_cast<int>(node->integer("partition_count", p.partition_count, 0, 64));
-    p.frames_per_wall = static_cast<int>(node->integer("frames_per_wall", p.frames_per_wall, 0, 64));
-    p.tile_m = node->positive("tile_m", p.tile_m);
-  }
-  return s;
-}
-
-renderer::Scene load_scene(const SceneSpec& s) {
-  if (s.type == "test_pattern") return renderer::make_test_pattern();
-  if (s.type == "room") return renderer::make_room();
-  if (s.type == "obj") return renderer::load_obj(s.file);
-  return renderer::make_gallery(s.gallery);
-}
 
 renderer::EyePose to_eye(const tracker::Pose& p) { return renderer::EyePose{p.position_m, p.orientation}; }
 
@@ -86,7 +49,7 @@ std::string capture_name(int64_t index, const char* what) {
 
 struct FrameCapture::Impl {
   FrameCaptureInputs in;
-  SceneSpec scene_spec;
+  renderer::SceneSpec scene_spec;
   std::set<int64_t> at_fields;
   int64_t every_nth = 0;
   int64_t max_captures = 20;
@@ -106,7 +69,7 @@ struct FrameCapture::Impl {
   renderer::Frame displayed;
   renderer::Frame truth;
   std::vector<float> age_ms;
-  nlohmann::json entries = nlohmann::json::array();
+  int64_t entries = 0;
   double error_sum = 0.0;
 
   explicit Impl(FrameCaptureInputs inputs) : in(std::move(inputs)) {}
@@ -163,7 +126,7 @@ struct FrameCapture::Impl {
 
   void ensure_renderer() {
     if (caster) return;
-    caster.emplace(load_scene(scene_spec));
+    caster.emplace(renderer::make_scene(scene_spec));
     ++casters_built;
     camera.emplace(in.hfov_deg, width(), height());
     displayed = renderer::Frame::cleared(width(), height(), background);
@@ -293,14 +256,15 @@ struct FrameCapture::Impl {
   void write_capture(const Collection& c) {
     const double error = renderer::image_error(displayed.colour, truth.colour);
     error_sum += error;
-    nlohmann::json files = nlohmann::json::array();
-    if (!in.out_dir.empty()) {
-      const std::filesystem::path dir = in.out_dir / "frames";
-      std::filesystem::create_directories(dir);
+    LatencyRecorder& r = in.recorder;
+    const std::string at = "frames." + std::to_string(entries++) + ".";
+    r.list(at + "files");
+    if (in.files.enabled()) {
+      int file = 0;
       const auto write = [&](const char* what, const renderer::ImageRGB& image) {
-        const std::string name = capture_name(c.capture_index, what);
-        renderer::write_png(dir / name, image);
-        files.push_back("frames/" + name);
+        const std::string name = "frames/" + capture_name(c.capture_index, what);
+        in.files.write_png(name, image);
+        r.set(at + "files." + std::to_string(file++), name);
       };
       write("displayed", displayed.colour);
       write("truth", truth.colour);
@@ -310,36 +274,26 @@ struct FrameCapture::Impl {
     float max_age = 0.0f;
     for (float a : age_ms)
       if (!std::isnan(a) && a > max_age) max_age = a;
-    entries.push_back({{"index", c.capture_index},
-                       {"field", c.field},
-                       {"t_ms", in.timing.field_start(c.field).to_ms()},
-                       {"image_error", error},
-                       {"max_pixel_age_ms", max_age},
-                       {"files", files}});
+    r.set(at + "index", c.capture_index);
+    r.set(at + "field", c.field);
+    r.set(at + "t_ms", in.timing.field_start(c.field).to_ms());
+    r.set(at + "image_error", error);
+    r.set(at + "max_pixel_age_ms", static_cast<double>(max_age));
   }
 };
 
-FrameCapture::FrameCapture(const scenario::ConfigNode& frames, const scenario::ConfigNode* scene,
-                           FrameCaptureInputs inputs)
+FrameCapture::FrameCapture(const params::FramesParams& frames, renderer::SceneSpec scene, FrameCaptureInputs inputs)
     : impl_(std::make_unique<Impl>(std::move(inputs))) {
   Impl& m = *impl_;
-  for (double t : frames.numbers("at_s", {})) {
-    if (!(t >= 0.0) || t > 1e6) frames.fail("at_s", "capture times must lie in [0, 1e6] seconds");
-    m.at_fields.insert(m.in.timing.field_at_or_after(des::Time::from_seconds(t)));
-  }
-  m.every_nth = frames.integer("every_nth_refresh", 0, 0, int64_t{1} << 40);
-  m.max_captures = frames.integer("max_captures", 20, 0, 100000);
-  m.eye = static_cast<int>(frames.integer("eye", 0, 0, 1));
-  if (m.eye == 1 && !m.in.stereo) frames.fail("eye", "eye 1 exists only on a stereo display (/host/stereo)");
-  m.threads = static_cast<int>(frames.integer("threads", 1, 1, 256));
-  const std::vector<double> bg = frames.numbers("background", {0.0, 0.0, 0.0});
-  if (bg.size() != 3) frames.fail("background", "expected a linear colour [r, g, b]");
-  m.background = glm::vec3(static_cast<float>(bg[0]), static_cast<float>(bg[1]), static_cast<float>(bg[2]));
-  m.diff_gain = static_cast<float>(frames.positive("diff_gain", 4.0));
-  m.age_scale_ms = static_cast<float>(frames.positive("age_scale_ms", 100.0));
-  if (m.at_fields.empty() && m.every_nth == 0)
-    frames.fail("at_s", "say which fields to capture: \"at_s\": [seconds, ...] and/or \"every_nth_refresh\": N");
-  m.scene_spec = read_scene(scene);
+  for (double t : frames.at_s) m.at_fields.insert(m.in.timing.field_at_or_after(des::Time::from_seconds(t)));
+  m.every_nth = frames.every_nth_refresh;
+  m.max_captures = frames.max_captures;
+  m.eye = frames.eye;
+  m.threads = frames.threads;
+  m.background = frames.background;
+  m.diff_gain = static_cast<float>(frames.diff_gain);
+  m.age_scale_ms = static_cast<float>(frames.age_scale_ms);
+  m.scene_spec = std::move(scene);
 }
 
 FrameCapture::~FrameCapture() = default;
@@ -363,30 +317,17 @@ void FrameCapture::on_scanout(const display::ScanoutSpan& span) {
   m.collect(span);
 }
 
-void FrameCapture::finish(nlohmann::json& figures) {
+void FrameCapture::finish() {
   Impl& m = *impl_;
   if (m.current) {
     const Collection done = std::move(*m.current);
     m.current.reset();
     m.process(done);
   }
-  figures["frames"] = m.entries;
-  figures["frames_mean_image_error"] = m.entries.empty() ? 0.0 : m.error_sum / static_cast<double>(m.entries.size());
+  m.in.recorder.list("frames");
+  m.in.recorder.set("frames_mean_image_error", m.entries == 0 ? 0.0 : m.error_sum / static_cast<double>(m.entries));
 }
 
 int64_t FrameCapture::renderers_built() const { return impl_->casters_built; }
-
-std::unique_ptr<FrameCapture> make_frame_capture(const scenario::ConfigNode& frames, const scenario::ConfigNode& root,
-                                                 FrameCaptureInputs inputs) {
-  // "enabled": false keeps a scenario's capture settings but casts nothing
-  // (the speed of a run without frames is measured that way).
-  const std::optional<scenario::ConfigNode> scene = root.optional_child("scene");
-  if (!frames.boolean("enabled", true)) {
-    frames.mark_all_read();
-    (void)read_scene(scene ? &*scene : nullptr);  // its keys stay known, nothing is loaded
-    return nullptr;
-  }
-  return std::make_unique<FrameCapture>(frames, scene ? &*scene : nullptr, std::move(inputs));
-}
 
 }  // namespace latsim::pipelines

@@ -1,38 +1,45 @@
 #include <stdexcept>
 
-#include "latsim/pipelines/arp.hpp"
-#include "latsim/pipelines/double_buffer.hpp"
 #include "latsim/pipelines/latency_recorder.hpp"
-#include "latsim/pipelines/pxpl5.hpp"
-#include "latsim/pipelines/frameless.hpp"
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/pipelines/timeline.hpp"
 
 namespace latsim::pipelines {
 
-void PipelineRegistry::add(std::string name, Factory factory) {
-  if (!factories_.emplace(name, std::move(factory)).second)
+// The pipelines latsim ships. Each is defined in its own folder under
+// pipelines/ by a function that names it, declares its /pipeline keys and
+// builds it; adding a pipeline adds its folder and one line here.
+PipelineEntry double_buffer_pipeline();
+PipelineEntry frameless_pipeline();
+PipelineEntry pxpl5_rc_pipeline();
+PipelineEntry pxpl5_slats_pipeline();
+PipelineEntry arp_pipeline();
+PipelineEntry priority_pipeline();
+PipelineEntry region_priority_pipeline();
+
+PipelineRegistry builtin_pipelines() {
+  PipelineRegistry r;
+  for (auto* entry : {double_buffer_pipeline, frameless_pipeline, pxpl5_rc_pipeline, pxpl5_slats_pipeline,
+                      arp_pipeline, priority_pipeline, region_priority_pipeline})
+    r.add(entry());
+  return r;
+}
+
+void PipelineRegistry::add(PipelineEntry entry) {
+  const std::string name = entry.name;
+  if (!entries_.emplace(name, std::move(entry)).second)
     throw std::logic_error("pipeline \"" + name + "\" registered twice");
 }
 
-std::unique_ptr<Pipeline> PipelineRegistry::create(const std::string& name) const {
-  auto it = factories_.find(name);
-  return it == factories_.end() ? nullptr : it->second();
+const PipelineEntry* PipelineRegistry::find(const std::string& name) const {
+  auto it = entries_.find(name);
+  return it == entries_.end() ? nullptr : &it->second;
 }
 
 std::vector<std::string> PipelineRegistry::names() const {
   std::vector<std::string> out;
-  for (const auto& [name, f] : factories_) out.push_back(name);
+  for (const auto& [name, e] : entries_) out.push_back(name);
   return out;
-}
-
-PipelineRegistry builtin_pipelines() {
-  PipelineRegistry r;
-  r.add("double_buffer", make_double_buffer_pipeline);
-  register_pxpl5_pipelines(r);
-  register_arp_pipelines(r);
-  r.add("frameless", make_frameless_pipeline);
-  return r;
 }
 
 tracker::Pose RunContext::eye_pose(const tracker::TrackerSample& s, int eye) const {

@@ -10,24 +10,28 @@ RenderCost::RenderCost(Params params, int64_t primitives, int64_t covered_pixels
   nominal_ = des::Time::from_ms(ms);
 }
 
-RenderCost RenderCost::from_config(const scenario::ConfigNode& render, const scenario::ConfigNode* scene,
-                                   int width_px, int height_px, int eyes) {
-  Params p;
-  p.fixed_ms = render.non_negative("fixed_ms", 0.0);
-  p.per_primitive_us = render.non_negative("per_primitive_us", 0.0);
-  p.per_pixel_ns = render.non_negative("per_pixel_ns", 0.0);
-  const std::string v = render.choice("variation", "none", {"none", "uniform", "normal"});
-  p.variation = v == "none" ? Variation::None : v == "uniform" ? Variation::Uniform : Variation::Normal;
-  p.variation_fraction = render.number_in("variation_fraction", 0.0, 0.0, 1.0);
-  int64_t triangles = 0;
-  double coverage = 1.0;
-  if (scene) {
-    triangles = scene->integer("triangles", 0, 0, int64_t{1} << 40);
-    coverage = scene->number_in("coverage", 1.0, 0.0, 1.0);
-  }
+RenderCost RenderCost::for_scene(const Params& params, const params::SceneParams* scene, int width_px, int height_px,
+                                 int eyes) {
+  const int64_t triangles = scene ? scene->triangles : 0;
+  const double coverage = scene ? scene->coverage : 1.0;
   // Both eyes are rendered per frame in stereo.
   const int64_t pixels = static_cast<int64_t>(coverage * width_px * height_px) * eyes;
-  return RenderCost(p, triangles * eyes, pixels);
+  return RenderCost(params, triangles * eyes, pixels);
+}
+
+void bind(scenario::Section& s, RenderCost::Params& p) {
+  s.doc("Frame time = fixed + per primitive × triangles + per covered pixel × covered pixels (both eyes in stereo), "
+        "from /scene's `triangles` and `coverage`, optionally varied per frame.");
+  s.number("fixed_ms", p.fixed_ms, {.unit = "ms", .min = 0.0, .doc = "fixed time per frame"});
+  s.number("per_primitive_us", p.per_primitive_us, {.unit = "us", .min = 0.0, .doc = "time per triangle"});
+  s.number("per_pixel_ns", p.per_pixel_ns, {.unit = "ns", .min = 0.0, .doc = "time per covered pixel"});
+  s.choice("variation", p.variation,
+           {{"none", RenderCost::Variation::None},
+            {"uniform", RenderCost::Variation::Uniform},
+            {"normal", RenderCost::Variation::Normal}},
+           {.doc = "random factor per frame"});
+  s.number("variation_fraction", p.variation_fraction,
+           {.min = 0.0, .max = 1.0, .doc = "uniform: ±fraction; normal: standard deviation as a fraction"});
 }
 
 des::Time RenderCost::frame_time(des::RandomStream& stream) const {

@@ -1,21 +1,19 @@
 #include "latsim/pipelines/runner.hpp"
 
 #include <sys/resource.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 
 #include "latsim/des/simulator.hpp"
-#include "latsim/display/config.hpp"
+#include "latsim/params/shared.hpp"
 #include "latsim/pipelines/frame_capture.hpp"
 #include "latsim/pipelines/latency_recorder.hpp"
 #include "latsim/pipelines/timeline.hpp"
 #include "latsim/pipelines/tracker_host.hpp"
-#include "latsim/tracker/config.hpp"
+#include "latsim/tracker/params.hpp"
 
 namespace latsim::pipelines {
 
@@ -38,17 +36,6 @@ ProbeSet default_probes(const tracker::Pose& start, double hfov_deg) {
   return p;
 }
 
-Json distribution_json(const des::Distribution& d) {
-  const auto s = d.summary();
-  Json j{{"count", s.count}, {"mean", s.mean}, {"stddev", s.stddev}, {"min", s.min}, {"p50", s.p50},
-         {"p90", s.p90},     {"p99", s.p99},   {"p999", s.p999},     {"max", s.max}};
-  Json h = Json::array();
-  if (s.count > 0)
-    for (const auto& [edge, count] : d.plot_histogram(50)) h.push_back({edge, count});
-  j["histogram"] = h;
-  return j;
-}
-
 double peak_rss_mb() {
   rusage ru{};
   getrusage(RUSAGE_SELF, &ru);
@@ -61,117 +48,110 @@ std::string hex64(uint64_t v) {
   return buf;
 }
 
+/// Declares (reading mode: reads) the whole scenario: the shared sections,
+/// then /pipeline through the declaration of the pipeline its "type" names.
+PipelineFactory bind_scenario(scenario::Section& root, params::SharedParams& shared, const PipelineRegistry& registry) {
+  params::bind(root, shared);
+  PipelineFactory factory;
+  std::vector<scenario::ModeDecl> modes;
+  for (const auto& [name, entry] : registry.entries())
+    modes.push_back({name, entry.doc, [&factory, &shared, &entry](scenario::Section& p) { factory = entry.bind(p, shared); }});
+  int unused = 0;
+  root.object("pipeline", unused,
+              [&modes](scenario::Section& p, int&) {
+                p.doc("The display strategy: which pose each image is computed from, when it is ready, and when it "
+                      "goes into a front buffer. `type` selects the pipeline; each reads its own keys.");
+                p.modes("type", "", modes, {.doc = "which pipeline"});
+              },
+              {.required = true, .doc = "the display strategy"});
+  return factory;
+}
+
 /// Everything one run builds from its scenario.
 struct Run {
   des::Simulator sim;
+  params::SharedParams shared;
+  std::vector<std::string> input_warnings;
   std::unique_ptr<tracker::MotionSource> motion;
   std::unique_ptr<tracker::Tracker> tracker;
   std::unique_ptr<tracker::Transport> transport;
   std::unique_ptr<TrackerHost> host;
-  display::DisplayConfig display_config;
   std::unique_ptr<display::Display> display;
   std::unique_ptr<LatencyRecorder> recorder;
   std::unique_ptr<FrameCapture> frames;  // only when the scenario asks for frames
+  RunFiles files;
   Timeline timeline;
   std::unique_ptr<Pipeline> pipeline;
   std::unique_ptr<RunContext> ctx;
   uint64_t seed = 1;
   des::Time duration;
-  bool keep_timeline = true;
-  int64_t timeline_max_entries = 200000;
 };
 
-// Builds every model and lets the pipeline schedule its first events; reads
-// every key it knows, so unknown keys can be reported before anything runs.
+ProbeSet probes_of(const Run& run) {
+  const double hfov_deg = run.shared.display.hfov_deg;
+  if (!run.shared.probes) return default_probes(run.motion->pose_at(des::Time::zero()), hfov_deg);
+  return ProbeSet{run.shared.probes->points_m, hfov_deg};
+}
+
+// Reads every key first, so bad and unknown keys are reported before
+// anything is built; then builds every model and lets the pipeline schedule
+// its first events.
 void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& options) {
-  const scenario::ConfigNode root = doc.root();
-  root.string("description", "");
-  const double duration_s = root.positive("duration_s", 10.0);
-  if (duration_s > 1e6) root.fail("duration_s", "must be at most 1e6 s (int64 picoseconds cover about 9.2e6 s)");
-  run.duration = des::Time::from_seconds(duration_s);
-  const int64_t seed = root.integer("seed", 1, 0, INT64_MAX);
-  run.seed = options.seed ? *options.seed : static_cast<uint64_t>(seed);
+  const PipelineRegistry registry = builtin_pipelines();
+  scenario::Section root(doc.root());
+  const PipelineFactory make_pipeline = bind_scenario(root, run.shared, registry);
+  const scenario::ObjectSchema schema = scenario_schema();
+  doc.check_unknown_keys(&schema, &run.input_warnings);
 
-  run.motion = tracker::make_motion(root.child("motion"));
-  const tracker::TrackerParams tp = tracker::parse_tracker(root.child("tracker"));
-  run.tracker = std::make_unique<tracker::Tracker>(tp, *run.motion,
+  const params::SharedParams& p = run.shared;
+  run.duration = des::Time::from_seconds(p.duration_s);
+  run.seed = options.seed ? *options.seed : static_cast<uint64_t>(p.seed);
+  run.motion = tracker::make_motion(p.motion);
+  run.tracker = std::make_unique<tracker::Tracker>(p.tracker, *run.motion,
                                                    des::RandomStream(run.seed, "tracker", options.replication));
-  if (auto t = root.optional_child("transport")) run.transport = tracker::make_transport(*t);
-  else run.transport = std::make_unique<tracker::DirectLink>();
+  run.transport = tracker::make_transport(p.transport);
   run.host = std::make_unique<TrackerHost>(run.sim, *run.tracker, *run.transport);
-
-  bool stereo = false;
-  double ipd_m = 0.064;
-  if (auto h = root.optional_child("host")) {
-    stereo = h->boolean("stereo", false);
-    ipd_m = h->number_in("ipd_m", 0.064, 0.0, 1.0);
-  }
-  run.display_config = display::parse_display(root.child("display"));
-  run.display = std::make_unique<display::Display>(run.sim, display::RasterTiming(run.display_config.raster),
-                                                   stereo ? 2 : 1, run.display_config.fidelity,
-                                                   run.display_config.pixel_stride);
-
-  ProbeSet probes = default_probes(run.motion->pose_at(des::Time::zero()), run.display_config.hfov_deg);
-  bool keep_samples = false;
-  if (auto out = root.optional_child("output")) {
-    keep_samples = out->boolean("keep_samples", false);
-    run.keep_timeline = out->boolean("timeline", true);
-    run.timeline_max_entries = out->integer("timeline_max_entries", 200000, 0, int64_t{1} << 40);
-  }
-  if (auto pr = root.optional_child("probes")) {
-    probes.points_m.clear();
-    for (const auto& row : pr->number_rows("points_m")) {
-      if (row.size() != 3) pr->fail("points_m", "each probe point needs three coordinates [x, y, z]");
-      probes.points_m.emplace_back(row[0], row[1], row[2]);
-    }
-  }
+  const bool stereo = p.host.stereo;
+  run.display = std::make_unique<display::Display>(run.sim, display::RasterTiming(p.display.raster), stereo ? 2 : 1,
+                                                   p.display.fidelity, p.display.pixel_stride);
   run.recorder = std::make_unique<LatencyRecorder>(run.sim, *run.motion, *run.host, run.display->timing(),
-                                                   std::move(probes), ipd_m, stereo, keep_samples);
+                                                   probes_of(run), p.host.ipd_m, stereo, p.output.keep_samples);
+  for (const auto& w : run.input_warnings) run.recorder->warn(w);
   run.recorder->enable_ledger(options.write_ledger);
   run.recorder->enable_sample_log(options.write_samples);
   run.display->add_listener(run.recorder.get());
-  if (auto fr = root.optional_child("frames")) {
-    run.frames = make_frame_capture(*fr, root, FrameCaptureInputs{*run.recorder, *run.host, *run.motion,
-                                                                  run.display->timing(), run.display_config.hfov_deg,
-                                                                  ipd_m, stereo, options.out_dir});
-    if (run.frames) run.display->add_listener(run.frames.get());
+  run.files = RunFiles(options.out_dir);
+  if (p.frames && p.frames->enabled) {
+    run.frames = std::make_unique<FrameCapture>(
+        *p.frames, p.scene ? p.scene->geometry : renderer::SceneSpec{},
+        FrameCaptureInputs{*run.recorder, *run.host, *run.motion, run.display->timing(), p.display.hfov_deg,
+                           p.host.ipd_m, stereo, run.files});
+    run.display->add_listener(run.frames.get());
   }
   LatencyRecorder* rec = run.recorder.get();
   run.host->on_measured([rec](const tracker::TrackerSample& s, des::Time delivered) {
     rec->add("tracker_to_host_ms", (delivered - s.measured_at).to_ms());
   });
 
-  const scenario::ConfigNode pipeline_node = root.child("pipeline");
-  const PipelineRegistry registry = builtin_pipelines();
-  std::string names;
-  for (const auto& n : registry.names()) names += (names.empty() ? "" : ", ") + n;
-  const std::string type = pipeline_node.string("type");
-  run.pipeline = registry.create(type);
-  if (!run.pipeline) pipeline_node.fail("type", "unknown pipeline \"" + type + "\"; known: " + names);
-
-  run.ctx = std::unique_ptr<RunContext>(new RunContext{run.sim, root, pipeline_node, run.seed, options.replication,
-                                                       run.duration, *run.motion, *run.host, *run.display,
-                                                       *run.recorder, ipd_m, stereo,
-                                                       run.keep_timeline ? &run.timeline : nullptr, run.frames.get(),
-                                                       options.out_dir});
-  run.timeline.set_max_entries(static_cast<size_t>(run.timeline_max_entries));
+  run.pipeline = make_pipeline();
+  run.ctx = std::unique_ptr<RunContext>(new RunContext{
+      run.sim, run.seed, options.replication, run.duration, *run.motion, p.tracker, *run.transport, *run.host,
+      *run.display, p.display, p.scene ? &*p.scene : nullptr, *run.recorder, run.files, p.host.ipd_m, stereo,
+      p.output.timeline ? &run.timeline : nullptr, run.frames.get()});
+  run.timeline.set_max_entries(static_cast<size_t>(p.output.timeline_max_entries));
   run.pipeline->start(*run.ctx);
-  doc.check_unknown_keys();
 }
 
 Json figures_of(Run& run) {
-  Json f = Json::object();
-  for (const auto& [name, d] : run.recorder->distributions()) f[name] = distribution_json(d);
-  const double duration_s = run.duration.to_seconds();
-  const int64_t shown = run.recorder->counter("images_shown");
-  f["frame_rate_hz"] = static_cast<double>(shown) / run.display->eyes() / duration_s;
-  f["fields"] = run.display->fields_shown();
-  f["missed_refreshes"] = 0;
-  for (const auto& [name, v] : run.recorder->counters()) f["counts"][name] = v;
-  f["tracker_samples"] = run.host->samples_measured();
-  run.pipeline->finish(*run.ctx, f);
-  if (run.frames) run.frames->finish(f);
-  return f;
+  LatencyRecorder& rec = *run.recorder;
+  const int64_t shown = rec.counter("images_shown");
+  rec.set("frame_rate_hz", static_cast<double>(shown) / run.display->eyes() / run.duration.to_seconds());
+  rec.set("fields", run.display->fields_shown());
+  rec.set("missed_refreshes", int64_t{0});
+  rec.set("tracker_samples", run.host->samples_measured());
+  run.pipeline->finish(*run.ctx);
+  if (run.frames) run.frames->finish();
+  return rec.figures();
 }
 
 std::string csv_of_ledger(const std::vector<Json>& ledger) {
@@ -188,33 +168,44 @@ std::string csv_of_ledger(const std::vector<Json>& ledger) {
   return out.str();
 }
 
+std::string csv_of_samples(const std::vector<LatencyRecorder::LoggedSample>& samples) {
+  std::ostringstream s;
+  s << "t_ms,name,value\n";
+  char buf[96];
+  for (const auto& x : samples) {
+    std::snprintf(buf, sizeof buf, "%.6f,%s,%.9g\n", x.t_ms, x.name.c_str(), x.value);
+    s << buf;
+  }
+  return s.str();
+}
+
 }  // namespace
 
 std::string latsim_version() { return LATSIM_VERSION; }
 std::string latsim_git_revision() { return LATSIM_GIT_REVISION; }
 
-void write_file_atomically(const std::filesystem::path& file, const std::string& text) {
-  const std::filesystem::path tmp = file.string() + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error("cannot write " + tmp.string());
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
-    out.flush();
-    if (!out) throw std::runtime_error("error writing " + tmp.string());
-  }
-  std::filesystem::rename(tmp, file);
+scenario::ObjectSchema scenario_schema() {
+  scenario::ObjectSchema root;
+  scenario::Section s(root);
+  params::SharedParams shared;
+  (void)bind_scenario(s, shared, builtin_pipelines());
+  return root;
 }
 
-void validate_scenario(const scenario::ScenarioDocument& doc) {
+scenario::ScenarioDocument load_scenario(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  const scenario::ObjectSchema schema = scenario_schema();
+  return scenario::ScenarioDocument::load(file, overrides, &schema);
+}
+
+std::vector<std::string> validate_scenario(const scenario::ScenarioDocument& doc) {
   Run run;
   build(run, doc, RunOptions{});
+  return run.recorder->warnings();
 }
 
 Json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& options) {
   Run run;
   build(run, doc, options);
-  // The scenario is valid: from here on pipelines may write files of their own.
-  if (!options.out_dir.empty()) std::filesystem::create_directories(options.out_dir);
   run.sim.set_profiling(true);
   const auto t0 = std::chrono::steady_clock::now();
   run.host->start(run.duration);
@@ -235,6 +226,7 @@ Json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& optio
                      {"replication", options.replication},
                      {"scenario", doc.resolved()},
                      {"figures", figures},
+                     {"warnings", run.recorder->warnings()},
                      {"events", run.sim.events_executed()},
                      {"events_per_model", events_per_model},
                      {"fingerprint", hex64(run.sim.fingerprint())}};
@@ -246,26 +238,17 @@ Json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& optio
   summary["peak_rss_mb"] = peak_rss_mb();
   if (!run.timeline.entries().empty()) summary["timeline_entries"] = run.timeline.entries().size();
 
-  if (!options.out_dir.empty()) {
-    std::filesystem::create_directories(options.out_dir);
+  RunFiles& files = run.files;
+  if (files.enabled()) {
     if (!run.timeline.entries().empty()) {
-      run.timeline.write_csv(options.out_dir / "timeline.csv");
-      run.timeline.write_trace_json(options.out_dir / "timeline.json");
+      files.write_text("timeline.csv", run.timeline.csv());
+      files.write_text("timeline.json", run.timeline.trace_json());
     }
-    if (options.write_ledger) write_file_atomically(options.out_dir / "frames.csv", csv_of_ledger(run.recorder->ledger()));
-    if (options.write_samples) {
-      std::ostringstream s;
-      s << "t_ms,name,value\n";
-      char buf[96];
-      for (const auto& x : run.recorder->sample_log()) {
-        std::snprintf(buf, sizeof buf, "%.6f,%s,%.9g\n", x.t_ms, x.name.c_str(), x.value);
-        s << buf;
-      }
-      write_file_atomically(options.out_dir / "samples.csv", s.str());
-    }
-    write_file_atomically(options.out_dir / "figures.json", deterministic.dump(2) + "\n");
+    if (options.write_ledger) files.write_text("frames.csv", csv_of_ledger(run.recorder->ledger()));
+    if (options.write_samples) files.write_text("samples.csv", csv_of_samples(run.recorder->sample_log()));
+    files.write_text("figures.json", deterministic.dump(2) + "\n");
     // Written last: a run directory is complete exactly when summary.json exists.
-    write_file_atomically(options.out_dir / "summary.json", summary.dump(2) + "\n");
+    files.write_text("summary.json", summary.dump(2) + "\n");
   }
   return summary;
 }

@@ -6,7 +6,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "latsim/pipelines/runner.hpp"
 
 namespace latsim::pipelines {
 
@@ -52,16 +51,16 @@ uint64_t Timeline::fingerprint() const {
   return h;
 }
 
-void Timeline::write_csv(const std::filesystem::path& file) const {
+std::string Timeline::csv() const {
   std::ostringstream out;
   out << "stage,frame,eye,unit,start_ms,end_ms\n";
   for (const auto& e : entries_)
     out << e.stage << ',' << e.frame << ',' << e.eye << ',' << e.unit << ',' << ms_text(e.start) << ','
         << ms_text(e.end) << '\n';
-  write_file_atomically(file, out.str());
+  return out.str();
 }
 
-void Timeline::write_trace_json(const std::filesystem::path& file) const {
+std::string Timeline::trace_json() const {
   // Chrome trace-event format: one complete ("X") event per stage interval,
   // one thread per unit, timestamps in microseconds.
   std::map<std::string, int> tids;
@@ -83,7 +82,7 @@ void Timeline::write_trace_json(const std::filesystem::path& file) const {
                       {"args", {{"frame", e.frame}, {"eye", e.eye}}}});
   }
   nlohmann::json doc{{"traceEvents", events}, {"displayTimeUnit", "ms"}};
-  write_file_atomically(file, doc.dump() + "\n");
+  return doc.dump() + "\n";
 }
 
 }  // namespace latsim::pipelines

@@ -1,5 +1,7 @@
 #include "latsim/scenario/config.hpp"
 
+#include "latsim/scenario/schema.hpp"
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -246,7 +248,7 @@ des::RationalSeconds ConfigNode::rate_as_period(std::string_view key, std::strin
   Json v;
   if (!has(key)) {
     // Defaults are written as strings so that exact rationals survive.
-    v = def_hz.find('/') == std::string::npos ? Json(std::stod(def_hz)) : Json(def_hz);
+    v = def_hz.find('/') == std::string::npos ? Json(std::stoll(def_hz)) : Json(def_hz);
     record_default(key, v);
   } else {
     v = require(key);
@@ -383,7 +385,7 @@ Json load_with_includes(const std::filesystem::path& file, std::vector<std::file
 
 }  // namespace
 
-void apply_override(Json& doc, const std::string& assignment) {
+void apply_override(Json& doc, const std::string& assignment, const ObjectSchema* schema) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || assignment.empty() || assignment[0] != '/')
     throw ScenarioError("", "override \"" + assignment + "\" must look like /json/pointer=value");
@@ -397,18 +399,25 @@ void apply_override(Json& doc, const std::string& assignment) {
   }
   try {
     Json::json_pointer p(ptr);
-    if (!p.parent_pointer().empty() && !doc.contains(p.parent_pointer()))
-      throw ScenarioError(ptr, "override target's parent does not exist in the scenario");
+    if (!p.parent_pointer().empty() && !doc.contains(p.parent_pointer())) {
+      // Every missing ancestor must be an object the schema declares.
+      for (Json::json_pointer q = p.parent_pointer(); !q.empty() && !doc.contains(q); q = q.parent_pointer()) {
+        const KeySchema* k = schema ? schema->key_at(q.to_string()) : nullptr;
+        if (!k || k->type != "object")
+          throw ScenarioError(ptr, "override target's parent does not exist in the scenario");
+      }
+    }
     doc[p] = std::move(value);
   } catch (const Json::exception& e) {
     throw ScenarioError(ptr, std::string("cannot apply override: ") + e.what());
   }
 }
 
-ScenarioDocument ScenarioDocument::load(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+ScenarioDocument ScenarioDocument::load(const std::filesystem::path& file, const std::vector<std::string>& overrides,
+                                        const ObjectSchema* schema) {
   std::vector<std::filesystem::path> chain;
   Json doc = load_with_includes(file, chain);
-  for (const auto& o : overrides) apply_override(doc, o);
+  for (const auto& o : overrides) apply_override(doc, o, schema);
   auto dir = file.parent_path();
   if (dir.empty()) dir = ".";
   return from_json(std::move(doc), dir);
@@ -426,7 +435,7 @@ ScenarioDocument ScenarioDocument::from_json(Json doc, std::filesystem::path bas
 
 ConfigNode ScenarioDocument::root() const { return ConfigNode(&doc_, "", log_); }
 
-void ScenarioDocument::check_unknown_keys() const {
+void ScenarioDocument::check_unknown_keys(const ObjectSchema* schema, std::vector<std::string>* warnings) const {
   // Depth-first in document order, so the first problem reported is stable.
   std::vector<std::pair<const Json*, std::string>> stack{{&doc_, ""}};
   while (!stack.empty()) {
@@ -439,14 +448,26 @@ void ScenarioDocument::check_unknown_keys() const {
       for (size_t i = 0; i < n->size(); ++i)
         if ((*n)[i].is_object()) kids.emplace_back(&(*n)[i], join_pointer(p, std::to_string(i)));
     }
+    std::vector<std::pair<const Json*, std::string>> read;
     for (auto& k : kids) {
-      if (!log_->read_pointers.count(k.second)) {
-        const bool array_elem = n->is_array();
-        throw ScenarioError(k.second, array_elem ? "entry was not used by the scenario"
-                                                 : "unknown key (check its spelling, or remove it: nothing reads it)");
+      if (log_->read_pointers.count(k.second)) {
+        read.push_back(k);
+        continue;
       }
+      const bool array_elem = n->is_array();
+      const KeySchema* declared = schema && !array_elem ? schema->key_at(k.second) : nullptr;
+      if (declared) {
+        std::string when;
+        for (const auto& m : declared->modes) when += (when.empty() ? "" : "; or ") + m;
+        if (warnings)
+          warnings->push_back(k.second + ": ignored: " +
+                              (when.empty() ? std::string("not read by this scenario") : "read only when " + when));
+        continue;
+      }
+      throw ScenarioError(k.second, array_elem ? "entry was not used by the scenario"
+                                               : "unknown key (check its spelling, or remove it: nothing reads it)");
     }
-    for (auto it = kids.rbegin(); it != kids.rend(); ++it) stack.push_back(*it);
+    for (auto it = read.rbegin(); it != read.rend(); ++it) stack.push_back(*it);
   }
 }
 

@@ -6,10 +6,10 @@
 
 #include "latsim/des/simulator.hpp"
 #include "latsim/display/display.hpp"
-#include "latsim/pipelines/arp.hpp"
 #include "latsim/pipelines/latency_recorder.hpp"
+#include "latsim/pipelines/run_files.hpp"
 #include "latsim/pipelines/tracker_host.hpp"
-#include "latsim/scenario/config.hpp"
+#include "latsim/scenario/params.hpp"
 #include "latsim/tracker/motion_source.hpp"
 #include "latsim/tracker/tracker.hpp"
 #include "latsim/tracker/transport.hpp"
@@ -30,19 +30,32 @@ struct Harness {
     display.add_listener(&recorder);
   }
 
-  nlohmann::json run(std::unique_ptr<pipelines::Pipeline> pipeline, des::Time duration) {
-    pipelines::RunContext ctx{sim, doc.root(), doc.root().child("pipeline"), 1, 0, duration, *motion, host, display,
-                              recorder, 0.064, false, nullptr, nullptr, {}};
+  /// Builds the scenario's /pipeline through its registered declaration and runs it.
+  nlohmann::json run(des::Time duration) {
+    params::SharedParams shared;
+    if (doc.json().contains("scene")) {
+      shared.scene.emplace();
+      scenario::Section scene(doc.root().child("scene"));
+      params::bind(scene, *shared.scene);
+    }
+    if (doc.json().contains("display")) shared.display.hfov_deg = doc.json()["display"].value("hfov_deg", 90.0);
+    const std::string type = doc.json()["pipeline"]["type"];
+    scenario::Section section(doc.root().child("pipeline"));
+    const auto pipeline = pipelines::builtin_pipelines().find(type)->bind(section, shared)();
+    pipelines::RunContext ctx{sim,     1,        0,       duration, *motion,         tracker_params,
+                              link,    host,     display, shared.display, shared.scene ? &*shared.scene : nullptr,
+                              recorder, files,   0.064,   false,    nullptr,         nullptr};
     pipeline->start(ctx);
     host.start(duration);
     display.start(duration);
     sim.run_until(duration);
-    nlohmann::json figures = nlohmann::json::object();
-    pipeline->finish(ctx, figures);
-    return figures;
+    pipeline->finish(ctx);
+    return recorder.figures();
   }
 
   scenario::ScenarioDocument doc;
+  tracker::TrackerParams tracker_params;
+  pipelines::RunFiles files;
   des::Simulator sim;
   std::unique_ptr<tracker::MotionSource> motion;
   tracker::DirectLink link;
@@ -72,7 +85,7 @@ struct Latencies {
 
 Latencies run_arp(double rate_hz, std::unique_ptr<tracker::MotionSource> motion) {
   Harness h({{"pipeline", {{"type", "arp"}, {"render_rate_hz", rate_hz}, {"render_time_ms", 4.0}}}}, std::move(motion));
-  h.run(pipelines::make_arp_pipeline(), des::Time::s(2));
+  h.run(des::Time::s(2));
   return {h.recorder.distribution("rotation_latency_ms")->summary(),
           h.recorder.distribution("translation_latency_ms")->summary()};
 }
@@ -95,7 +108,7 @@ TEST_CASE("region priority pipeline reports memories, render load and tears on a
                              {"display", {{"hfov_deg", 90.0}}},
                              {"pipeline", {{"type", "region_priority"}, {"segmentation", true}, {"warping", false}}}};
   Harness h(scenario, yaw_and_walk());
-  const nlohmann::json f = h.run(pipelines::make_region_priority_pipeline(), des::Time::s(6));
+  const nlohmann::json f = h.run(des::Time::s(6));
   REQUIRE(f["memories"].size() == 4);
   CHECK(f["memories"][0]["update_rate_hz"].get<double>() > 50.0);
   CHECK(f["memories"][3]["update_rate_hz"].get<double>() < f["memories"][0]["update_rate_hz"].get<double>());
@@ -113,7 +126,7 @@ TEST_CASE("priority pipeline with a still user renders once") {
   tracker::Pose still;
   still.position_m = {0.0, 1.6, 0.0};
   Harness h(scenario, std::make_unique<tracker::StillMotion>(still));
-  const nlohmann::json f = h.run(pipelines::make_priority_pipeline(), des::Time::s(3));
+  const nlohmann::json f = h.run(des::Time::s(3));
   int64_t renders = 0;
   for (const auto& m : f["memories"]) renders += m["renders"].get<int64_t>();
   CHECK(renders == static_cast<int64_t>(f["memories"].size()));  // the first drawing of each memory, then nothing

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "frames_helpers.hpp"
-#include "latsim/pipelines/frameless.hpp"
+#include "frameless/frameless_order.hpp"
 
 using namespace latsim;
 using namespace latsim::frames_test;

@@ -7,25 +7,6 @@
 
 namespace latsim::pxpl5 {
 
-RcParams RcParams::read(const scenario::ConfigNode& p, bool stereo) {
-  RcParams r;
-  r.hw = HardwareParams::read(p);
-  r.stereo = stereo;
-  r.graphics_processors = static_cast<int>(p.integer("graphics_processors", r.graphics_processors, 2, 256));
-  r.send_time = des::Time::from_us(p.non_negative("send_us", 500.0));
-  r.send_words = static_cast<int>(p.integer("send_words", r.send_words, 0, 1 << 24));
-  r.edit_time = des::Time::from_us(p.non_negative("edit_us", 200.0));
-  r.transform_overhead = des::Time::from_us(p.non_negative("transform_overhead_us", 100.0));
-  r.transform_time_per_triangle = des::Time::from_us(p.non_negative("transform_us_per_triangle", 37.5));
-  r.binitize_time_per_bin = des::Time::from_us(p.non_negative("binitize_us_per_bin", 5.0));
-  r.token_hop_time = des::Time::from_us(p.non_negative("token_hop_us", 5.0));
-  r.region_shade_time = des::Time::from_us(p.non_negative("region_shade_us", 300.0));
-  r.end_of_frame_words = static_cast<int>(p.integer("end_of_frame_words", r.end_of_frame_words, 0, 1 << 20));
-  if (stereo && r.hw.frame_buffers < 2)
-    p.fail("frame_buffers", "stereo Rendering Control needs one frame buffer per eye (2)");
-  return r;
-}
-
 RcEngine::RcEngine(des::Simulator& sim, RcParams params, FieldTiming timing, RegionGrid grid,
                    const Workload& workload, des::RandomStream stream, EngineHooks hooks)
     : sim_(sim),

@@ -6,21 +6,6 @@
 
 namespace latsim::pxpl5 {
 
-SlatsParams SlatsParams::read(const scenario::ConfigNode& p, bool stereo) {
-  SlatsParams s;
-  s.hw = HardwareParams::read(p);
-  s.stereo = stereo;
-  s.gp_time_per_triangle = des::Time::from_us(p.non_negative("gp_us_per_triangle", 75.0));
-  s.gp_field_overhead = des::Time::from_us(p.non_negative("gp_field_overhead_us", 300.0));
-  s.region_finish_time = des::Time::from_us(p.non_negative("region_finish_us", 50.0));
-  s.host_compute_time = des::Time::from_us(p.non_negative("host_compute_us", 1000.0));
-  s.host_message_words = static_cast<int>(p.integer("host_message_words", s.host_message_words, 0, 1 << 20));
-  s.copy_optimisation = p.boolean("copy_optimisation", true);
-  s.backup_field = p.boolean("backup_field", false);
-  if (stereo && s.hw.frame_buffers < 2) p.fail("frame_buffers", "stereo Slats needs one frame buffer per eye (2)");
-  return s;
-}
-
 SlatsEngine::SlatsEngine(des::Simulator& sim, SlatsParams params, FieldTiming timing, RegionGrid grid,
                          int64_t triangles, EngineHooks hooks)
     : sim_(sim), p_(params), timing_(timing), grid_(grid), triangles_(triangles), hooks_(std::move(hooks)) {

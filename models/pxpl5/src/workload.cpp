@@ -6,13 +6,6 @@
 
 namespace latsim::pxpl5 {
 
-Workload Workload::read(const scenario::ConfigNode& scene) {
-  Workload w;
-  w.triangles = scene.integer("triangles", w.triangles, 0, 100'000'000);
-  w.regions_per_triangle = scene.number_in("regions_per_triangle", w.regions_per_triangle, 1.0, 1024.0);
-  return w;
-}
-
 BinCounts::BinCounts(int processors, int regions)
     : processors_(processors),
       regions_(regions),

@@ -8,17 +8,15 @@
 #pragma once
 
 #include <cstdint>
-#include <filesystem>
 #include <memory>
 #include <span>
-
-#include <nlohmann/json.hpp>
 
 #include "latsim/des/time.hpp"
 #include "latsim/display/display.hpp"
 #include "latsim/display/raster_timing.hpp"
+#include "latsim/params/shared.hpp"
 #include "latsim/pipelines/pipeline.hpp"
-#include "latsim/scenario/config.hpp"
+#include "latsim/renderer/scene_spec.hpp"
 #include "latsim/tracker/motion_source.hpp"
 
 namespace latsim::pipelines {
@@ -46,27 +44,25 @@ class PixelSource {
 
 /// Everything a capture needs from the run besides its configuration.
 struct FrameCaptureInputs {
-  const LatencyRecorder& recorder;        ///< image ids -> the pose each image was rendered from
+  LatencyRecorder& recorder;              ///< image ids -> the pose each image was rendered from; figures
   const HostFeed& host;                   ///< newest orientation for address-recalculation images
   const tracker::MotionSource& motion;    ///< the true head pose (ground truth)
   const display::RasterTiming& timing;    ///< rows and photon times
   double hfov_deg = 90.0;
   double ipd_m = 0.064;
   bool stereo = false;
-  std::filesystem::path out_dir;          ///< empty: cast and measure, write no files
+  RunFiles& files;                        ///< where the images go (or nowhere: cast and measure only)
 };
 
 /// Listens to scanout and, for each captured field of one eye, collects per
 /// row (or pixel span) the image shown and its photon time; when the field is
 /// complete it ray-casts the displayed image (persistent across fields, so an
 /// interlaced field shows only its rows and tears show), the truth, the
-/// enhanced difference and the pixel-age heat map into <out_dir>/frames/.
+/// enhanced difference and the pixel-age heat map into frames/ of the run.
 class FrameCapture final : public display::ScanoutListener {
  public:
-  /// Reads /frames (at_s, every_nth_refresh, max_captures, eye, threads,
-  /// background, diff_gain, age_scale_ms) and /scene (type, file, gallery
-  /// sizes); throws scenario::ScenarioError on bad values. Loads nothing yet.
-  FrameCapture(const scenario::ConfigNode& frames, const scenario::ConfigNode* scene, FrameCaptureInputs inputs);
+  /// Captures as `frames` says, of `scene`; loads nothing yet.
+  FrameCapture(const params::FramesParams& frames, renderer::SceneSpec scene, FrameCaptureInputs inputs);
   ~FrameCapture() override;
   FrameCapture(const FrameCapture&) = delete;
   FrameCapture& operator=(const FrameCapture&) = delete;
@@ -77,9 +73,9 @@ class FrameCapture final : public display::ScanoutListener {
   void on_field_start(int eye, int64_t field, des::Time retrace) override;
   void on_scanout(const display::ScanoutSpan& span) override;
 
-  /// Casts a field still being collected, then adds figures["frames"] (one
-  /// entry per capture) and figures["frames_mean_image_error"].
-  void finish(nlohmann::json& figures);
+  /// Casts a field still being collected, then reports the figures "frames"
+  /// (one entry per capture) and "frames_mean_image_error".
+  void finish();
 
   /// How many ray casters were built (0 until the first field is cast).
   int64_t renderers_built() const;
@@ -88,10 +84,5 @@ class FrameCapture final : public display::ScanoutListener {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
-
-/// The capture the runner registers with the display when /frames exists;
-/// nullptr when /frames/enabled is false.
-std::unique_ptr<FrameCapture> make_frame_capture(const scenario::ConfigNode& frames, const scenario::ConfigNode& root,
-                                                 FrameCaptureInputs inputs);
 
 }  // namespace latsim::pipelines

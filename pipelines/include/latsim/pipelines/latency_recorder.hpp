@@ -13,6 +13,7 @@
 #include "latsim/des/simulator.hpp"
 #include "latsim/des/stats.hpp"
 #include "latsim/display/display.hpp"
+#include "latsim/pipelines/figures.hpp"
 #include "latsim/pipelines/pipeline.hpp"
 
 namespace latsim::pipelines {
@@ -26,7 +27,8 @@ struct ProbeSet {
 /// Receives every scanout span, looks up the image shown, and records named
 /// distributions: motion_to_photon_ms, display_ms, render_latency_ms, image
 /// ages, and registration error at probe points. Pipelines add their own
-/// named samples through add().
+/// named samples through add(), counts through count(), other figures through
+/// set() and doubtful input through warn(); figures() is the run's figures.
 class LatencyRecorder : public display::ScanoutListener {
  public:
   LatencyRecorder(const des::Simulator& sim, const tracker::MotionSource& motion, const HostFeed& host,
@@ -47,6 +49,19 @@ class LatencyRecorder : public display::ScanoutListener {
   int64_t counter(const std::string& name) const;
   const std::map<std::string, des::Distribution>& distributions() const { return dists_; }
   const std::map<std::string, int64_t>& counters() const { return counters_; }
+
+  /// A named figure ("frames_rendered", "utilisation.gp", "memories.0.renders").
+  void set(const std::string& name, FigureValue value) { table_.set(name, std::move(value)); }
+  /// An empty list or object at `name` unless something is set there.
+  void list(const std::string& name) { table_.list(name); }
+  void object(const std::string& name) { table_.object(name); }
+  /// A distribution a model kept itself, reported under `name` like the recorder's own.
+  void publish(const std::string& name, const des::Distribution& d) { table_.publish(name, d); }
+  /// Legal but doubtful: reported on stderr and in summary.json's "warnings".
+  void warn(std::string text) { table_.warn(std::move(text)); }
+  const std::vector<std::string>& warnings() const { return table_.warnings(); }
+  /// Every figure in the one serialisation of figures.json.
+  nlohmann::json figures() const { return table_.to_json(dists_, counters_); }
 
   void on_field_start(int eye, int64_t field, des::Time retrace) override;
   void on_scanout(const display::ScanoutSpan& span) override;
@@ -96,6 +111,7 @@ class LatencyRecorder : public display::ScanoutListener {
   std::vector<nlohmann::json> ledger_;
   bool sample_log_on_ = false;
   std::vector<LoggedSample> sample_log_;
+  FigureTable table_;
 };
 
 }  // namespace latsim::pipelines

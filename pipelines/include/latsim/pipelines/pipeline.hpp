@@ -1,14 +1,14 @@
 // The pipeline interface: how a display strategy plugs into a latsim run.
 //
-// A run builds the shared models from the scenario (head motion, tracker,
-// transport, host mailbox, display, recorder) into a RunContext, asks the
-// registry for the pipeline named by /pipeline/type, calls start() to let it
-// schedule its events, runs the simulator, then calls finish() to let it add
-// its own figures. Pipelines present images to the display; the display and
-// the recorder turn what is lit into latency and registration figures.
+// A run reads the scenario's shared sections into typed parameters, builds
+// the shared models (head motion, tracker, transport, host mailbox, display,
+// recorder) into a RunContext, reads /pipeline through the registered
+// pipeline's own parameter declaration, calls start() to let it schedule its
+// events, runs the simulator, then calls finish() to let it report figures.
+// Pipelines present images to the display; the display and the recorder turn
+// what is lit into latency and registration figures.
 #pragma once
 
-#include <filesystem>
 #include <functional>
 #include <map>
 #include <memory>
@@ -16,12 +16,11 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "latsim/des/random.hpp"
 #include "latsim/des/simulator.hpp"
 #include "latsim/display/display.hpp"
-#include "latsim/scenario/config.hpp"
+#include "latsim/params/shared.hpp"
+#include "latsim/scenario/params.hpp"
 #include "latsim/tracker/host.hpp"
 #include "latsim/tracker/motion_source.hpp"
 #include "latsim/tracker/transport.hpp"
@@ -31,6 +30,7 @@ namespace latsim::pipelines {
 class LatencyRecorder;
 class Timeline;
 class FrameCapture;
+class RunFiles;
 
 /// One image a pipeline puts in a front buffer: the pose it was computed from
 /// and when each stage ran. Registered with the recorder before presenting.
@@ -63,23 +63,26 @@ class HostFeed {
   virtual void on_delivery(std::function<void(const tracker::TrackerSample&, des::Time)> fn) = 0;
 };
 
-/// Everything a pipeline may use during a run.
+/// Everything a pipeline may use during a run: the shared models and the
+/// parameters of the shared sections it may need, never the scenario itself.
 struct RunContext {
   des::Simulator& sim;
-  scenario::ConfigNode root;           ///< the whole scenario
-  scenario::ConfigNode pipeline;       ///< the /pipeline object (its "type" already read)
   uint64_t seed = 1;
   uint64_t replication = 0;
-  des::Time duration;                  ///< simulated time to run
-  const tracker::MotionSource& motion; ///< true head motion
+  des::Time duration;                          ///< simulated time to run
+  const tracker::MotionSource& motion;         ///< true head motion
+  const tracker::TrackerParams& tracker;       ///< how the head is sampled
+  const tracker::Transport& transport;         ///< the link from tracker to host
   HostFeed& host;
   display::Display& display;
-  LatencyRecorder& recorder;
+  const display::DisplayParams& display_params;
+  const params::SceneParams* scene;            ///< /scene, when the scenario has one
+  LatencyRecorder& recorder;                   ///< every figure and warning goes here
+  RunFiles& files;                             ///< every result file goes here
   double ipd_m = 0.064;
   bool stereo = false;
-  Timeline* timeline = nullptr;        ///< stage timeline, when the pipeline keeps one
-  FrameCapture* frames = nullptr;      ///< frame capture, only when the scenario asks for frames
-  std::filesystem::path out_dir;       ///< where result files go (already exists)
+  Timeline* timeline = nullptr;                ///< stage timeline, when the pipeline keeps one
+  FrameCapture* frames = nullptr;              ///< frame capture, only when the scenario asks for frames
 
   des::RandomStream stream(std::string_view name) const { return des::RandomStream(seed, name, replication); }
   /// The eye pose of a tracker sample (mono: the head pose).
@@ -99,23 +102,46 @@ struct RunContext {
 class Pipeline {
  public:
   virtual ~Pipeline() = default;
-  virtual std::string name() const = 0;
-  /// Reads its parameters from ctx.pipeline and schedules its first events.
+  /// Schedules the pipeline's first events (its parameters came with its construction).
   virtual void start(RunContext& ctx) = 0;
-  /// Adds pipeline-specific figures to the summary (e.g. missed fields).
-  virtual void finish(RunContext& /*ctx*/, nlohmann::json& /*figures*/) {}
+  /// Reports pipeline-specific figures to ctx.recorder (e.g. missed fields).
+  virtual void finish(RunContext& /*ctx*/) {}
 };
+
+/// Builds a pipeline from parameters already read.
+using PipelineFactory = std::function<std::unique_ptr<Pipeline>()>;
+
+/// One registered pipeline: its name, what it is, and the function that
+/// declares (and reads) its /pipeline keys and returns its factory.
+struct PipelineEntry {
+  std::string name;
+  std::string doc;
+  std::function<PipelineFactory(scenario::Section&, const params::SharedParams&)> bind;
+};
+
+/// The entry of a pipeline class P with a nested `Params` struct, a function
+/// `bind(scenario::Section&, P::Params&, const params::SharedParams&)` found by
+/// argument-dependent lookup, and a constructor from its Params.
+template <class P>
+PipelineEntry pipeline_entry(std::string name, std::string doc) {
+  return PipelineEntry{std::move(name), std::move(doc),
+                       [](scenario::Section& s, const params::SharedParams& shared) -> PipelineFactory {
+                         typename P::Params p{};
+                         bind(s, p, shared);
+                         return [p] { return std::make_unique<P>(p); };
+                       }};
+}
 
 /// Pipelines by name, as the scenario's /pipeline/type selects them.
 class PipelineRegistry {
  public:
-  using Factory = std::function<std::unique_ptr<Pipeline>()>;
-  void add(std::string name, Factory factory);
-  std::unique_ptr<Pipeline> create(const std::string& name) const;  // nullptr if unknown
+  void add(PipelineEntry entry);
+  const PipelineEntry* find(const std::string& name) const;
   std::vector<std::string> names() const;
+  const std::map<std::string, PipelineEntry>& entries() const { return entries_; }
 
  private:
-  std::map<std::string, Factory> factories_;
+  std::map<std::string, PipelineEntry> entries_;
 };
 
 /// The registry with every pipeline latsim ships.

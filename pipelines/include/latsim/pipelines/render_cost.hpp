@@ -3,7 +3,8 @@
 
 #include "latsim/des/random.hpp"
 #include "latsim/des/time.hpp"
-#include "latsim/scenario/config.hpp"
+#include "latsim/params/shared.hpp"
+#include "latsim/scenario/params.hpp"
 
 namespace latsim::pipelines {
 
@@ -22,10 +23,10 @@ class RenderCost {
 
   RenderCost() = default;
   RenderCost(Params params, int64_t primitives, int64_t covered_pixels);
-
-  /// Reads /pipeline/render (cost terms) and /scene (triangles, coverage).
-  static RenderCost from_config(const scenario::ConfigNode& render, const scenario::ConfigNode* scene,
-                                int width_px, int height_px, int eyes);
+  /// The cost of drawing the scene's triangles and coverage (none without a
+  /// scene) on a width x height display, both eyes per frame in stereo.
+  static RenderCost for_scene(const Params& params, const params::SceneParams* scene, int width_px, int height_px,
+                              int eyes);
 
   /// Duration of the next frame; draws from `stream` only when variation is on.
   des::Time frame_time(des::RandomStream& stream) const;
@@ -36,5 +37,8 @@ class RenderCost {
   Params params_;
   des::Time nominal_;
 };
+
+/// Declares the cost terms of a "render" object.
+void bind(scenario::Section& s, RenderCost::Params& p);
 
 }  // namespace latsim::pipelines

@@ -9,7 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "latsim/pipelines/run_files.hpp"
 #include "latsim/scenario/config.hpp"
+#include "latsim/scenario/schema.hpp"
 
 namespace latsim::pipelines {
 
@@ -29,11 +31,17 @@ struct RunOptions {
 /// before anything is written.
 nlohmann::json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& options);
 
-/// Parses and builds everything without running (for `latsim validate`).
-void validate_scenario(const scenario::ScenarioDocument& doc);
+/// Reads and builds everything without running (for `latsim validate`);
+/// returns the warnings about legal but doubtful input.
+std::vector<std::string> validate_scenario(const scenario::ScenarioDocument& doc);
 
-/// Writes text to `file` atomically: "<file>.tmp.<pid>", flushed, then renamed.
-void write_file_atomically(const std::filesystem::path& file, const std::string& text);
+/// Every key a scenario may hold, from the parameter declarations of the
+/// shared sections and of every registered pipeline.
+scenario::ObjectSchema scenario_schema();
+
+/// Loads a scenario file with overrides; an override may create an optional
+/// section the scenario left out ("--set /output/timeline=false").
+scenario::ScenarioDocument load_scenario(const std::filesystem::path& file, const std::vector<std::string>& overrides);
 
 /// latsim's version string and the git revision it was built from.
 std::string latsim_version();

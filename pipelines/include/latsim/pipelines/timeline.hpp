@@ -2,7 +2,6 @@
 #pragma once
 
 #include <cstdint>
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -30,8 +29,10 @@ class Timeline {
   const std::vector<Entry>& entries() const { return entries_; }
   /// Hash of all entries in order (for fingerprint tests).
   uint64_t fingerprint() const;
-  void write_csv(const std::filesystem::path& file) const;
-  void write_trace_json(const std::filesystem::path& file) const;
+  /// timeline.csv: one row per interval.
+  std::string csv() const;
+  /// timeline.json: Chrome trace events.
+  std::string trace_json() const;
 
  private:
   std::vector<Entry> entries_;

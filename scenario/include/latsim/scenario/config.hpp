@@ -18,6 +18,8 @@
 
 namespace latsim::scenario {
 
+struct ObjectSchema;
+
 /// Bad scenario input: names the JSON pointer of the problem.
 class ScenarioError : public std::runtime_error {
  public:
@@ -78,6 +80,7 @@ class ConfigNode {
   std::filesystem::path path(std::string_view key) const;
 
   [[noreturn]] void fail(std::string_view key, const std::string& message) const;
+  const std::shared_ptr<ReadLog>& log() const { return log_; }
   /// Raw access; marks nothing as read.
   const nlohmann::json& json() const { return *node_; }
   /// Marks this whole subtree as read (for free-form data a model consumes itself).
@@ -99,15 +102,19 @@ class ConfigNode {
 class ScenarioDocument {
  public:
   /// Loads `file`; `overrides` are "/json/pointer=value" strings (value parsed
-  /// as JSON, or taken as a string when it is not valid JSON).
-  static ScenarioDocument load(const std::filesystem::path& file,
-                               const std::vector<std::string>& overrides = {});
+  /// as JSON, or taken as a string when it is not valid JSON). With a schema,
+  /// an override may create an object the schema declares (an optional
+  /// section the scenario left out).
+  static ScenarioDocument load(const std::filesystem::path& file, const std::vector<std::string>& overrides = {},
+                               const ObjectSchema* schema = nullptr);
   static ScenarioDocument from_json(nlohmann::json doc, std::filesystem::path base_dir);
 
   ConfigNode root() const;
   const nlohmann::json& json() const { return doc_; }
-  /// Throws ScenarioError naming the first key (in document order) nobody read.
-  void check_unknown_keys() const;
+  /// Throws ScenarioError naming the first key (in document order) nobody
+  /// read. A key `schema` declares for its place (read in another mode of
+  /// its object) is not an error: it gets a line in `warnings` instead.
+  void check_unknown_keys(const ObjectSchema* schema = nullptr, std::vector<std::string>* warnings = nullptr) const;
   /// The scenario as run: input plus every default applied.
   const nlohmann::json& resolved() const { return log_->resolved; }
 
@@ -116,7 +123,8 @@ class ScenarioDocument {
   std::shared_ptr<ReadLog> log_;
 };
 
-/// Applies one "/pointer=value" override to a document.
-void apply_override(nlohmann::json& doc, const std::string& assignment);
+/// Applies one "/pointer=value" override to a document. A missing parent is
+/// an error, unless `schema` declares it as an object: then it is made.
+void apply_override(nlohmann::json& doc, const std::string& assignment, const ObjectSchema* schema = nullptr);
 
 }  // namespace latsim::scenario

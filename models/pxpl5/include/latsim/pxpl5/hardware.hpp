@@ -4,7 +4,6 @@
 #include <cstdint>
 
 #include "latsim/des/time.hpp"
-#include "latsim/scenario/config.hpp"
 
 namespace latsim::pxpl5 {
 
@@ -35,8 +34,6 @@ struct HardwareParams {
 
   /// Time for `words` to cross one ring channel.
   des::Time transfer_time(int64_t words) const;
-  /// Reads the keys both pipelines share from the /pipeline object.
-  static HardwareParams read(const scenario::ConfigNode& pipeline);
 };
 
 }  // namespace latsim::pxpl5

@@ -35,8 +35,6 @@ struct RcParams {
 
   int slaves() const { return graphics_processors - 1; }
   int eyes() const { return stereo ? 2 : 1; }
-  /// Reads the RC keys of /pipeline (the shared hardware keys included).
-  static RcParams read(const scenario::ConfigNode& pipeline, bool stereo);
 };
 
 /// Runs SEND, EDIT, TRANSFORM, RENDER and COPY as processes with exactly the

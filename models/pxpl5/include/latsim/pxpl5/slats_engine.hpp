@@ -37,8 +37,6 @@ struct SlatsParams {
   bool backup_field = false;
 
   int eyes() const { return stereo ? 2 : 1; }
-  /// Reads the Slats keys of /pipeline (the shared hardware keys included).
-  static SlatsParams read(const scenario::ConfigNode& pipeline, bool stereo);
 };
 
 /// Field-synchronous rendering: at each retrace the single GP takes the

@@ -5,7 +5,6 @@
 #include <vector>
 
 #include "latsim/des/random.hpp"
-#include "latsim/scenario/config.hpp"
 
 namespace latsim::pxpl5 {
 
@@ -13,9 +12,6 @@ namespace latsim::pxpl5 {
 struct Workload {
   int64_t triangles = 100;
   double regions_per_triangle = 1.3;  ///< typical 1.3; 20 means every triangle covers a 640x480 screen
-
-  /// Reads {"triangles", "regions_per_triangle"} from the scenario's /scene object.
-  static Workload read(const scenario::ConfigNode& scene);
 };
 
 /// One eye's bins: commands each graphics processor holds for each region.

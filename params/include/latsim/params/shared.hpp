@@ -1,0 +1,89 @@
+// The scenario's shared sections — everything but /pipeline — as typed
+// structs, each key declared once in the bindings of this library.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "latsim/display/params.hpp"
+#include "latsim/renderer/scene_spec.hpp"
+#include "latsim/scenario/params.hpp"
+#include "latsim/tracker/params.hpp"
+#include "latsim/tracker/tracker.hpp"
+
+namespace latsim::params {
+
+/// /host: the application's view of the head.
+struct HostParams {
+  bool stereo = false;
+  double ipd_m = 0.064;
+};
+
+/// /scene: the geometry frames and address recalculation draw, and the
+/// workload that rendering costs are computed from.
+struct SceneParams {
+  renderer::SceneSpec geometry;
+  int64_t triangles = 0;
+  double coverage = 1.0;
+  double regions_per_triangle = 1.3;
+};
+
+/// /probes: world points whose registration error is measured.
+struct ProbeParams {
+  std::vector<glm::dvec3> points_m;
+};
+
+/// /output: what a run keeps besides its figures.
+struct OutputParams {
+  bool keep_samples = false;
+  bool timeline = true;
+  int64_t timeline_max_entries = 200000;
+};
+
+/// /frames: which displayed fields are ray-cast and written as images.
+struct FramesParams {
+  bool enabled = true;
+  std::vector<double> at_s;
+  int64_t every_nth_refresh = 0;
+  int64_t max_captures = 20;
+  int eye = 0;
+  int threads = 1;
+  glm::vec3 background{0.0f};
+  double diff_gain = 4.0;
+  double age_scale_ms = 100.0;
+};
+
+/// Every section of a scenario that the run builds for any pipeline.
+struct SharedParams {
+  std::string description;
+  double duration_s = 10.0;
+  int64_t seed = 1;
+  tracker::MotionParams motion;
+  tracker::TrackerParams tracker;
+  tracker::TransportParams transport;
+  HostParams host;
+  display::DisplayParams display;
+  std::optional<SceneParams> scene;
+  std::optional<ProbeParams> probes;
+  OutputParams output;
+  std::optional<FramesParams> frames;
+};
+
+/// Declares (and reads) every top-level key except /pipeline.
+void bind(scenario::Section& s, SharedParams& p);
+
+void bind(scenario::Section& s, tracker::MotionParams& p);
+void bind(scenario::Section& s, tracker::TrackerParams& p);
+void bind(scenario::Section& s, tracker::TransportParams& p);
+void bind(scenario::Section& s, display::DisplayParams& p);
+void bind(scenario::Section& s, SceneParams& p);
+
+/// Three numbers [x, y, z].
+void vec3(scenario::Section& s, std::string_view key, glm::dvec3& v, scenario::KeySpec spec);
+/// A linear colour [r, g, b].
+void colour(scenario::Section& s, std::string_view key, glm::vec3& v, scenario::KeySpec spec);
+
+}  // namespace latsim::params

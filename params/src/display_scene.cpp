@@ -1,0 +1,71 @@
+#include "latsim/params/shared.hpp"
+
+namespace latsim::params {
+
+using scenario::KeySpec;
+using scenario::Section;
+
+namespace {
+
+void gallery(Section& s, renderer::GalleryParams& g) {
+  s.number("size_x_m", g.size_x_m, {.unit = "m", .min = 0.0, .above_min = true, .doc = "extent along x"});
+  s.number("size_z_m", g.size_z_m, {.unit = "m", .min = 0.0, .above_min = true, .doc = "extent along z"});
+  s.number("height_m", g.height_m, {.unit = "m", .min = 0.0, .above_min = true, .doc = "floor to ceiling"});
+  s.integer("partition_count", g.partition_count, {.min = 0.0, .max = 64.0, .doc = "free-standing partitions"});
+  s.integer("frames_per_wall", g.frames_per_wall, {.min = 0.0, .max = 64.0, .doc = "pictures on each wall and partition side"});
+  s.number("tile_m", g.tile_m,
+           {.unit = "m", .min = 0.0, .above_min = true,
+            .doc = "tessellation step (a divisor of the region size keeps segments aligned with regions)"});
+}
+
+}  // namespace
+
+void bind(Section& s, display::DisplayParams& p) {
+  s.doc("One display per eye, synchronised; for interlaced displays `refresh_hz` is the field rate.");
+  display::RasterParams& r = p.raster;
+  s.rate("refresh_hz", r.field_period, {.unit = "Hz", .doc = "field rate (exact rational; \"60000/1001\" for NTSC's 59.94 Hz)"});
+  s.flag("interlaced", r.interlaced, {.doc = "odd/even fields; a frame is two fields"});
+  s.integer("width_px", r.width_px, {.unit = "px", .min = 1.0, .max = 16384.0, .doc = "active pixels per line"});
+  s.integer("height_px", r.height_px, {.unit = "px", .min = 2.0, .max = 16384.0, .doc = "active lines (both fields together)"});
+  s.check("height_px", !(r.interlaced && r.height_px % 2 != 0), "an interlaced display needs an even number of lines");
+  s.integer("vblank_lines", r.vblank_lines, {.min = 0.0, .max = 100000.0, .doc = "blank line periods at the start of each field"});
+  s.integer("hblank_px", r.hblank_px, {.unit = "px", .min = 0.0, .max = 100000.0, .doc = "blank pixel times per line"});
+  s.integer("first_field_parity", r.first_field_parity, {.min = 0.0, .max = 1.0, .doc = "rows of field 0 (0: rows 0, 2, 4 …)"});
+  s.number("hfov_deg", p.hfov_deg,
+           {.unit = "deg", .min = 1.0, .max = 179.0, .doc = "horizontal field of view (probes, pixels of error, frames)"});
+  s.choice("scanout", p.fidelity,
+           {{"field", display::ScanoutFidelity::Field},
+            {"line", display::ScanoutFidelity::Line},
+            {"pixel", display::ScanoutFidelity::Pixel}},
+           {.doc = "fidelity: one event per field, per line (sees mid-field swaps) or per pixel"});
+  s.integer("pixel_stride", p.pixel_stride, {.unit = "px", .min = 1.0, .max = 16384.0, .doc = "pixel fidelity: pixels per event"});
+}
+
+void bind(Section& s, SceneParams& p) {
+  s.doc(
+      "`triangles` and `coverage` drive the generic render cost; Pixel-Planes 5 reads `triangles` and "
+      "`regions_per_triangle`; frame capture and the address recalculation pipelines draw the geometry.");
+  s.integer("triangles", p.triangles,
+            {.min = 0.0, .max = 1099511627776.0, .doc = "triangles a frame draws (per eye)"});
+  s.number("coverage", p.coverage, {.min = 0.0, .max = 1.0, .doc = "fraction of the screen the triangles cover"});
+  s.number("regions_per_triangle", p.regions_per_triangle,
+           {.min = 1.0, .max = 1024.0, .doc = "128 x 128 regions a triangle touches (typical 1.3; 20: the whole 640x480 screen)"});
+  using Type = renderer::SceneSpec::Type;
+  renderer::SceneSpec& g = p.geometry;
+  s.modes("type", "gallery",
+          {{"gallery", "a procedural art gallery with partitions and pictures",
+            [&g](Section& m) {
+              g.type = Type::Gallery;
+              gallery(m, g.gallery);
+            }},
+           {"room", "a 6 x 2.7 x 8 m room with tiled walls and a dozen furniture boxes", [&g](Section&) { g.type = Type::Room; }},
+           {"test_pattern", "coloured boxes at 2 to 9 m before a checkered backdrop, seen best from the origin looking down −z", [&g](Section&) { g.type = Type::TestPattern; }},
+           {"obj", "a Wavefront OBJ mesh",
+            [&g](Section& m) {
+              g.type = Type::Obj;
+              m.path("file", g.file, {.required = true, .doc = "the mesh, relative to the scenario file"});
+            }}},
+          {.doc = "the geometry"});
+}
+
+}  // namespace latsim::params

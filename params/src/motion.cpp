@@ -1,0 +1,164 @@
+#include <cmath>
+#include <numbers>
+
+#include "latsim/params/shared.hpp"
+
+namespace latsim::params {
+
+using scenario::KeySpec;
+using scenario::ModeDecl;
+using scenario::Section;
+
+namespace {
+
+constexpr double kRadPerDeg = std::numbers::pi / 180.0;
+
+void start_position(Section& s, tracker::MotionParams& p) {
+  vec3(s, "position_m", p.position_m, {.unit = "m", .doc = "head position [x, y, z]"});
+}
+
+void start_orientation(Section& s, tracker::MotionParams& p) {
+  s.number("yaw_deg", p.yaw_deg, {.unit = "deg", .doc = "starting yaw (positive turns left, about +y)"});
+  s.number("pitch_deg", p.pitch_deg, {.unit = "deg", .min = -90.0, .max = 90.0, .doc = "starting pitch (positive looks up)"});
+}
+
+void constant(Section& s, tracker::MotionParams& p) {
+  start_position(s, p);
+  start_orientation(s, p);
+  vec3(s, "axis", p.axis, {.doc = "rotation axis in world coordinates"});
+  s.check("axis", p.axis != glm::dvec3(0.0), "the rotation axis must not be zero");
+  s.number("rate_deg_s", p.rate_deg_s, {.unit = "deg/s", .doc = "angular speed (right-hand rule about the axis)"});
+}
+
+void sinusoid(Section& s, tracker::MotionParams& p) {
+  tracker::SinusoidParams& q = p.sinusoid;
+  start_position(s, p);
+  q.position_m = p.position_m;
+  s.number("yaw_amplitude_deg", q.yaw_amplitude_deg, {.unit = "deg", .doc = "yaw amplitude"});
+  s.number("yaw_frequency_hz", q.yaw_frequency_hz, {.unit = "Hz", .min = 0.0, .doc = "yaw frequency"});
+  s.number("yaw_phase_deg", q.yaw_phase_deg, {.unit = "deg", .doc = "yaw phase"});
+  s.number("pitch_amplitude_deg", q.pitch_amplitude_deg, {.unit = "deg", .min = -90.0, .max = 90.0, .doc = "pitch amplitude"});
+  s.number("pitch_frequency_hz", q.pitch_frequency_hz, {.unit = "Hz", .min = 0.0, .doc = "pitch frequency"});
+  s.number("pitch_phase_deg", q.pitch_phase_deg, {.unit = "deg", .doc = "pitch phase"});
+}
+
+void walk(Section& s, tracker::MotionParams& p) {
+  tracker::WalkParams& w = p.walk;
+  std::vector<std::vector<double>> rows;
+  s.number_rows("points", rows, {.unit = "m", .count = 3, .required = true, .doc = "the path [[x, y, z], …]"});
+  s.check("points", s.describing() || !rows.empty(), "a walk needs at least one point");
+  w.points_m.clear();
+  for (const auto& r : rows) w.points_m.emplace_back(r[0], r[1], r[2]);
+  s.number("speed_m_s", w.speed_m_s, {.unit = "m/s", .min = 0.0, .above_min = true, .doc = "walking speed"});
+  s.flag("loop", w.loop, {.doc = "return to the first point and go round again; false: stop at the end"});
+  s.flag("face_direction", w.face_direction,
+         {.doc = "look along the direction of travel; false: keep yaw_deg and pitch_deg"});
+  if (!w.face_direction || s.describing()) start_orientation(s, p);
+  w.orientation = p.start_orientation();
+}
+
+void trace(Section& s, tracker::MotionParams& p) {
+  s.path("file", p.trace_file,
+         {.required = true,
+          .doc = "recorded motion: latsim CSV `t_s,px,py,pz,qw,qx,qy,qz`, or the whitespace `timestamp viewpoint w x y "
+                 "z` format of scenarios/data/"});
+  s.guard("file", [&] { p.trace = std::make_shared<const tracker::Trace>(tracker::load_trace(p.trace_file)); });
+  s.duration("offset_s", p.trace_offset, {.unit = "s", .min = -1e6, .max = 1e6, .doc = "trace time at t = 0"});
+  s.flag("loop", p.trace_loop, {.doc = "start again at the end of the recording"});
+}
+
+void noise(Section& s, tracker::TrackerParams& p) {
+  s.doc("Pose noise, sampled through the Cholesky factor of its covariance: give standard deviations or a covariance.");
+  std::optional<std::vector<std::vector<double>>> covariance;
+  s.number_rows("covariance", covariance,
+                {.count = 6, .doc = "6x6 covariance: x, y, z in m², then the rotation vector in rad²"});
+  s.check("covariance",
+          !(covariance && (s.has("position_stddev_m") || s.has("orientation_stddev_deg"))),
+          "give either a covariance or standard deviations, not both");
+  tracker::NoiseCovariance c = tracker::NoiseCovariance::Zero();
+  if (covariance) {
+    s.check("covariance", covariance->size() == 6, "expected a 6x6 matrix (x, y, z, rx, ry, rz)");
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < 6; ++j) c(i, j) = (*covariance)[static_cast<size_t>(i)][static_cast<size_t>(j)];
+  }
+  if (!covariance || s.describing()) {
+    double position_m = 0.0, orientation_deg = 0.0;
+    s.number("position_stddev_m", position_m, {.unit = "m", .min = 0.0, .doc = "position noise per axis"});
+    s.number("orientation_stddev_deg", orientation_deg, {.unit = "deg", .min = 0.0, .doc = "orientation noise per axis"});
+    const double orientation_rad = orientation_deg * kRadPerDeg;
+    for (int i = 0; i < 3; ++i) c(i, i) = position_m * position_m;
+    for (int i = 3; i < 6; ++i) c(i, i) = orientation_rad * orientation_rad;
+  }
+  p.noise_covariance = c;
+  p.noise_enabled = !c.isZero(0.0);
+  if (p.noise_enabled) s.guard("covariance", [&] { (void)tracker::noise_factor(p.noise_covariance); });
+}
+
+void serial(Section& s, tracker::SerialLinkParams& p) {
+  s.integer("record_bytes", p.record_bytes, {.min = 1.0, .max = 1e6, .doc = "bytes per record"});
+  s.integer("bits_per_byte", p.bits_per_byte, {.min = 1.0, .max = 64.0, .doc = "bits on the line per byte: start + 8 data + stop"});
+  s.number("baud", p.baud, {.unit = "bit/s", .min = 0.0, .above_min = true, .doc = "line rate"});
+  s.modes("host", "poll",
+          {{"poll", "the kernel looks every poll_interval_ms; the newest complete record wins",
+            [&p](Section& m) {
+              p.host_mode = tracker::SerialLinkParams::Poll;
+              m.duration("poll_interval_ms", p.poll_interval,
+                         {.unit = "ms", .min = 0.0, .above_min = true, .doc = "the Unix hosts of the time polled every 30 ms"});
+              m.duration("poll_phase_ms", p.poll_phase, {.unit = "ms", .doc = "time of the first poll"});
+            }},
+           {"interrupt", "an interrupt per received character: no poll wait",
+            [&p](Section& m) {
+              p.host_mode = tracker::SerialLinkParams::Interrupt;
+              m.duration("per_char_interrupt_us", p.per_char_interrupt_cost,
+                         {.unit = "us", .doc = "handler cost per character (above the character time, handlers back up)"});
+            }}},
+          {.doc = "how the host learns of received characters"});
+}
+
+}  // namespace
+
+void bind(Section& s, tracker::MotionParams& p) {
+  s.doc(
+      "Head frame: x right, y up, looking down −z (the OpenGL camera convention). Traces are slerped on the short "
+      "arc; sign flips and repeated rows are handled, malformed rows are reported as `file:line: reason`.");
+  using Type = tracker::MotionParams::Type;
+  s.modes("type", "still",
+          {{"still", "a head that does not move",
+            [&p](Section& m) {
+              p.type = Type::Still;
+              start_position(m, p);
+              start_orientation(m, p);
+            }},
+           {"constant", "turning at a constant angular velocity", [&p](Section& m) { p.type = Type::Constant; constant(m, p); }},
+           {"sinusoid", "shaking (yaw) and nodding (pitch) sinusoidally", [&p](Section& m) { p.type = Type::Sinusoid; sinusoid(m, p); }},
+           {"walk", "walking a polyline at constant speed", [&p](Section& m) { p.type = Type::Walk; walk(m, p); }},
+           {"trace", "a recorded head motion", [&p](Section& m) { p.type = Type::Trace; trace(m, p); }}},
+          {.doc = "which motion"});
+}
+
+void bind(Section& s, tracker::TrackerParams& p) {
+  s.doc("Samples of the head pose at an exact rate, each ready after an internal delay.");
+  s.rate("rate_hz", p.period, {.unit = "Hz", .doc = "sampling rate (exact rational)"});
+  s.duration("phase_ms", p.phase, {.unit = "ms", .doc = "time of sample 0"});
+  s.duration("internal_delay_ms", p.internal_delay, {.unit = "ms", .doc = "measurement to record ready"});
+  s.duration("jitter_ms", p.jitter,
+             {.unit = "ms", .doc = "per-sample timing jitter: ±bound (uniform) or standard deviation (normal)"});
+  s.choice("jitter", p.jitter_shape, {{"uniform", tracker::TrackerParams::Uniform}, {"normal", tracker::TrackerParams::Normal}},
+           {.doc = "shape of the jitter"});
+  std::optional<int> present;
+  s.optional_object("noise", present, [&p](Section& n, int&) { noise(n, p); }, {.doc = "pose noise (none when absent)"});
+}
+
+void bind(Section& s, tracker::TransportParams& p) {
+  using Type = tracker::TransportParams::Type;
+  s.modes("type", "direct",
+          {{"direct", "no delay", [&p](Section&) { p.type = Type::Direct; }},
+           {"serial", "records cross an asynchronous serial line",
+            [&p](Section& m) {
+              p.type = Type::Serial;
+              serial(m, p.serial);
+            }}},
+          {.doc = "which link"});
+}
+
+}  // namespace latsim::params

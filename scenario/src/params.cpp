@@ -1,0 +1,364 @@
+#include "latsim/scenario/params.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace latsim::scenario {
+
+using Json = nlohmann::json;
+
+namespace {
+
+std::string format_number(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+
+const Json& empty_object() {
+  static const Json kEmpty = Json::object();
+  return kEmpty;
+}
+
+// The exact rational period as the frequency a scenario would write: 60, or "60000/1001".
+Json hz_of_period(des::RationalSeconds period) {
+  if (period.num == 1) return Json(period.den);
+  return Json(std::to_string(period.den) + "/" + std::to_string(period.num));
+}
+
+double ticks_per_unit(std::string_view unit) {
+  if (unit == "s") return 1e12;
+  if (unit == "ms") return 1e9;
+  if (unit == "us") return 1e6;
+  throw std::logic_error("a duration's unit must be s, ms or us, not \"" + std::string(unit) + "\"");
+}
+
+bool same_declaration(const KeySchema& a, const KeySchema& b) {
+  const bool same_object = (!a.object && !b.object) ||
+                           (a.object && b.object && json_schema(*a.object) == json_schema(*b.object));
+  return a.type == b.type && a.default_value == b.default_value && a.default_doc == b.default_doc &&
+         a.required == b.required && a.min == b.min && a.max == b.max && a.above_min == b.above_min &&
+         a.count == b.count && a.row_count == b.row_count && a.choices == b.choices && a.unit == b.unit &&
+         a.doc == b.doc && same_object;
+}
+
+}  // namespace
+
+std::optional<std::string> range_problem(double x, const KeySpec& spec);
+
+Section::Section(ConfigNode node) : node_(std::move(node)) {}
+
+Section::Section(ObjectSchema& schema) : schema_(&schema) {}
+
+const std::string& Section::pointer() const {
+  static const std::string kNone;
+  return node_ ? node_->pointer() : kNone;
+}
+
+bool Section::has(std::string_view key) const { return node_ && node_->has(key); }
+
+void Section::doc(std::string_view text) {
+  if (schema_) schema_->doc = text;
+}
+
+void Section::fail(std::string_view key, const std::string& message) const {
+  if (!node_) throw std::logic_error("Section::fail while describing: " + message);
+  node_->fail(key, message);
+}
+
+KeySchema& Section::declare(std::string_view key, const char* type, const KeySpec& spec) {
+  KeySchema k;
+  k.name = key;
+  k.type = type;
+  k.required = spec.required;
+  k.min = spec.min;
+  k.max = spec.max;
+  k.above_min = spec.above_min;
+  k.unit = spec.unit;
+  k.doc = spec.doc;
+  k.default_doc = spec.default_doc;
+  if (!mode_.empty()) k.modes.push_back(mode_);
+  schema_->keys.push_back(std::move(k));
+  return schema_->keys.back();
+}
+
+// What is wrong with x for spec's range, if anything.
+std::optional<std::string> range_problem(double x, const KeySpec& spec) {
+  const bool below = spec.min && (spec.above_min ? !(x > *spec.min) : x < *spec.min);
+  const bool above = spec.max && x > *spec.max;
+  if (!below && !above) return std::nullopt;
+  const std::string got = ", got " + format_number(x);
+  if (spec.min && spec.max)
+    return "must lie in " + std::string(spec.above_min ? "(" : "[") + format_number(*spec.min) + ", " +
+           format_number(*spec.max) + "]" + got;
+  if (spec.min && *spec.min == 0.0)
+    return std::string(spec.above_min ? "must be greater than zero" : "must not be negative") + got;
+  if (spec.min)
+    return std::string(spec.above_min ? "must be greater than " : "must be at least ") + format_number(*spec.min) + got;
+  return "must be at most " + format_number(*spec.max) + got;
+}
+
+void Section::check_range(std::string_view key, double x, const KeySpec& spec) const {
+  if (const auto problem = range_problem(x, spec)) fail(key, *problem);
+}
+
+void Section::number(std::string_view key, double& v, const KeySpec& spec) {
+  if (schema_) {
+    KeySchema& k = declare(key, "number", spec);
+    if (!spec.required) k.default_value = v;
+    return;
+  }
+  v = spec.required ? node_->number(key) : node_->number(key, v);
+  check_range(key, v, spec);
+}
+
+void Section::number(std::string_view key, std::optional<double>& v, const KeySpec& spec) {
+  if (schema_) {
+    declare(key, "number", spec);
+    return;
+  }
+  if (!has(key)) return;
+  v = node_->number(key);
+  check_range(key, *v, spec);
+}
+
+void Section::integer64(std::string_view key, int64_t& v, const KeySpec& spec, int64_t type_min, int64_t type_max) {
+  if (schema_) {
+    KeySchema& k = declare(key, "integer", spec);
+    if (!spec.required) k.default_value = v;
+    return;
+  }
+  const int64_t lo = spec.min ? static_cast<int64_t>(std::ceil(*spec.min)) : type_min;
+  const int64_t hi = spec.max ? static_cast<int64_t>(std::floor(*spec.max)) : type_max;
+  v = spec.required ? node_->integer(key, lo, hi) : node_->integer(key, v, lo, hi);
+}
+
+void Section::flag(std::string_view key, bool& v, const KeySpec& spec) {
+  if (schema_) {
+    declare(key, "boolean", spec).default_value = v;
+    return;
+  }
+  v = node_->boolean(key, v);
+}
+
+void Section::text(std::string_view key, std::string& v, const KeySpec& spec) {
+  if (schema_) {
+    KeySchema& k = declare(key, "string", spec);
+    if (!spec.required) k.default_value = v;
+    return;
+  }
+  v = spec.required ? node_->string(key) : node_->string(key, v);
+}
+
+std::string Section::choice_name(std::string_view key, const std::string& current,
+                                 const std::vector<std::string>& names, const KeySpec& spec) {
+  if (schema_) {
+    KeySchema& k = declare(key, "choice", spec);
+    k.choices = names;
+    if (!spec.required) k.default_value = current;
+    return current;
+  }
+  const std::string v = spec.required ? node_->string(key) : node_->string(key, current);
+  for (const auto& n : names)
+    if (v == n) return v;
+  std::string list;
+  for (const auto& n : names) list += (list.empty() ? "\"" : ", \"") + n + "\"";
+  fail(key, "unknown value \"" + v + "\"; expected one of " + list);
+}
+
+void Section::rate(std::string_view key, des::RationalSeconds& period, const KeySpec& spec) {
+  const Json def = hz_of_period(period);
+  if (schema_) {
+    KeySchema& k = declare(key, "rate", spec);
+    if (!spec.required) k.default_value = def;
+    return;
+  }
+  period = node_->rate_as_period(key, def.is_string() ? def.get<std::string>() : std::to_string(def.get<int64_t>()));
+}
+
+void Section::duration(std::string_view key, des::Time& v, const KeySpec& spec) {
+  const double scale = ticks_per_unit(spec.unit);
+  KeySpec bounded = spec;
+  if (!bounded.min) bounded.min = 0.0;
+  const double def = static_cast<double>(v.ticks()) / scale;
+  if (schema_) {
+    KeySchema& k = declare(key, "duration", bounded);
+    if (!spec.required) k.default_value = def;
+    return;
+  }
+  const double x = spec.required ? node_->number(key) : node_->number(key, def);
+  if (!spec.min && x < 0) fail(key, "duration must not be negative, got " + format_number(x));
+  check_range(key, x, bounded);
+  try {
+    if (spec.unit == "s") v = des::Time::from_seconds(x);
+    else if (spec.unit == "ms") v = des::Time::from_ms(x);
+    else v = des::Time::from_us(x);
+  } catch (const des::TimeOverflow&) {
+    fail(key, "duration out of range");
+  }
+}
+
+void Section::numbers(std::string_view key, std::vector<double>& v, const KeySpec& spec) {
+  if (schema_) {
+    KeySchema& k = declare(key, "numbers", spec);
+    k.count = spec.count;
+    if (!spec.required) k.default_value = v;
+    return;
+  }
+  v = spec.required ? node_->numbers(key) : node_->numbers(key, v);
+  if (spec.count > 0 && static_cast<int>(v.size()) != spec.count)
+    fail(key, "expected " + std::to_string(spec.count) + " numbers, found " + std::to_string(v.size()));
+  for (size_t i = 0; i < v.size(); ++i)
+    if (const auto problem = range_problem(v[i], spec))
+      throw ScenarioError(join_pointer(join_pointer(pointer(), key), std::to_string(i)), *problem);
+}
+
+void Section::number_rows(std::string_view key, std::vector<std::vector<double>>& v, const KeySpec& spec) {
+  if (schema_) {
+    KeySchema& k = declare(key, "number_rows", spec);
+    k.row_count = spec.count;
+    if (!spec.required) k.default_value = v;
+    return;
+  }
+  if (!spec.required && !has(key)) return;
+  v = node_->number_rows(key);
+  if (spec.count > 0)
+    for (size_t i = 0; i < v.size(); ++i)
+      if (static_cast<int>(v[i].size()) != spec.count)
+        fail(key, "row " + std::to_string(i) + " must have " + std::to_string(spec.count) + " numbers");
+}
+
+void Section::number_rows(std::string_view key, std::optional<std::vector<std::vector<double>>>& v,
+                          const KeySpec& spec) {
+  std::vector<std::vector<double>> rows;
+  if (schema_) {
+    KeySpec optional = spec;
+    optional.required = false;
+    declare(key, "number_rows", optional).row_count = spec.count;
+    return;
+  }
+  if (!has(key)) return;
+  KeySpec given = spec;
+  given.required = true;
+  number_rows(key, rows, given);
+  v = std::move(rows);
+}
+
+void Section::path(std::string_view key, std::filesystem::path& v, const KeySpec& spec) {
+  if (schema_) {
+    KeySchema& k = declare(key, "path", spec);
+    if (!spec.required && !v.empty()) k.default_value = v.string();
+    return;
+  }
+  if (!spec.required && !has(key)) return;
+  v = node_->path(key);
+}
+
+void Section::nested(std::string_view key, const char* type, const KeySpec& spec,
+                     const std::function<void(Section&)>& bind) {
+  if (schema_) {
+    auto object = std::make_shared<ObjectSchema>();
+    Section s(*object);
+    bind(s);
+    declare(key, type, spec).object = std::move(object);
+    return;
+  }
+  if (has(key)) {
+    Section s(node_->child(key));
+    bind(s);
+    return;
+  }
+  if (spec.required) fail(key, "required key is missing");
+  // Absent: every key takes its default, recorded as if the object were empty.
+  Section s(ConfigNode(&empty_object(), join_pointer(node_->pointer(), key), node_->log()));
+  bind(s);
+}
+
+std::vector<ConfigNode> Section::array_of_objects(std::string_view key) const {
+  if (!has(key)) return {};
+  return node_->objects(key);
+}
+
+std::string Section::modes(std::string_view key, std::string_view default_mode, const std::vector<ModeDecl>& modes,
+                           const KeySpec& spec) {
+  std::vector<std::string> names;
+  for (const auto& m : modes) names.push_back(m.name);
+  KeySpec chosen_spec = spec;
+  chosen_spec.required = default_mode.empty();
+  if (schema_) {
+    choice_name(key, std::string(default_mode), names, chosen_spec);
+    ObjectSchema::Discriminator d{std::string(key), {}};
+    for (const auto& m : modes) d.values.emplace_back(m.name, m.doc);
+    schema_->discriminators.push_back(std::move(d));
+    const std::string outer = mode_;
+    for (const auto& m : modes) {
+      mode_ = (outer.empty() ? "" : outer + ", ") + std::string(key) + "=" + m.name;
+      const size_t before = schema_->keys.size();
+      m.bind(*this);
+      // A key several modes declare alike is one key read by all of them.
+      for (size_t i = before; i < schema_->keys.size();) {
+        KeySchema& k = schema_->keys[i];
+        KeySchema* earlier = nullptr;
+        for (size_t j = 0; j < before && !earlier; ++j)
+          if (schema_->keys[j].name == k.name && (schema_->keys[j].modes.empty() || same_declaration(schema_->keys[j], k)))
+            earlier = &schema_->keys[j];
+        for (size_t j = 0; j < before && !earlier; ++j)
+          if (schema_->keys[j].name == k.name) earlier = &schema_->keys[j];
+        if (!earlier) {
+          ++i;
+          continue;
+        }
+        if (earlier->modes.empty())
+          throw std::logic_error("scenario key \"" + k.name + "\" is declared for every mode and again for one");
+        if (!same_declaration(*earlier, k)) {
+          ++i;  // the same name means something else in this mode: its own declaration
+          continue;
+        }
+        earlier->modes.push_back(mode_);
+        schema_->keys.erase(schema_->keys.begin() + static_cast<std::ptrdiff_t>(i));
+      }
+    }
+    mode_ = outer;
+    return std::string(default_mode);
+  }
+  const std::string chosen = choice_name(key, std::string(default_mode), names, chosen_spec);
+  for (const auto& m : modes)
+    if (m.name == chosen) m.bind(*this);
+  return chosen;
+}
+
+void Section::check(std::string_view key, bool ok, std::string_view message) {
+  if (schema_) {
+    add_rule(std::string(key) + ": " + std::string(message));
+    return;
+  }
+  if (!ok) fail(key, std::string(message));
+}
+
+void Section::check_pointer(std::string_view pointer, bool ok, std::string_view message) {
+  if (schema_) {
+    add_rule(std::string(pointer) + ": " + std::string(message));
+    return;
+  }
+  if (!ok) throw ScenarioError(std::string(pointer), std::string(message));
+}
+
+void Section::add_rule(std::string text) {
+  for (const auto& [mode, rule] : schema_->rules)
+    if (mode == mode_ && rule == text) return;
+  schema_->rules.emplace_back(mode_, std::move(text));
+}
+
+void Section::guard(std::string_view key, const std::function<void()>& fn) {
+  if (schema_) return;
+  try {
+    fn();
+  } catch (const ScenarioError&) {
+    throw;
+  } catch (const std::exception& e) {
+    fail(key, e.what());
+  }
+}
+
+}  // namespace latsim::scenario

@@ -1,0 +1,121 @@
+// One path for results: named figures, one distribution format, warnings,
+// and result files written atomically by the run.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "latsim/pipelines/figures.hpp"
+#include "latsim/pipelines/run_files.hpp"
+#include "run_helpers.hpp"
+
+using namespace latsim;
+using Json = nlohmann::json;
+
+namespace {
+
+std::string bytes_of(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+std::filesystem::path fresh(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("latsim_results_" + name);
+  std::filesystem::remove_all(dir);
+  return dir;
+}
+
+}  // namespace
+
+TEST_CASE("named figures nest by their dotted names; numeric parts are array elements", "[results]") {
+  pipelines::FigureTable t;
+  t.set("utilisation.gp", 0.25);
+  t.set("memories.1.renders", int64_t{7});
+  t.set("memories.0.renders", int64_t{3});
+  t.set("strategy", std::string("frameless"));
+  t.set("complete", true);
+  t.list("frames");
+  t.object("stage_ms");
+  t.set("strategy", std::string("double_buffer"));  // a later value replaces an earlier one
+  const Json f = t.to_json({}, {{"fields", 12}});
+  CHECK(f["utilisation"]["gp"] == 0.25);
+  REQUIRE(f["memories"].is_array());
+  CHECK(f["memories"][0]["renders"] == 3);
+  CHECK(f["memories"][1]["renders"] == 7);
+  CHECK(f["strategy"] == "double_buffer");
+  CHECK(f["complete"] == true);
+  CHECK(f["frames"] == Json::array());
+  CHECK(f["stage_ms"] == Json::object());
+  CHECK(f["counts"]["fields"] == 12);
+}
+
+TEST_CASE("every distribution has one format, whoever kept it", "[results]") {
+  des::Distribution own(0.005, false), kept(0.005, false);
+  for (double v : {1.0, 2.0, 3.0, 4.0}) own.add(v);
+  for (double v : {10.0, 30.0}) kept.add(v);
+  pipelines::FigureTable t;
+  t.publish("stage_ms.SEND", kept);
+  t.publish("render_latency_fields", kept);  // replaces the recorder's own of that name
+  const Json f = t.to_json({{"render_latency_fields", own}, {"display_ms", own}}, {});
+  for (const Json* d : {&f["display_ms"], &f["stage_ms"]["SEND"], &f["render_latency_fields"]}) {
+    for (const char* key : {"count", "mean", "stddev", "min", "p50", "p90", "p99", "p999", "max", "histogram"})
+      CHECK(d->contains(key));
+  }
+  CHECK(f["display_ms"]["mean"] == 2.5);                // (1 + 2 + 3 + 4) / 4
+  CHECK(f["stage_ms"]["SEND"]["mean"] == 20.0);         // (10 + 30) / 2
+  CHECK(f["render_latency_fields"]["count"] == 2);
+}
+
+TEST_CASE("run files are written atomically into the run directory, or not at all", "[results]") {
+  pipelines::RunFiles none;
+  CHECK_FALSE(none.enabled());
+  none.write_text("x.txt", "nothing");
+  CHECK(none.written().empty());
+  const auto dir = fresh("files");
+  pipelines::RunFiles files(dir);
+  files.write_text("a.csv", "a,b\n1,2\n");
+  files.write_text("sub/b.md", "# b\n");
+  CHECK(bytes_of(dir / "a.csv") == "a,b\n1,2\n");
+  CHECK(bytes_of(dir / "sub/b.md") == "# b\n");
+  CHECK(files.written() == std::vector<std::string>{"a.csv", "sub/b.md"});
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
+    CHECK(e.path().string().find(".tmp") == std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("doubtful input is a warning in the summary, not an error", "[results]") {
+  Json s = testing::base_scenario();
+  s["transport"] = {{"type", "direct"}, {"poll_interval_ms", 10}};
+  const Json summary = testing::run(s);
+  REQUIRE(summary["warnings"].size() == 1);
+  CHECK(summary["warnings"][0] == "/transport/poll_interval_ms: ignored: read only when type=serial, host=poll");
+  CHECK(testing::run(testing::base_scenario())["warnings"] == Json::array());
+}
+
+TEST_CASE("the resolved scenario records host, output and transport defaults", "[results]") {
+  const Json summary = testing::run(testing::base_scenario());
+  const Json& r = summary["scenario"];
+  CHECK(r["host"]["stereo"] == false);
+  CHECK(r["host"]["ipd_m"] == 0.064);
+  CHECK(r["output"]["timeline"] == true);
+  CHECK(r["output"]["timeline_max_entries"] == 200000);
+  CHECK(r["transport"]["type"] == "direct");
+}
+
+TEST_CASE("a pipeline's image files go through the run and figures.json stays byte-identical", "[results]") {
+  const auto a = fresh("arp_a"), b = fresh("arp_b");
+  for (const auto& dir : {a, b}) {
+    pipelines::RunOptions options;
+    options.out_dir = dir;
+    pipelines::run_scenario(pipelines::load_scenario(LATSIM_SOURCE_DIR "/scenarios/arp/arp_basic.json",
+                                                     {"/duration_s=0.6", "/pipeline/frame_times_s=[0.5]",
+                                                      "/pipeline/face_px=32"}),
+                            options);
+  }
+  CHECK(std::filesystem::exists(a / "arp_frame_500ms.png"));
+  CHECK(bytes_of(a / "arp_frame_500ms.png") == bytes_of(b / "arp_frame_500ms.png"));
+  CHECK(bytes_of(a / "figures.json") == bytes_of(b / "figures.json"));
+  std::filesystem::remove_all(a);
+  std::filesystem::remove_all(b);
+}
