@@ -100,8 +100,7 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
   const PipelineRegistry registry = builtin_pipelines();
   scenario::Section root(doc.root());
   const PipelineFactory make_pipeline = bind_scenario(root, run.shared, registry);
-  const scenario::ObjectSchema schema = scenario_schema();
-  doc.check_unknown_keys(&schema, &run.input_warnings);
+  doc.check_unknown_keys(&scenario_schema(), &run.input_warnings);
 
   const params::SharedParams& p = run.shared;
   run.duration = des::Time::from_seconds(p.duration_s);
@@ -184,17 +183,19 @@ std::string csv_of_samples(const std::vector<LatencyRecorder::LoggedSample>& sam
 std::string latsim_version() { return LATSIM_VERSION; }
 std::string latsim_git_revision() { return LATSIM_GIT_REVISION; }
 
-scenario::ObjectSchema scenario_schema() {
-  scenario::ObjectSchema root;
-  scenario::Section s(root);
-  params::SharedParams shared;
-  (void)bind_scenario(s, shared, builtin_pipelines());
-  return root;
+const scenario::ObjectSchema& scenario_schema() {
+  static const scenario::ObjectSchema schema = [] {
+    scenario::ObjectSchema root;
+    scenario::Section s(root);
+    params::SharedParams shared;
+    (void)bind_scenario(s, shared, builtin_pipelines());
+    return root;
+  }();
+  return schema;
 }
 
 scenario::ScenarioDocument load_scenario(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
-  const scenario::ObjectSchema schema = scenario_schema();
-  return scenario::ScenarioDocument::load(file, overrides, &schema);
+  return scenario::ScenarioDocument::load(file, overrides, &scenario_schema());
 }
 
 std::vector<std::string> validate_scenario(const scenario::ScenarioDocument& doc) {

@@ -36,8 +36,9 @@ nlohmann::json run_scenario(const scenario::ScenarioDocument& doc, const RunOpti
 std::vector<std::string> validate_scenario(const scenario::ScenarioDocument& doc);
 
 /// Every key a scenario may hold, from the parameter declarations of the
-/// shared sections and of every registered pipeline.
-scenario::ObjectSchema scenario_schema();
+/// shared sections and of every registered pipeline. Built once per process:
+/// it depends on nothing but the code.
+const scenario::ObjectSchema& scenario_schema();
 
 /// Loads a scenario file with overrides; an override may create an optional
 /// section the scenario left out ("--set /output/timeline=false").
