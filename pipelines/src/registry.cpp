@@ -6,22 +6,28 @@
 
 namespace latsim::pipelines {
 
-// The pipelines latsim ships. Each is defined in its own folder under
-// pipelines/ by a function that names it, declares its /pipeline keys and
-// builds it; adding a pipeline adds its folder and one line here.
-PipelineEntry double_buffer_pipeline();
-PipelineEntry frameless_pipeline();
-PipelineEntry pxpl5_rc_pipeline();
-PipelineEntry pxpl5_slats_pipeline();
-PipelineEntry arp_pipeline();
-PipelineEntry priority_pipeline();
-PipelineEntry region_priority_pipeline();
+// The pipelines latsim ships, one line each: the function, defined in the
+// pipeline's own folder under pipelines/, that names the pipeline, declares
+// its /pipeline keys and builds it. Adding a pipeline adds its folder and a
+// line here.
+#define LATSIM_BUILTIN_PIPELINES(X) \
+  X(double_buffer_pipeline)         \
+  X(frameless_pipeline)             \
+  X(pxpl5_rc_pipeline)              \
+  X(pxpl5_slats_pipeline)           \
+  X(arp_pipeline)                   \
+  X(priority_pipeline)              \
+  X(region_priority_pipeline)
+
+#define LATSIM_DECLARE_PIPELINE(entry) PipelineEntry entry();
+LATSIM_BUILTIN_PIPELINES(LATSIM_DECLARE_PIPELINE)
+#undef LATSIM_DECLARE_PIPELINE
 
 PipelineRegistry builtin_pipelines() {
   PipelineRegistry r;
-  for (auto* entry : {double_buffer_pipeline, frameless_pipeline, pxpl5_rc_pipeline, pxpl5_slats_pipeline,
-                      arp_pipeline, priority_pipeline, region_priority_pipeline})
-    r.add(entry());
+#define LATSIM_ADD_PIPELINE(entry) r.add(entry());
+  LATSIM_BUILTIN_PIPELINES(LATSIM_ADD_PIPELINE)
+#undef LATSIM_ADD_PIPELINE
   return r;
 }
 
