@@ -87,8 +87,8 @@ class Insert {
   }
   void run() {
     if (sqlite3_step(stmt_) != SQLITE_DONE) db_.fail(sqlite3_errmsg(db_.handle()));
+    // Every row binds every parameter again, so the old bindings need no clearing.
     sqlite3_reset(stmt_);
-    sqlite3_clear_bindings(stmt_);
     param_ = 0;
   }
 

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <deque>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <thread>
@@ -53,10 +54,39 @@ struct Message {
   Json body;
 };
 
-void send(int rank, int tag, const Json& body) {
-  const std::string text = body.dump();
-  MPI_Send(text.data(), static_cast<int>(text.size()), MPI_CHAR, rank, tag, MPI_COMM_WORLD);
-}
+/// Sends without waiting for the receiver: Open MPI's MPI_Send may spin until
+/// the message is taken, which a rank busy with a run does only between runs.
+class Outbox {
+ public:
+  Outbox() = default;
+  Outbox(const Outbox&) = delete;
+  Outbox& operator=(const Outbox&) = delete;
+  ~Outbox() { flush(); }
+
+  void post(int rank, int tag, const Json& body) {
+    auto text = std::make_unique<std::string>(body.dump());
+    MPI_Request request;
+    MPI_Isend(text->data(), static_cast<int>(text->size()), MPI_CHAR, rank, tag, MPI_COMM_WORLD, &request);
+    pending_.push_back({std::move(text), request});
+  }
+  /// Lets go of the messages delivered so far.
+  void progress() {
+    std::erase_if(pending_, [](Pending& p) {
+      int done = 0;
+      MPI_Test(&p.request, &done, MPI_STATUS_IGNORE);
+      return done != 0;
+    });
+  }
+  /// Waits until every message is delivered.
+  void flush();
+
+ private:
+  struct Pending {
+    std::unique_ptr<std::string> text;  ///< must outlive the send
+    MPI_Request request;
+  };
+  std::vector<Pending> pending_;
+};
 
 std::optional<Message> try_receive(int source, int tag) {
   int arrived = 0;
@@ -76,6 +106,11 @@ Message receive(int source, int tag) {
     if (auto message = try_receive(source, tag)) return std::move(*message);
     backoff.sleep();
   }
+}
+
+void Outbox::flush() {
+  Backoff backoff;
+  for (progress(); !pending_.empty(); progress()) backoff.sleep();
 }
 
 // MPI_Finalize synchronises the ranks and spins while it waits; wait for the
@@ -112,7 +147,8 @@ class MpiSession {
 
 // Every rank but 0: run what rank 0 hands out until it says stop.
 int serve(const SweepRequest& request) {
-  send(0, kToRankZero, {{"ready", true}});
+  Outbox outbox;
+  outbox.post(0, kToRankZero, {{"ready", true}});
   std::optional<SweepWorkspace> work;  // created with the first run: bad input writes nothing
   std::deque<RunTask> inbox;
   bool stopped = false;
@@ -121,9 +157,10 @@ int serve(const SweepRequest& request) {
     else inbox.push_back(RunTask::from_json(m.body.at("run")));
   };
   while (true) {
+    outbox.progress();
     while (auto m = try_receive(0, kToRank)) take(*m);
     if (inbox.empty()) {
-      if (stopped) return kExitOk;
+      if (stopped) return kExitOk;  // the outbox delivers the last report before it goes
       take(receive(0, kToRank));
       continue;
     }
@@ -132,8 +169,8 @@ int serve(const SweepRequest& request) {
     if (!work) work.emplace(request);
     const size_t removed_before = work->executor.temporaries_removed();
     const RunAttempt attempt = work->executor.execute(task);
-    send(0, kToRankZero, {{"index", task.index}, {"attempt", attempt.to_json()},
-                          {"temporaries", work->executor.temporaries_removed() - removed_before}});
+    outbox.post(0, kToRankZero, {{"index", task.index}, {"attempt", attempt.to_json()},
+                                 {"temporaries", work->executor.temporaries_removed() - removed_before}});
   }
 }
 
@@ -143,9 +180,10 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 // Tells every other rank there is nothing to do (after its first message, so none is left unreceived).
 void stop_all(int size) {
+  Outbox outbox;
   for (int rank = 1; rank < size; ++rank) {
     (void)receive(rank, kToRankZero);
-    send(rank, kToRank, {{"stop", true}});
+    outbox.post(rank, kToRank, {{"stop", true}});
   }
 }
 
@@ -173,6 +211,7 @@ class Dispatcher {
       });
     Backoff backoff;
     while (!everyone_done()) {
+      outbox_.progress();
       if (const auto message = try_receive(MPI_ANY_SOURCE, kToRankZero)) {
         answer(*message, progress);
         backoff.reset();
@@ -181,6 +220,7 @@ class Dispatcher {
       }
     }
     for (auto& thread : pool) thread.join();
+    outbox_.flush();
     return std::move(attempts_);
   }
   size_t remote_temporaries() const { return remote_temporaries_; }
@@ -204,10 +244,10 @@ class Dispatcher {
     }
     while (!stopped_[r] && in_hand_[r] < kRunsInHand) {
       if (const auto p = next()) {
-        send(message.source, kToRank, {{"run", task(*p).to_json()}});
+        outbox_.post(message.source, kToRank, {{"run", task(*p).to_json()}});
         ++in_hand_[r];
       } else {
-        send(message.source, kToRank, {{"stop", true}});
+        outbox_.post(message.source, kToRank, {{"stop", true}});
         stopped_[r] = true;
       }
     }
@@ -231,6 +271,7 @@ class Dispatcher {
   std::atomic<size_t> next_{0};
   std::atomic<unsigned> threads_done_{0};
   size_t remote_temporaries_ = 0;
+  Outbox outbox_;
 };
 
 // Rank 0: check the plan, hand the runs out, write the tables.
