@@ -107,6 +107,25 @@ longest_first = sorted(plan, key=lambda r: -expected_events(r["values"]))  # sta
 check(started == [r["run_id"] for r in longest_first], "-j1 did not start the runs longest expected first")
 
 
+def kill_in_a_run(victim, out):
+    """Once it has finished two runs, catch the victim between a run's start and
+    finish records: freeze it, confirm from its journal that it is still inside
+    that run, then kill it. Returns that run's id, or None if the victim ended
+    first (a machine so loaded that this process never looked in time)."""
+    while victim.poll() is None:
+        lines = journal_lines(out, victim.pid)
+        if sum(event == "finish" for _, event, _ in lines) >= 2 and lines[-1][1] == "start":
+            victim.send_signal(signal.SIGSTOP)
+            lines = journal_lines(out, victim.pid)
+            if lines[-1][1] == "start":
+                victim.send_signal(signal.SIGKILL)
+                victim.wait()
+                return lines[-1][2]
+            victim.send_signal(signal.SIGCONT)
+        time.sleep(0.001)
+    return None
+
+
 def shards():
     out = os.path.join(SCRATCH, "shards")
     # Bad slices are bad input: exit 2, nothing written.
@@ -124,27 +143,17 @@ def shards():
     # Shard 2 as the third task of `sbatch --array=1-3` sees it.
     slurm = {"SLURM_ARRAY_TASK_ID": "3", "SLURM_ARRAY_TASK_MIN": "1", "SLURM_ARRAY_TASK_MAX": "3",
              "SLURM_ARRAY_TASK_COUNT": "3"}
-    shards = [start_shard(0), start_shard(1), start_shard(2, slurm)]
-    victim = shards[1]
-
-    # Once it has finished two runs, catch the victim between a run's start and
-    # finish records: freeze it, confirm from its journal that it is still
-    # inside that run, then kill it.
-    killed_run = None
-    while killed_run is None and victim.poll() is None:
-        lines = journal_lines(out, victim.pid)
-        if sum(event == "finish" for _, event, _ in lines) >= 2 and lines[-1][1] == "start":
-            victim.send_signal(signal.SIGSTOP)
-            lines = journal_lines(out, victim.pid)
-            if lines[-1][1] == "start":
-                killed_run = lines[-1][2]
-                victim.send_signal(signal.SIGKILL)
-            else:
-                victim.send_signal(signal.SIGCONT)
-        time.sleep(0.001)
-    victim.wait()
+    for attempt in range(3):  # again in a fresh directory if the victim ended before it was caught
+        shutil.rmtree(out, ignore_errors=True)
+        shards = [start_shard(0), start_shard(1), start_shard(2, slurm)]
+        victim = shards[1]
+        killed_run = kill_in_a_run(victim, out)
+        if killed_run is not None:
+            break
+        for shard in shards:
+            shard.communicate()
     check(killed_run is not None and victim.returncode == -signal.SIGKILL,
-          f"shard 1 ended (exit {victim.returncode}) before it could be killed in a run")
+          f"shard 1 ended (exit {victim.returncode}) before it could be killed in a run, three times")
     killed_finished = killed_run is not None and os.path.exists(os.path.join(out, "runs", killed_run, "summary.json"))
     print(f"killed shard 1 (pid {victim.pid}) in run {killed_run}; its summary was {'' if killed_finished else 'not '}"
           "written")
