@@ -13,6 +13,7 @@
 #include <string>
 
 #include "results_db.hpp"
+#include "scratch_dir.hpp"
 #include "run_table.hpp"
 #include "sweep_store.hpp"
 
@@ -23,6 +24,7 @@ using latsim::app::is_temporary_name;
 using latsim::app::results_csv;
 using latsim::app::RunRecord;
 using latsim::app::SweepStore;
+using latsim::test::scratch_dir;
 using Json = nlohmann::json;
 namespace fs = std::filesystem;
 
@@ -46,13 +48,6 @@ Json summary_with(double mtp_mean_ms) {
 std::vector<RunRecord> two_records() {
   return {RunRecord{"00000000000000aa", 0, 1, 0, {Json(60)}, summary_with(25.25)},
           RunRecord{"00000000000000bb", 1, 1, 0, {Json("60000/1001")}, summary_with(26.0)}};
-}
-
-fs::path scratch_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
 }
 
 int64_t count_rows(sqlite3* db, const std::string& sql) {

@@ -15,6 +15,7 @@
 #include <thread>
 #include <vector>
 
+#include "scratch_dir.hpp"
 #include "sweep_claims.hpp"
 #include "sweep_journal.hpp"
 
@@ -22,17 +23,11 @@ using latsim::app::ClaimHolder;
 using latsim::app::ClaimOutcome;
 using latsim::app::RunClaims;
 using latsim::app::stale_reason;
+using latsim::test::scratch_dir;
 namespace fs = std::filesystem;
 using Kind = ClaimOutcome::Kind;
 
 namespace {
-
-fs::path scratch_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 // The pid of a process that has exited and been reaped.
 int64_t dead_pid() {
@@ -41,6 +36,14 @@ int64_t dead_pid() {
   int status = 0;
   ::waitpid(child, &status, 0);
   return child;
+}
+
+// A holder on this host whose process is gone.
+ClaimHolder dead_holder() {
+  ClaimHolder ghost = ClaimHolder::self();
+  ghost.pid = dead_pid();
+  ghost.pid_start = 0;
+  return ghost;
 }
 
 // A claim file as another process would have left it.
@@ -125,9 +128,7 @@ TEST_CASE("one holder per run: held, released, taken again, finished", "[sweep][
 
 TEST_CASE("a claim of a dead process on this host is retaken with its reason", "[sweep][claims]") {
   const fs::path dir = scratch_dir("latsim_claims_dead");
-  ClaimHolder ghost = ClaimHolder::self();
-  ghost.pid = dead_pid();
-  ghost.pid_start = 0;
+  const ClaimHolder ghost = dead_holder();
   write_claim(dir / "r.0", ghost);
   RunClaims claims(dir, kTenMinutes);
   const auto outcome = claims.claim("r");
@@ -161,10 +162,7 @@ TEST_CASE("a claim from a silent host is retaken, a recent one respected", "[swe
 
 TEST_CASE("of many racing for a run, or for its stale claim, exactly one wins", "[sweep][claims]") {
   const fs::path dir = scratch_dir("latsim_claims_race");
-  ClaimHolder ghost = ClaimHolder::self();
-  ghost.pid = dead_pid();
-  ghost.pid_start = 0;
-  write_claim(dir / "stale.0", ghost);
+  write_claim(dir / "stale.0", dead_holder());
   constexpr int kRacers = 8;
   for (const std::string run : {"fresh", "stale"}) {
     std::vector<std::unique_ptr<RunClaims>> racers;

@@ -19,7 +19,6 @@ Usage: test_sweep_cluster.py shards|mpi|scripts LATSIM SOURCE_DIR SCRATCH_DIR [M
 """
 
 import collections
-import csv
 import fractions
 import glob
 import json
@@ -30,29 +29,15 @@ import subprocess
 import sys
 import time
 
+from sweep_checks import check, finish, table
+
 MODE, LATSIM, SOURCE_DIR, SCRATCH = sys.argv[1:5]
 MPIEXEC = sys.argv[5] if len(sys.argv) > 5 else "mpiexec"
 BASE = os.path.join(SOURCE_DIR, "scenarios", "hmd_60hz_direct.json")
-checked, failures = [], []
-
-
-def check(condition, message):
-    checked.append(message)
-    if not condition:
-        failures.append(message)
-        print("FAILED:", message)
 
 
 def latsim(*args, env=None):
     return subprocess.run([LATSIM, *args], capture_output=True, text=True, env=env)
-
-
-def table(directory):
-    """results.csv rows without wall_s, the one column that measures the machine rather than the model."""
-    with open(os.path.join(directory, "results.csv"), newline="") as f:
-        rows = list(csv.reader(f))
-    drop = rows[0].index("wall_s")
-    return [[c for i, c in enumerate(r) if i != drop] for r in rows]
 
 
 def journal_lines(directory, pid="*"):
@@ -338,5 +323,4 @@ def scripts():
 
 
 {"shards": shards, "mpi": mpi, "scripts": scripts}[MODE]()
-print(f"sweep {MODE}: {len(checked) - len(failures)} checks passed, {len(failures)} failed")
-sys.exit(1 if failures else 0)
+finish(f"sweep {MODE}")

@@ -16,16 +16,10 @@ import subprocess
 import sys
 import time
 
+from sweep_checks import check, finish, table
+
 LATSIM, SOURCE_DIR, SCRATCH = sys.argv[1:4]
 BASE = os.path.join(SOURCE_DIR, "scenarios", "hmd_60hz_direct.json")
-checked, failures = [], []
-
-
-def check(condition, message):
-    checked.append(message)
-    if not condition:
-        failures.append(message)
-        print("FAILED:", message)
 
 
 def latsim(*args):
@@ -37,14 +31,6 @@ def write_sweep(name, sweep):
     with open(path, "w") as f:
         json.dump(sweep, f)
     return path
-
-
-def table(directory):
-    """results.csv rows without wall_s, the one column that measures the machine rather than the model."""
-    with open(os.path.join(directory, "results.csv"), newline="") as f:
-        rows = list(csv.reader(f))
-    drop = rows[0].index("wall_s")
-    return [[c for i, c in enumerate(r) if i != drop] for r in rows]
 
 
 def temporaries(directory):
@@ -149,5 +135,4 @@ for name in ("report.md", "mtp_cdf.png", "mtp_histogram.svg", "sweep_rate_hz.png
 check(len(glob.glob(os.path.join(killed, "runs", "*", "gantt.png"))) == 1, "report: --gantt-limit 1 not honoured")
 check(latsim("report", os.path.join(SCRATCH, "nowhere")).returncode == 2, "report on a missing directory")
 
-print(f"sweep program: {len(checked) - len(failures)} checks passed, {len(failures)} failed")
-sys.exit(1 if failures else 0)
+finish("sweep program")
