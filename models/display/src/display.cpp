@@ -33,6 +33,8 @@ void Display::on_retrace(std::function<void(int64_t, des::Time)> fn) { retrace_f
 
 void Display::add_listener(ScanoutListener* listener) { listeners_.push_back(listener); }
 
+void Display::set_persistence(PersistenceParams params) { persistence_ = Persistence(params, timing_); }
+
 void Display::start(des::Time end) {
   end_ = end;
   const int64_t first = timing_.field_at_or_after(sim_.now());
@@ -102,7 +104,14 @@ void Display::emit(int eye, int64_t field, int line, int x_begin, int x_end, des
   span.row = timing_.row_of(field, line);
   span.x_begin = x_begin;
   span.x_end = x_end;
-  span.photon_time = t;
+  span.written_at = t;
+  if (persistence_.configured()) {
+    const LitInterval lit = persistence_.lit(field, t);
+    span.photon_time = lit.middle();
+    span.lit_duration = lit.duration;
+  } else {
+    span.photon_time = t;
+  }
   span.image_id = front_[static_cast<size_t>(eye)];
   for (auto* l : listeners_) l->on_scanout(span);
 }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "latsim/des/simulator.hpp"
+#include "latsim/display/persistence.hpp"
 #include "latsim/display/raster_timing.hpp"
 
 namespace latsim::display {
@@ -26,7 +27,9 @@ struct ScanoutSpan {
   int row = 0;          ///< screen row, 0 = top
   int x_begin = 0;      ///< first pixel column of the span
   int x_end = 0;        ///< one past the last pixel column
-  des::Time photon_time;   ///< when the span (its first pixel) is lit
+  des::Time photon_time;   ///< middle of the lit interval of the span's first pixel
+  des::Time written_at;    ///< when scanout wrote the span (the content was read then)
+  des::Time lit_duration;  ///< how long each pixel stays lit; 0 without persistence (an impulse)
   int64_t image_id = -1;   ///< what the front buffer held; -1 = nothing yet
 };
 
@@ -58,6 +61,11 @@ class Display {
 
   /// Called at every retrace after pending swaps, before scanout of the field.
   void on_retrace(std::function<void(int64_t field, des::Time retrace)> fn);
+  /// Lights written pixels for a while instead of at the scanout instant;
+  /// spans then carry the middle of the lit interval as their photon time.
+  void set_persistence(PersistenceParams params);
+  /// The persistence model (not configured() unless set_persistence was called).
+  const Persistence& persistence() const { return persistence_; }
   void add_listener(ScanoutListener* listener);
 
   /// Schedules retraces (and scanout events) for fields whose retrace lies in [now, end).
@@ -78,6 +86,7 @@ class Display {
   std::vector<int64_t> pending_;
   std::vector<std::function<void(int64_t, des::Time)>> retrace_fns_;
   std::vector<ScanoutListener*> listeners_;
+  Persistence persistence_;
   des::Time end_;
   int64_t fields_shown_ = 0;
   des::KindId kind_retrace_ = 0, kind_line_ = 0, kind_pixel_ = 0;
