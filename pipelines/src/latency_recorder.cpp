@@ -124,6 +124,12 @@ void LatencyRecorder::on_scanout(const display::ScanoutSpan& span) {
       add_to(translation_, "translation_latency_ms", (photon - img.sample.measured_at).to_ms());
       origin = newest->measured_at;
     }
+  } else if (img.warp == ImageRecord::Warp::rotation) [[unlikely]] {
+    // Re-projected to a newer orientation; the position is the rendered one.
+    if (!rotation_) rotation_ = &distribution_ref("rotation_latency_ms");
+    if (!translation_) translation_ = &distribution_ref("translation_latency_ms");
+    add_to(rotation_, "rotation_latency_ms", (photon - img.orientation_measured_at).to_ms());
+    add_to(translation_, "translation_latency_ms", (photon - origin).to_ms());
   }
   if (!mtp_) {
     mtp_ = &distribution_ref("motion_to_photon_ms");

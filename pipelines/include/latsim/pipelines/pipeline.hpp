@@ -45,6 +45,13 @@ struct ImageRecord {
   /// Address recalculation: orientation is taken from the newest sample at
   /// scanout, so rotation and translation latency differ.
   bool orientation_at_scanout = false;
+  /// Time warp: the image is an image rendered from `source_pose` re-projected
+  /// to `eye_pose`. A rotation-only warp keeps the source's position: its
+  /// orientation was measured at `orientation_measured_at`, later than `sample`.
+  enum class Warp : uint8_t { none, rotation, positional };
+  Warp warp = Warp::none;
+  tracker::Pose source_pose;
+  des::Time orientation_measured_at;
 };
 
 /// The pose of one eye of a head: stereo eyes sit ipd/2 either side along the

@@ -1,0 +1,123 @@
+#include "frame_stages/compositor.hpp"
+
+#include <algorithm>
+
+#include "latsim/pipelines/latency_recorder.hpp"
+
+namespace latsim::pipelines::frame_stages {
+
+namespace {
+using Mode = WarpSpec::Mode;
+// Image ids kept for rewarps_of(): far more than are on screen at once.
+constexpr int64_t kRememberImages = 4096;
+}  // namespace
+
+Compositor::Compositor(RunContext& ctx, const WarpSpec& spec, des::Resource& eye_buffers)
+    : ctx_(ctx), spec_(spec), eye_buffers_(eye_buffers), clock_(ctx.display.timing(), spec.strips) {}
+
+void Compositor::on_frame_complete(const JobRecord& frame) {
+  EyeImage img;
+  img.sample = *frame.last_sample;
+  for (int eye = 0; eye < ctx_.display.eyes(); ++eye) img.eye_poses.push_back(ctx_.eye_pose(img.sample, eye));
+  if (spec_.mode == Mode::render || (newest_ && frame.job < *newest_)) {
+    // Nothing reads it: beam racing renders its own strips, and an image
+    // older than the newest (alternate frame rendering) is never warped.
+    eye_buffers_.release();
+    return;
+  }
+  const std::optional<int64_t> previous = newest_;
+  images_.emplace(frame.job, std::move(img));
+  newest_ = frame.job;
+  if (previous) {
+    images_.at(*previous).superseded = true;
+    release_if_unused(*previous);
+  }
+}
+
+void Compositor::release_if_unused(int64_t frame) {
+  auto it = images_.find(frame);
+  if (it == images_.end() || !it->second.superseded || it->second.readers > 0) return;
+  images_.erase(it);
+  eye_buffers_.release();
+}
+
+void Compositor::count_refresh(EyeImage& src, const JobRecord& warp) {
+  // Counted once per refresh, at its first strip: an image that arrives
+  // while a refresh is being warped strip by strip counts from the next one.
+  if (clock_.slot_of(warp.deadline).strip != 0) return;
+  const int before = src.refreshes++;
+  if (before == 0) return;
+  ++frames_rewarped_;
+  // At half rate every image is planned to be shown twice.
+  if (spec_.half_rate && before == 1) ++frames_synthesised_;
+  else ++frames_missed_;
+}
+
+bool Compositor::on_begin(JobRecord& warp) {
+  if (spec_.mode == Mode::render) return true;
+  if (!newest_) {
+    if (clock_.slot_of(warp.deadline).strip == 0) ++refreshes_without_image_;
+    return false;
+  }
+  EyeImage& src = images_.at(*newest_);
+  if (!spec_.asynchronous && src.refreshes > 0) {
+    // Synchronous warp: no new image, no warp; the display shows the last one again.
+    if (clock_.slot_of(warp.deadline).strip == 0) ++frames_missed_;
+    return false;
+  }
+  count_refresh(src, warp);
+  ++src.readers;
+  warp.tag = *newest_;
+  return true;
+}
+
+ImageRecord Compositor::warped_record(const JobRecord& warp, int64_t frame, const EyeImage* src, int eye) const {
+  const tracker::TrackerSample& now_sample = *warp.last_sample;
+  const des::Time now = ctx_.sim.now();
+  if (spec_.mode == Mode::render) return ctx_.image_record(warp.job, eye, now_sample, warp.last_sample_at, now);
+  if (spec_.mode == Mode::positional) {
+    ImageRecord rec = ctx_.image_record(frame, eye, now_sample, warp.last_sample_at, now);
+    rec.warp = ImageRecord::Warp::positional;
+    rec.source_pose = src->eye_poses[static_cast<size_t>(eye)];
+    return rec;
+  }
+  // Rotation only: the position (and the latency origin of the whole pose)
+  // stays the rendered one; the orientation is the newest.
+  ImageRecord rec = ctx_.image_record(frame, eye, src->sample, warp.last_sample_at, now);
+  rec.warp = ImageRecord::Warp::rotation;
+  rec.source_pose = src->eye_poses[static_cast<size_t>(eye)];
+  rec.eye_pose.position_m = rec.source_pose.position_m;
+  rec.eye_pose.orientation = ctx_.eye_pose(now_sample, eye).orientation;
+  rec.orientation_measured_at = now_sample.measured_at;
+  return rec;
+}
+
+void Compositor::on_complete(JobRecord& warp) {
+  if (warp.skipped) return;
+  ++warps_;
+  const EyeImage* src = warp.tag >= 0 ? &images_.at(warp.tag) : nullptr;
+  const int rewarps = src ? std::max(0, src->refreshes - 1) : 0;
+  const bool late = ctx_.sim.now() > warp.deadline;
+  if (late) ++warps_late_;
+  for (int eye = 0; eye < ctx_.display.eyes(); ++eye) {
+    const int64_t id = ctx_.recorder.register_image(warped_record(warp, warp.tag, src, eye));
+    rewarps_.emplace(id, rewarps);
+    // One strip: swapped in at the retrace (the next one if this warp is
+    // late). Strips: written into the front buffer just ahead of the beam.
+    if (clock_.strips() == 1) ctx_.display.present_at_next_retrace(eye, id);
+    else ctx_.display.present_now(eye, id);
+  }
+  while (!rewarps_.empty() && rewarps_.begin()->first < rewarps_.rbegin()->first - kRememberImages)
+    rewarps_.erase(rewarps_.begin());
+  if (src) {
+    --images_.at(warp.tag).readers;
+    release_if_unused(warp.tag);
+  }
+}
+
+int Compositor::rewarps_of(int64_t image_id) const {
+  auto it = rewarps_.find(image_id);
+  return it == rewarps_.end() ? -1 : it->second;
+}
+
+}  // namespace latsim::pipelines::frame_stages

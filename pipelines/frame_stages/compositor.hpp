@@ -1,0 +1,74 @@
+// The time-warp compositor: once per refresh, or strip by strip just ahead of
+// the beam, it re-projects the newest application image to the newest pose.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "frame_stages/spec.hpp"
+#include "frame_stages/stage_flow.hpp"
+#include "frame_stages/warp_clock.hpp"
+#include "latsim/des/resource.hpp"
+#include "latsim/pipelines/pipeline.hpp"
+
+namespace latsim::pipelines::frame_stages {
+
+/// Chooses what each warp re-projects, registers and presents the warped
+/// images, and counts what the application missed. The application draws
+/// into eye buffers; the newest complete one is warped, again and again if
+/// no newer one arrives (asynchronous time warp).
+class Compositor {
+ public:
+  Compositor(RunContext& ctx, const WarpSpec& spec, des::Resource& eye_buffers);
+
+  const WarpClock& clock() const { return clock_; }
+
+  /// An application frame is complete: it becomes the newest image.
+  void on_frame_complete(const JobRecord& frame);
+  /// A warp is about to begin: pick its source; false when there is none to warp.
+  bool on_begin(JobRecord& warp);
+  /// A warp has ended: register and present what it made.
+  void on_complete(JobRecord& warp);
+
+  /// For an image this compositor made: how many refreshes its source image
+  /// had been shown in before (0: new); -1 for any other image.
+  int rewarps_of(int64_t image_id) const;
+
+  int64_t warps() const { return warps_; }
+  int64_t frames_rewarped() const { return frames_rewarped_; }
+  int64_t frames_missed() const { return frames_missed_; }
+  int64_t frames_synthesised() const { return frames_synthesised_; }
+  int64_t warps_late() const { return warps_late_; }
+  int64_t refreshes_without_image() const { return refreshes_without_image_; }
+
+ private:
+  /// A completed application image in an eye buffer.
+  struct EyeImage {
+    tracker::TrackerSample sample;
+    std::vector<tracker::Pose> eye_poses;  ///< per eye, as rendered
+    int refreshes = 0;                     ///< refreshes whose first strip showed it
+    int readers = 0;                       ///< warps reading it now
+    bool superseded = false;
+  };
+  void count_refresh(EyeImage& src, const JobRecord& warp);
+  void release_if_unused(int64_t frame);
+  ImageRecord warped_record(const JobRecord& warp, int64_t frame, const EyeImage* src, int eye) const;
+
+  RunContext& ctx_;
+  WarpSpec spec_;
+  des::Resource& eye_buffers_;
+  WarpClock clock_;
+  std::map<int64_t, EyeImage> images_;  ///< by application frame
+  std::optional<int64_t> newest_;
+  std::map<int64_t, int> rewarps_;      ///< image id -> rewarps (recent images only)
+  int64_t warps_ = 0;
+  int64_t frames_rewarped_ = 0;
+  int64_t frames_missed_ = 0;
+  int64_t frames_synthesised_ = 0;
+  int64_t warps_late_ = 0;
+  int64_t refreshes_without_image_ = 0;
+};
+
+}  // namespace latsim::pipelines::frame_stages

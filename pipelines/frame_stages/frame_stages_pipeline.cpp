@@ -1,0 +1,120 @@
+#include "frame_stages/frame_stages_pipeline.hpp"
+
+#include <stdexcept>
+
+namespace latsim::pipelines::frame_stages {
+
+FrameStagesPipeline::FrameStagesPipeline(FrameStagesSpec spec) : spec_(std::move(spec)) {}
+
+FrameStagesPipeline::~FrameStagesPipeline() = default;
+
+FlowEnv FrameStagesPipeline::env(des::RandomStream& stream) {
+  FlowEnv e{ctx_->sim, {}, {}, {}, *retraces_, {}, *poses_, stream, ctx_->timeline};
+  for (size_t i = 0; i < processors_.size(); ++i) {
+    e.processors.push_back(processors_[i].get());
+    e.processor_names.push_back(spec_.processors[i].name);
+    e.preemption_slices.push_back(spec_.processors[i].preemption_slice);
+  }
+  const display::RasterTiming* timing = &ctx_->display.timing();
+  e.next_retrace = [timing](des::Time t) { return timing->field_start(timing->field_at_or_after(t)); };
+  return e;
+}
+
+des::Time FrameStagesPipeline::app_photon_target(des::Time completion) const {
+  const display::RasterTiming& timing = ctx_->display.timing();
+  // Without vsync a frame is shown at once, on average half a field lit
+  // later; otherwise from the next retrace, the middle line as its centre.
+  if (!spec_.vsync && !spec_.warp) return completion + des::Time::ps(timing.field_start(1).ticks() / 2);
+  return timing.line_time(timing.field_at_or_after(completion), timing.lines_per_field() / 2);
+}
+
+FlowHooks FrameStagesPipeline::app_hooks() {
+  FlowHooks h;
+  h.max_in_flight = spec_.max_frames_in_flight;
+  const display::RasterTiming* timing = &ctx_->display.timing();
+  h.next_deadline = [timing](des::Time t) { return timing->field_start(timing->field_at_or_after(t)); };
+  h.photon_for_completion = [this](des::Time t) { return app_photon_target(t); };
+  h.image_buffers = image_buffers_.get();
+  h.on_complete = [this](JobRecord& frame) {
+    ++frames_completed_;
+    if (compositor_) compositor_->on_frame_complete(frame);
+    else swap_chain_->on_frame_complete(frame);
+  };
+  h.retrace_divider = spec_.warp && spec_.warp->half_rate ? 2 : 1;
+  return h;
+}
+
+FlowHooks FrameStagesPipeline::warp_hooks() {
+  FlowHooks h;
+  h.max_in_flight = 1;
+  const WarpClock* clock = &compositor_->clock();
+  h.next_deadline = [clock](des::Time t) { return clock->next_deadline(t); };
+  h.photon_for_completion = [clock](des::Time t) {
+    return clock->middle_photon(clock->slot_of(clock->next_deadline(t)));
+  };
+  h.on_begin = [this](JobRecord& warp) { return compositor_->on_begin(warp); };
+  h.on_complete = [this](JobRecord& warp) { compositor_->on_complete(warp); };
+  return h;
+}
+
+void FrameStagesPipeline::start(RunContext& ctx) {
+  ctx_ = &ctx;
+  for (const ProcessorSpec& p : spec_.processors) processors_.push_back(std::make_unique<des::Resource>(ctx.sim, 1, p.name));
+  retraces_ = std::make_unique<Progress>(ctx.sim);
+  poses_ = std::make_unique<PoseSampler>(ctx.host);
+  app_stream_ = std::make_unique<des::RandomStream>(ctx.stream("frame_stages"));
+  if (spec_.warp) {
+    image_buffers_ = std::make_unique<des::Resource>(ctx.sim, spec_.warp->eye_buffers, "eye_buffers");
+    compositor_ = std::make_unique<Compositor>(ctx, *spec_.warp, *image_buffers_);
+    residuals_ = std::make_unique<ResidualErrors>(*compositor_, ctx.recorder, ctx.motion, ctx.ipd_m, ctx.stereo);
+    ctx.display.add_listener(residuals_.get());
+  } else {
+    image_buffers_ = std::make_unique<des::Resource>(ctx.sim, spec_.swap_chain_images, "swap_chain");
+    swap_chain_ = std::make_unique<SwapChain>(ctx, *image_buffers_, spec_.vsync);
+  }
+  app_ = std::make_unique<StageFlow>("frame.stage", spec_.stages, spec_.late, env(*app_stream_), app_hooks());
+  if (spec_.warp) {
+    warp_stream_ = std::make_unique<des::RandomStream>(ctx.stream("compositor"));
+    warp_ = std::make_unique<StageFlow>("compositor.warp", spec_.warp->stages, spec_.late, env(*warp_stream_),
+                                        warp_hooks());
+  }
+  // The swap happens before the waiting threads are told of the retrace.
+  ctx.display.on_retrace([this](int64_t field, des::Time) {
+    if (swap_chain_) swap_chain_->on_retrace(field);
+    retraces_->raise_to(field + 1);
+  });
+  app_->start();
+  if (warp_) warp_->start();
+}
+
+void FrameStagesPipeline::report(const std::function<void(const std::string&, const nlohmann::json&)>& put) const {
+  const double seconds = ctx_->duration.to_seconds();
+  put("frames_rendered", frames_completed_);
+  put("application_frame_rate_hz", static_cast<double>(frames_completed_) / seconds);
+  if (swap_chain_) {
+    put("missed_refreshes", swap_chain_->frames_missed());
+    put("frames_missed", swap_chain_->frames_missed());
+    return;
+  }
+  put("frames_missed", compositor_->frames_missed());
+  put("frames_rewarped", compositor_->frames_rewarped());
+  put("frames_synthesised", compositor_->frames_synthesised());
+  put("warps", compositor_->warps());
+  put("warps_late", compositor_->warps_late());
+  put("refreshes_without_image", compositor_->refreshes_without_image());
+  nlohmann::json by = nlohmann::json::array();
+  for (size_t k = 0; k < residuals_->by_rewarps().size(); ++k) {
+    const ResidualErrors::Bucket& b = residuals_->by_rewarps()[k];
+    if (b.spans == 0) continue;
+    const double n = static_cast<double>(b.spans);
+    by.push_back({{"rewarps", k}, {"spans", b.spans}, {"orientation_deg_mean", b.orientation_deg_sum / n},
+                  {"position_mm_mean", b.position_mm_sum / n}});
+  }
+  put("residual_by_rewarps", by);
+}
+
+void FrameStagesPipeline::finish(RunContext&, nlohmann::json& figures) {
+  report([&](const std::string& name, const nlohmann::json& v) { figures[name] = v; });
+}
+
+}  // namespace latsim::pipelines::frame_stages

@@ -1,0 +1,60 @@
+// The staged frame pipeline: application frames as timed stages on CPU
+// threads and GPUs, shown through a swap chain or an optional time-warp
+// compositor (SPEC section 10; docs/modern.md).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "frame_stages/compositor.hpp"
+#include "frame_stages/pose_sampler.hpp"
+#include "frame_stages/progress.hpp"
+#include "frame_stages/residual_errors.hpp"
+#include "frame_stages/spec.hpp"
+#include "frame_stages/stage_flow.hpp"
+#include "frame_stages/swap_chain.hpp"
+#include "latsim/des/random.hpp"
+#include "latsim/des/resource.hpp"
+#include "latsim/pipelines/pipeline.hpp"
+
+namespace latsim::pipelines::frame_stages {
+
+/// Builds the processors, the application's flow of frames and, with a warp,
+/// the compositor's flow of warps, and reports their figures.
+class FrameStagesPipeline final : public Pipeline {
+ public:
+  explicit FrameStagesPipeline(FrameStagesSpec spec);
+  ~FrameStagesPipeline() override;
+
+  std::string name() const override { return "frame_stages"; }
+  void start(RunContext& ctx) override;
+  void finish(RunContext& ctx, nlohmann::json& figures) override;
+
+  /// Every figure of the pipeline, by name (what finish() reports).
+  void report(const std::function<void(const std::string&, const nlohmann::json&)>& put) const;
+
+ private:
+  FlowEnv env(des::RandomStream& stream);
+  FlowHooks app_hooks();
+  FlowHooks warp_hooks();
+  des::Time app_photon_target(des::Time completion) const;
+
+  FrameStagesSpec spec_;
+  RunContext* ctx_ = nullptr;
+  std::vector<std::unique_ptr<des::Resource>> processors_;
+  std::unique_ptr<des::Resource> image_buffers_;
+  std::unique_ptr<Progress> retraces_;
+  std::unique_ptr<PoseSampler> poses_;
+  std::unique_ptr<des::RandomStream> app_stream_, warp_stream_;
+  std::unique_ptr<SwapChain> swap_chain_;
+  std::unique_ptr<Compositor> compositor_;
+  std::unique_ptr<ResidualErrors> residuals_;
+  std::unique_ptr<StageFlow> app_, warp_;
+  int64_t frames_completed_ = 0;
+};
+
+}  // namespace latsim::pipelines::frame_stages

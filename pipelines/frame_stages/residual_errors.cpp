@@ -1,0 +1,37 @@
+#include "frame_stages/residual_errors.hpp"
+
+#include <algorithm>
+
+#include <glm/geometric.hpp>
+
+namespace latsim::pipelines::frame_stages {
+
+namespace {
+constexpr double kDegPerRad = 57.295779513082320876798;
+}  // namespace
+
+ResidualErrors::ResidualErrors(const Compositor& compositor, LatencyRecorder& recorder,
+                               const tracker::MotionSource& motion, double ipd_m, bool stereo)
+    : compositor_(compositor), recorder_(recorder), motion_(motion), ipd_m_(ipd_m), stereo_(stereo) {}
+
+void ResidualErrors::on_scanout(const display::ScanoutSpan& span) {
+  const int rewarps = compositor_.rewarps_of(span.image_id);
+  if (rewarps < 0) return;
+  const ImageRecord* img = recorder_.image(span.image_id);
+  if (img == nullptr) return;
+  const tracker::Pose truth = eye_pose_of(motion_.pose_at(span.photon_time), span.eye, ipd_m_, stereo_);
+  const double deg = tracker::angle_between(img->eye_pose.orientation, truth.orientation) * kDegPerRad;
+  const double mm = glm::length(img->eye_pose.position_m - truth.position_m) * 1e3;
+  if (!orientation_) {
+    orientation_ = &recorder_.distribution_ref("residual_orientation_error_deg");
+    position_ = &recorder_.distribution_ref("residual_position_error_mm");
+  }
+  orientation_->add(deg);
+  position_->add(mm);
+  Bucket& b = buckets_[static_cast<size_t>(std::min(rewarps, kBuckets - 1))];
+  ++b.spans;
+  b.orientation_deg_sum += deg;
+  b.position_mm_sum += mm;
+}
+
+}  // namespace latsim::pipelines::frame_stages

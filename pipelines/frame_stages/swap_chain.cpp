@@ -1,0 +1,46 @@
+#include "frame_stages/swap_chain.hpp"
+
+#include "latsim/pipelines/latency_recorder.hpp"
+#include "latsim/pipelines/timeline.hpp"
+
+namespace latsim::pipelines::frame_stages {
+
+SwapChain::SwapChain(RunContext& ctx, des::Resource& images, bool vsync) : ctx_(ctx), images_(images), vsync_(vsync) {}
+
+void SwapChain::on_frame_complete(const JobRecord& frame) {
+  Done d{frame.job, {}, ctx_.sim.now()};
+  for (int eye = 0; eye < ctx_.display.eyes(); ++eye) {
+    const ImageRecord rec = ctx_.image_record(frame.job, eye, *frame.last_sample, frame.last_sample_at, d.completed);
+    d.ids.push_back(ctx_.recorder.register_image(rec));
+  }
+  // Frames are presented in the order they were issued.
+  early_.emplace(frame.job, std::move(d));
+  for (auto it = early_.find(next_frame_); it != early_.end(); it = early_.find(next_frame_)) {
+    ++next_frame_;
+    if (vsync_) queue_.push_back(std::move(it->second));
+    else show(it->second);
+    early_.erase(it);
+  }
+}
+
+void SwapChain::on_retrace(int64_t) {
+  if (!vsync_) return;
+  if (queue_.empty()) {
+    if (on_screen_) ++frames_missed_;
+    return;
+  }
+  const Done d = std::move(queue_.front());
+  queue_.pop_front();
+  if (ctx_.timeline) ctx_.timeline->add("QUEUED", d.frame, -1, "swapchain", d.completed, ctx_.sim.now());
+  show(d);
+}
+
+void SwapChain::show(const Done& d) {
+  for (int eye = 0; eye < ctx_.display.eyes(); ++eye) ctx_.display.present_now(eye, d.ids[static_cast<size_t>(eye)]);
+  // The image that was on screen is free to be drawn into again.
+  if (on_screen_) images_.release();
+  on_screen_ = true;
+  ++frames_shown_;
+}
+
+}  // namespace latsim::pipelines::frame_stages

@@ -1,0 +1,171 @@
+// The eleven configurations of "Latency mitigation strategies" (Carmack,
+// 2013) built as stage specs and run on the reference display: 62.5 Hz
+// (16 ms), no blanking, 160 lines of 0.1 ms; a 1000 Hz tracker with sample 0
+// at t = 0 and no delay (500 Hz for continuous time warp). Stage durations
+// are read off the article's diagrams, one character per millisecond.
+//
+// Expected ranges come from the diagrams by hand (docs/modern.md walks
+// through each): the pose is read at the start of the sampling stage, the
+// top line is lit at the retrace that starts the frame's scanout, the bottom
+// line 15.9 ms later. With samples on whole milliseconds and every sampling
+// stage starting on a whole millisecond, the sample read is 0 ms old, so the
+// simulated min and max must equal the derived values exactly; continuous
+// time warp reads at odd milliseconds from a 500 Hz tracker sampling on even
+// ones: every read is 1 ms old.
+#include <catch2/catch.hpp>
+
+#include "rig.hpp"
+
+using latsim::testing::Rig;
+using latsim::testing::stage;
+using latsim::testing::streaming;
+using namespace latsim::pipelines::frame_stages;
+
+namespace {
+
+constexpr double kLastLine = 15.9;  // the bottom line is lit 159 lines of 0.1 ms after the retrace
+
+FrameStagesSpec base(std::vector<const char*> processors, int in_flight) {
+  FrameStagesSpec s;
+  for (const char* p : processors) s.processors.push_back(ProcessorSpec{p, {}});
+  s.max_frames_in_flight = in_flight;
+  return s;
+}
+
+/// Runs 1 s and checks the range, and that every refresh got a new frame:
+/// 62.5 frames per second (the first ones complete only after 1 to 3 frame
+/// times), none missed once the first was shown.
+void check_range(FrameStagesSpec spec, double min_ms, double max_ms, int tracker_hz = 1000) {
+  Rig rig(std::move(spec), tracker_hz);
+  rig.run(1.0);
+  CHECK(rig.mtp("min") == Approx(min_ms).margin(1e-6));
+  CHECK(rig.mtp("max") == Approx(max_ms).margin(1e-6));
+  CHECK(rig.figures["frames_missed"].get<int64_t>() == 0);
+  CHECK(rig.figures["application_frame_rate_hz"].get<double>() == Approx(62.5).margin(3.0));
+}
+
+constexpr int kCpu1 = 0, kCpu2 = 1, kGpu = 2;
+constexpr auto kRetrace = StartRule::retrace;
+constexpr auto kLate = StartRule::late;
+
+}  // namespace
+
+TEST_CASE("reference: ample performance with vsync shows the pose read at a retrace from the next one") {
+  // ISRG------------|VVVVVVVVVVVVVVVV| : read at V_k, G ends at V_k + 4, shown from V_{k+1}: 16 - 32 ms.
+  FrameStagesSpec s = base({"cpu", "gpu"}, 2);
+  s.stages = {stage("I", {0}, 1, kRetrace, true), stage("S", {0}, 1), stage("R", {0}, 1), stage("G", {1}, 1)};
+  check_range(s, 16.0, 16.0 + kLastLine);
+}
+
+TEST_CASE("reference: unsynchronized frames replace the front buffer as they complete") {
+  // ISRG then VVVV: no overlap (one frame in flight), a frame every 4 ms; the
+  // line lit at t shows the frame completed last, read 4 to 8 ms before t.
+  FrameStagesSpec s = base({"cpu", "gpu"}, 1);
+  s.vsync = false;
+  s.stages = {stage("I", {0}, 1, StartRule::after, true), stage("S", {0}, 1), stage("R", {0}, 1), stage("G", {1}, 1)};
+  Rig rig(s);
+  rig.run(1.0);
+  CHECK(rig.mtp("min") == Approx(4.0).margin(1e-6));
+  CHECK(rig.mtp("max") == Approx(7.9).margin(1e-6));
+  CHECK(rig.figures["application_frame_rate_hz"].get<double>() == Approx(250.0).margin(1.0));
+}
+
+TEST_CASE("reference: a CPU and a GPU pipelined a frame apart") {
+  // CPU:ISSSSSRRRRRR----|  GPU: |GGGGGGGGGGG----|  : G waits for the swap at V_{k+1}
+  // that frees a buffer, shown from V_{k+2}: 32 - 48 ms.
+  FrameStagesSpec s = base({"cpu", "gpu"}, 2);
+  s.stages = {stage("I", {0}, 1, kRetrace, true), stage("S", {0}, 5), stage("R", {0}, 6), stage("G", {1}, 11)};
+  check_range(s, 32.0, 32.0 + kLastLine);
+}
+
+TEST_CASE("reference: simulation and rendering on two threads, each a frame apart") {
+  // CPU1:ISSSSSSSS  CPU2: |RRRRRRRRR  GPU: | |GGGGGGGGGG : 48 - 64 ms.
+  FrameStagesSpec s = base({"cpu1", "cpu2", "gpu"}, 3);
+  s.stages = {stage("I", {kCpu1}, 1, kRetrace, true), stage("S", {kCpu1}, 8), stage("R", {kCpu2}, 9, kRetrace),
+              stage("G", {kGpu}, 10)};
+  check_range(s, 48.0, 48.0 + kLastLine);
+}
+
+TEST_CASE("reference: minimal GPU buffering draws while the commands are issued") {
+  // GPU : |-GGGGGGGGGG-----| : G starts 1 ms after R, shown from V_{k+2}: 32 - 48 ms.
+  FrameStagesSpec s = base({"cpu1", "cpu2", "gpu"}, 2);
+  s.stages = {stage("I", {kCpu1}, 1, kRetrace, true), stage("S", {kCpu1}, 8), stage("R", {kCpu2}, 9, kRetrace),
+              streaming("G", {kGpu}, 10, 1)};
+  check_range(s, 32.0, 32.0 + kLastLine);
+}
+
+TEST_CASE("reference: alternate frame rendering on two GPUs of twice the frame time") {
+  // GPU1: | GGG...(24) shown from V_{k+3}: 48 - 64 ms; three swap-chain images.
+  FrameStagesSpec s = base({"cpu1", "cpu2", "gpu1", "gpu2"}, 4);
+  s.swap_chain_images = 3;
+  s.stages = {stage("I", {kCpu1}, 1, kRetrace, true), stage("S", {kCpu1}, 8), stage("R", {kCpu2}, 9, kRetrace),
+              streaming("G", {2, 3}, 24, 1)};
+  Rig rig(s);
+  rig.run(1.0);
+  CHECK(rig.mtp("min") == Approx(48.0).margin(1e-6));
+  CHECK(rig.mtp("max") == Approx(48.0 + kLastLine).margin(1e-6));
+  CHECK(rig.figures["frames_missed"].get<int64_t>() == 0);
+}
+
+TEST_CASE("reference: late frame scheduling reads the input in the last millisecond before the retrace") {
+  // CPU1:SSSSSSSSS------I| : I at V_{k+1} - 1, shown from V_{k+2}: 17 - 33 ms
+  // (the article prints 18 - 34, counting a character for the bar).
+  FrameStagesSpec s = base({"cpu1", "cpu2", "gpu"}, 3);
+  s.stages = {stage("S", {kCpu1}, 9, kRetrace), stage("I", {kCpu1}, 1, kLate, true),
+              stage("R", {kCpu2}, 9, kRetrace), streaming("G", {kGpu}, 10, 1)};
+  check_range(s, 17.0, 17.0 + kLastLine);
+}
+
+TEST_CASE("reference: view bypass samples the view again before render submission") {
+  // CPU2: |IRRRRRRRRR : the view read at V_{k+1}, shown from V_{k+2}: 16 - 32 ms.
+  FrameStagesSpec s = base({"cpu1", "cpu2", "gpu"}, 3);
+  s.stages = {stage("I", {kCpu1}, 1, kRetrace, true), stage("S", {kCpu1}, 9),
+              stage("I2", {kCpu2}, 1, kRetrace, true), stage("R", {kCpu2}, 9), streaming("G", {kGpu}, 10, 1)};
+  check_range(s, 16.0, 16.0 + kLastLine);
+}
+
+TEST_CASE("reference: late-sampled view bypass reads the view as late as drawing allows") {
+  // CPU2: |----IRRRRRRRRR--| GPU: |------GGGGGGGGGG| : the span from I to the
+  // end of G is 12 ms, so I starts at V_{k+2} - 12: 12 - 28 ms.
+  FrameStagesSpec s = base({"cpu1", "cpu2", "gpu"}, 3);
+  StageSpec i2 = stage("I2", {kCpu2}, 1, kLate, true);
+  i2.until = 4;
+  s.stages = {stage("I", {kCpu1}, 1, kRetrace, true), stage("S", {kCpu1}, 9), i2, stage("R", {kCpu2}, 9),
+              streaming("G", {kGpu}, 10, 1)};
+  check_range(s, 12.0, 12.0 + kLastLine);
+}
+
+TEST_CASE("reference: late-scheduled time warp re-projects the finished image 2 ms before the retrace") {
+  // CPU2: |RRRRRRRRRR----IR| GPU : |-GGGGGGGGGG----G| : the warp reads the pose at
+  // V - 2 and re-projects with depth (orientation and position): 2 - 18 ms.
+  FrameStagesSpec s = base({"cpu1", "cpu2", "gpu"}, 2);
+  s.stages = {stage("I", {kCpu1}, 1, kRetrace, true), stage("S", {kCpu1}, 9), stage("R", {kCpu2}, 10, kRetrace),
+              streaming("G", {kGpu}, 10, 1)};
+  WarpSpec w;
+  w.mode = WarpSpec::Mode::positional;
+  StageSpec wi = stage("WI", {kCpu2}, 1, kLate, true);
+  wi.until = 2;
+  w.stages = {wi, stage("WR", {kCpu2}, 1), streaming("W", {kGpu}, 1, 0)};
+  s.warp = w;
+  Rig rig(s);
+  rig.run(1.0);
+  CHECK(rig.mtp("min") == Approx(2.0).margin(1e-6));
+  CHECK(rig.mtp("max") == Approx(2.0 + kLastLine).margin(1e-6));
+  CHECK(rig.figures["frames_missed"].get<int64_t>() == 0);
+  CHECK(rig.figures["warps_late"].get<int64_t>() == 0);
+}
+
+TEST_CASE("reference: continuous time warp warps 2 ms strips just ahead of the beam") {
+  // WARP: |               W| W W W W W W W W| : strip s of a refresh is warped
+  // in the millisecond before its first line; a line d into its 2 ms strip is
+  // lit 1 + d after the warp read a pose 1 ms old: 2 - 3.9 ms.
+  FrameStagesSpec s = base({"cpu1", "cpu2", "gpu", "warp"}, 2);
+  s.stages = {stage("I", {kCpu1}, 1, kRetrace, true), stage("S", {kCpu1}, 9), stage("R", {kCpu2}, 11, kRetrace),
+              streaming("G", {kGpu}, 12, 1)};
+  WarpSpec w;
+  w.mode = WarpSpec::Mode::positional;
+  w.strips = 8;
+  w.stages = {stage("W", {3}, 1, kLate, true)};
+  s.warp = w;
+  check_range(s, 2.0, 2.0 + 1.9, 500);
+}
