@@ -91,6 +91,7 @@ JobRecord& StageFlow::new_record(int64_t j) {
   rec.job = j;
   rec.start.assign(stages_.size(), des::Time::zero());
   rec.end.assign(stages_.size(), des::Time::zero());
+  rec.released.assign(stages_.size(), des::Time::zero());
   return rec;
 }
 
@@ -124,9 +125,11 @@ void StageFlow::begin_stage(int stage, JobRecord& rec) {
 void StageFlow::end_stage(int stage, int processor, JobRecord& rec) {
   const des::Time now = env_.sim.now();
   rec.end[static_cast<size_t>(stage)] = now;
+  // A late span is measured from its release, so that waiting for a busy
+  // processor (a preempted GPU) is learnt as part of it.
   for (size_t k = 0; k <= static_cast<size_t>(stage); ++k)
     if (stages_[k].start == StartRule::late && until_of(stages_[k], static_cast<int>(k)) == stage)
-      estimates_[k].add(now - rec.start[k]);
+      estimates_[k].add(now - rec.released[k]);
   if (env_.timeline)
     env_.timeline->add(stages_[static_cast<size_t>(stage)].name, rec.job, -1,
                        env_.processor_names[static_cast<size_t>(processor)], rec.start[static_cast<size_t>(stage)], now);
@@ -184,6 +187,7 @@ des::Process StageFlow::worker(int r, int lane) {
       const Wait w = rule_wait(run.first, record(j));
       if (w.progress) co_await w.progress->reached(w.target);
       if (w.until > sim.now()) co_await sim.until(w.until);
+      release_stage(run.first, record(j));
     }
     co_await proc.acquire();
     if (r == 0 && hooks_.on_begin && !hooks_.on_begin(record(j))) {
@@ -197,6 +201,7 @@ des::Process StageFlow::worker(int r, int lane) {
         const Wait w = rule_wait(s, record(j));
         if (w.progress) co_await w.progress->reached(w.target);
         if (w.until > sim.now()) co_await sim.until(w.until);
+        release_stage(s, record(j));
       }
       if (st.samples_pose) {
         const des::Time target = photon_target(s);

@@ -24,6 +24,8 @@ namespace latsim::pipelines::frame_stages {
 struct JobRecord {
   int64_t job = -1;
   std::vector<des::Time> start, end;                   ///< per stage
+  std::vector<des::Time> released;                     ///< per stage: when its start rule let it go (it may then
+                                                       ///< still wait for its processor)
   std::optional<tracker::TrackerSample> first_sample;  ///< the first pose read (the simulation's input)
   std::optional<tracker::TrackerSample> last_sample;   ///< the last pose read (the view drawn)
   des::Time last_sample_at;                            ///< when the stage that read it began
@@ -107,6 +109,7 @@ class StageFlow {
   des::Time photon_target(int stage) const;
   JobRecord& new_record(int64_t j);
   JobRecord& record(int64_t j) { return records_.at(static_cast<size_t>(j - base_)); }
+  void release_stage(int stage, JobRecord& rec) { rec.released[static_cast<size_t>(stage)] = env_.sim.now(); }
   void begin_stage(int stage, JobRecord& rec);
   void end_stage(int stage, int processor, JobRecord& rec);
   void drop(JobRecord& rec);

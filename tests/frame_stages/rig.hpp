@@ -40,12 +40,30 @@ inline fs::StageSpec streaming(const char* name, std::vector<int> procs, double 
   return s;
 }
 
-/// The reference display: 62.5 Hz (16 ms), progressive, no blanking, 160
-/// lines of 0.1 ms, scanned out per line; a 1000 Hz tracker (or `tracker_hz`)
-/// with sample 0 at t = 0, no delay, on a direct link; a head turning at 30 deg/s.
+/// What a rig is built with; the defaults are the reference system: a
+/// 62.5 Hz (16 ms) progressive display without blanking, 160 lines of 0.1 ms
+/// scanned out per line; a 1000 Hz tracker with sample 0 at t = 0 and no
+/// delay on a direct link; a head turning at 30 deg/s.
+struct RigOptions {
+  int tracker_hz = 1000;
+  des::RationalSeconds field_period = des::RationalSeconds::period_of_hz(125, 2);
+  int lines = 160;
+  std::shared_ptr<tracker::MotionSource> motion =
+      std::make_shared<tracker::ConstantAngularVelocity>(tracker::Pose{}, glm::dvec3(0, 1, 0), 30.0);
+};
+
+/// A head walking along +x at `speed_m_s`, looking ahead (no rotation).
+inline std::shared_ptr<tracker::MotionSource> walking(double speed_m_s) {
+  tracker::WalkParams w;
+  w.points_m = {glm::dvec3(0, 1.6, 0), glm::dvec3(1000, 1.6, 0)};
+  w.speed_m_s = speed_m_s;
+  return std::make_shared<tracker::PolylineWalk>(w);
+}
+
+/// The shared models around one frame_stages pipeline.
 struct Rig {
   des::Simulator sim;
-  tracker::ConstantAngularVelocity motion;
+  std::shared_ptr<tracker::MotionSource> motion;
   tracker::Tracker tracker;
   tracker::DirectLink link;
   pipelines::TrackerHost host;
@@ -61,26 +79,26 @@ struct Rig {
     p.period = des::RationalSeconds::period_of_hz(hz);
     return p;
   }
-  static display::RasterTiming timing() {
+  static display::RasterTiming timing(const RigOptions& o) {
     display::RasterParams p;
-    p.field_period = des::RationalSeconds::period_of_hz(125, 2);
+    p.field_period = o.field_period;
     p.width_px = 16;
-    p.height_px = 160;
+    p.height_px = o.lines;
     p.vblank_lines = 0;
     p.hblank_px = 0;
     return display::RasterTiming(p);
   }
 
-  Rig(fs::FrameStagesSpec spec, int tracker_hz = 1000)
-      : motion(tracker::Pose{}, glm::dvec3(0, 1, 0), 30.0),
-        tracker(tracker_params(tracker_hz), motion, des::RandomStream(1, "tracker", 0)),
+  explicit Rig(fs::FrameStagesSpec spec, RigOptions o = {})
+      : motion(o.motion),
+        tracker(tracker_params(o.tracker_hz), *motion, des::RandomStream(1, "tracker", 0)),
         host(sim, tracker, link),
-        display(sim, timing(), 1, display::ScanoutFidelity::Line),
-        recorder(sim, motion, host, display.timing(), pipelines::ProbeSet{}, 0.064, false, false),
+        display(sim, timing(o), 1, display::ScanoutFidelity::Line),
+        recorder(sim, *motion, host, display.timing(), pipelines::ProbeSet{}, 0.064, false, false),
         doc(scenario::ScenarioDocument::from_json(nlohmann::json::object(), ".")),
         pipeline(std::move(spec)) {
     display.add_listener(&recorder);
-    ctx.reset(new pipelines::RunContext{sim, doc.root(), doc.root(), 1, 0, des::Time::zero(), motion, host, display,
+    ctx.reset(new pipelines::RunContext{sim, doc.root(), doc.root(), 1, 0, des::Time::zero(), *motion, host, display,
                                         recorder, 0.064, false, nullptr, nullptr, {}});
   }
 
@@ -95,10 +113,17 @@ struct Rig {
     pipeline.finish(*ctx, figures);
   }
 
-  double mtp(const char* stat) const {
-    const auto* d = recorder.distribution("motion_to_photon_ms");
-    return stat[1] == 'i' ? d->summary().min : d->summary().max;
+  /// A summary statistic ("min", "max", "mean", "count") of a recorded distribution.
+  double stat(const char* name, const std::string& which) const {
+    const auto* d = recorder.distribution(name);
+    if (d == nullptr) return -1.0;
+    const auto s = d->summary();
+    if (which == "min") return s.min;
+    if (which == "max") return s.max;
+    if (which == "count") return static_cast<double>(s.count);
+    return s.mean;
   }
+  double mtp(const char* which) const { return stat("motion_to_photon_ms", which); }
 };
 
 }  // namespace latsim::testing

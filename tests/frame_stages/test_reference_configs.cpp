@@ -36,7 +36,9 @@ FrameStagesSpec base(std::vector<const char*> processors, int in_flight) {
 /// 62.5 frames per second (the first ones complete only after 1 to 3 frame
 /// times), none missed once the first was shown.
 void check_range(FrameStagesSpec spec, double min_ms, double max_ms, int tracker_hz = 1000) {
-  Rig rig(std::move(spec), tracker_hz);
+  latsim::testing::RigOptions o;
+  o.tracker_hz = tracker_hz;
+  Rig rig(std::move(spec), o);
   rig.run(1.0);
   CHECK(rig.mtp("min") == Approx(min_ms).margin(1e-6));
   CHECK(rig.mtp("max") == Approx(max_ms).margin(1e-6));
