@@ -137,6 +137,16 @@ TEST_CASE("reference: late-sampled view bypass reads the view as late as drawing
   check_range(s, 12.0, 12.0 + kLastLine);
 }
 
+TEST_CASE("reference: tiler-optimized view bypass writes the view into a buffer just before drawing") {
+  // CPU2: |IRRRRRRRRRR-----|I  GPU: | |-GGGGGGGGGG : commands issued a frame
+  // ahead; at V_{k+2} the view is written (I, 1 ms) and G draws from V_{k+2} + 1,
+  // shown from V_{k+3}: 16 - 32 ms.
+  FrameStagesSpec s = base({"cpu1", "cpu2", "input", "gpu"}, 3);
+  s.stages = {stage("I", {kCpu1}, 1, kRetrace, true), stage("S", {kCpu1}, 9), stage("R", {kCpu2}, 10, kRetrace),
+              stage("IV", {2}, 1, kRetrace, true), stage("G", {3}, 10)};
+  check_range(s, 16.0, 16.0 + kLastLine);
+}
+
 TEST_CASE("reference: late-scheduled time warp re-projects the finished image 2 ms before the retrace") {
   // CPU2: |RRRRRRRRRR----IR| GPU : |-GGGGGGGGGG----G| : the warp reads the pose at
   // V - 2 and re-projects with depth (orientation and position): 2 - 18 ms.
