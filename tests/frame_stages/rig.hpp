@@ -3,11 +3,13 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 
 #include "frame_stages/frame_stages_pipeline.hpp"
 #include "latsim/des/simulator.hpp"
 #include "latsim/display/display.hpp"
 #include "latsim/pipelines/latency_recorder.hpp"
+#include "latsim/pipelines/smear_recorder.hpp"
 #include "latsim/pipelines/tracker_host.hpp"
 #include "latsim/scenario/config.hpp"
 #include "latsim/tracker/transport.hpp"
@@ -50,6 +52,7 @@ struct RigOptions {
   int lines = 160;
   std::shared_ptr<tracker::MotionSource> motion =
       std::make_shared<tracker::ConstantAngularVelocity>(tracker::Pose{}, glm::dvec3(0, 1, 0), 30.0);
+  std::optional<display::PersistenceParams> persistence;  ///< none: lit at the scanout instant
 };
 
 /// A head walking along +x at `speed_m_s`, looking ahead (no rotation).
@@ -72,6 +75,7 @@ struct Rig {
   scenario::ScenarioDocument doc;
   std::unique_ptr<pipelines::RunContext> ctx;
   fs::FrameStagesPipeline pipeline;
+  std::unique_ptr<pipelines::SmearRecorder> smear;
   nlohmann::json figures;
 
   static tracker::TrackerParams tracker_params(int hz) {
@@ -98,6 +102,11 @@ struct Rig {
         doc(scenario::ScenarioDocument::from_json(nlohmann::json::object(), ".")),
         pipeline(std::move(spec)) {
     display.add_listener(&recorder);
+    if (o.persistence) {
+      display.set_persistence(*o.persistence);
+      smear = std::make_unique<pipelines::SmearRecorder>(recorder, *motion);
+      display.add_listener(smear.get());
+    }
     ctx.reset(new pipelines::RunContext{sim, doc.root(), doc.root(), 1, 0, des::Time::zero(), *motion, host, display,
                                         recorder, 0.064, false, nullptr, nullptr, {}});
   }
