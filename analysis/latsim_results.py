@@ -98,6 +98,17 @@ def short_axis_name(pointer, pointers):
     return last if len(clashes) == 1 else pointer.strip("/").replace("/", ".")
 
 
+def row_name(values, axes):
+    """A sweep point's name from its axis values; values that are whole JSON
+    objects or arrays (a pipeline swapped for another) are left out when some
+    axis has a plain value, such as a label swept along with them."""
+    plain = [a for a in axes if not str(values[a]).lstrip().startswith(("{", "["))]
+    shown = plain or axes
+    if len(shown) == 1 and len(axes) > 1:
+        return str(values[shown[0]])
+    return ", ".join(f"{short_axis_name(a, axes)}={values[a]}" for a in shown)
+
+
 def load(directory):
     """Reads a run directory, a sweep directory, or a directory of run directories."""
     if os.path.isfile(os.path.join(directory, "results.csv")) and os.path.isdir(os.path.join(directory, "runs")):
@@ -132,7 +143,7 @@ def _load_sweep(directory):
         dirs = [os.path.join(directory, "runs", r["run_id"]) for r in members]
         summaries = [read_json(os.path.join(d, "summary.json")) for d in dirs]
         values = {a: members[0][a] for a in axes}
-        name = ", ".join(f"{short_axis_name(a, axes)}={values[a]}" for a in axes)
+        name = row_name(values, axes)
         rows.append(Row(name, dirs, summaries, values))
     return Collection("sweep", directory, rows, axes, runs)
 

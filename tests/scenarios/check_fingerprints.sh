@@ -10,7 +10,8 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 pinned="$here/fingerprints.txt"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-mapfile -t files < <(find scenarios -name '*.json' | grep -v '/sweeps/' | grep -v '/base.json$' | sort)
+# Sweep files (a base and axes) are not scenarios, wherever they live.
+mapfile -t files < <(find scenarios -name '*.json' | grep -v '/sweeps/' | grep -v '/base.json$' | sort | xargs grep -L '"axes":')
 : >"$tmp/now.txt"
 for f in "${files[@]}"; do
   out="$tmp/run"

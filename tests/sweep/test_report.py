@@ -146,6 +146,11 @@ check(abs(latsim_results.t975(10 ** 6) - 1.960) < 0.001, "t975(large)")
 mean, half = latsim_results.mean_ci95([1.0, 2.0, 3.0])
 check(mean == 2.0 and abs(half - 4.303 / 3 ** 0.5) < 1e-9, f"mean_ci95 {mean} {half}")
 check(latsim_results.as_number("60000/1001") == 60000 / 1001 and latsim_results.as_number("serial") is None, "as_number")
+# Sweep row names: a label swept along with whole objects names the row alone.
+axes = ["/description", "/pipeline"]
+check(latsim_results.row_name({"/description": "Slats", "/pipeline": '{"type": "pxpl5_slats"}'}, axes) == "Slats",
+      "row name from a label beside object values")
+check(latsim_results.row_name({"/a": "1", "/b": "2"}, ["/a", "/b"]) == "a=1, b=2", "row name from plain values")
 
 # A directory with nothing in it is bad input.
 empty = os.path.join(SCRATCH, "empty")
