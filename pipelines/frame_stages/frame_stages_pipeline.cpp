@@ -2,9 +2,11 @@
 
 #include <stdexcept>
 
+#include "latsim/pipelines/latency_recorder.hpp"
+
 namespace latsim::pipelines::frame_stages {
 
-FrameStagesPipeline::FrameStagesPipeline(FrameStagesSpec spec) : spec_(std::move(spec)) {}
+FrameStagesPipeline::FrameStagesPipeline(const Params& params) : spec_(params.spec) {}
 
 FrameStagesPipeline::~FrameStagesPipeline() = default;
 
@@ -75,7 +77,9 @@ void FrameStagesPipeline::start(RunContext& ctx) {
   app_ = std::make_unique<StageFlow>("frame.stage", spec_.stages, spec_.late, env(*app_stream_), app_hooks());
   if (spec_.warp) {
     warp_stream_ = std::make_unique<des::RandomStream>(ctx.stream("compositor"));
-    warp_ = std::make_unique<StageFlow>("compositor.warp", spec_.warp->stages, spec_.late, env(*warp_stream_),
+    FlowEnv warp_env = env(*warp_stream_);
+    warp_env.yields = false;  // the compositor preempts; it is not preempted
+    warp_ = std::make_unique<StageFlow>("compositor.warp", spec_.warp->stages, spec_.late, std::move(warp_env),
                                         warp_hooks());
   }
   // The swap happens before the waiting threads are told of the retrace.
@@ -87,34 +91,33 @@ void FrameStagesPipeline::start(RunContext& ctx) {
   if (warp_) warp_->start();
 }
 
-void FrameStagesPipeline::report(const std::function<void(const std::string&, const nlohmann::json&)>& put) const {
-  const double seconds = ctx_->duration.to_seconds();
-  put("frames_rendered", frames_completed_);
-  put("application_frame_rate_hz", static_cast<double>(frames_completed_) / seconds);
+void FrameStagesPipeline::finish(RunContext& ctx) {
+  LatencyRecorder& r = ctx.recorder;
+  r.set("frames_rendered", frames_completed_);
+  r.set("application_frame_rate_hz", static_cast<double>(frames_completed_) / ctx.duration.to_seconds());
   if (swap_chain_) {
-    put("missed_refreshes", swap_chain_->frames_missed());
-    put("frames_missed", swap_chain_->frames_missed());
+    r.set("missed_refreshes", swap_chain_->frames_missed());
+    r.set("frames_missed", swap_chain_->frames_missed());
     return;
   }
-  put("frames_missed", compositor_->frames_missed());
-  put("frames_rewarped", compositor_->frames_rewarped());
-  put("frames_synthesised", compositor_->frames_synthesised());
-  put("warps", compositor_->warps());
-  put("warps_late", compositor_->warps_late());
-  put("refreshes_without_image", compositor_->refreshes_without_image());
-  nlohmann::json by = nlohmann::json::array();
+  r.set("frames_missed", compositor_->frames_missed());
+  r.set("frames_rewarped", compositor_->frames_rewarped());
+  r.set("frames_synthesised", compositor_->frames_synthesised());
+  r.set("warps", compositor_->warps());
+  r.set("warps_late", compositor_->warps_late());
+  r.set("refreshes_without_image", compositor_->refreshes_without_image());
+  r.list("residual_by_rewarps");
+  int row = 0;
   for (size_t k = 0; k < residuals_->by_rewarps().size(); ++k) {
     const ResidualErrors::Bucket& b = residuals_->by_rewarps()[k];
     if (b.spans == 0) continue;
+    const std::string at = "residual_by_rewarps." + std::to_string(row++) + ".";
     const double n = static_cast<double>(b.spans);
-    by.push_back({{"rewarps", k}, {"spans", b.spans}, {"orientation_deg_mean", b.orientation_deg_sum / n},
-                  {"position_mm_mean", b.position_mm_sum / n}});
+    r.set(at + "rewarps", static_cast<int64_t>(k));
+    r.set(at + "spans", b.spans);
+    r.set(at + "orientation_deg_mean", b.orientation_deg_sum / n);
+    r.set(at + "position_mm_mean", b.position_mm_sum / n);
   }
-  put("residual_by_rewarps", by);
-}
-
-void FrameStagesPipeline::finish(RunContext&, nlohmann::json& figures) {
-  report([&](const std::string& name, const nlohmann::json& v) { figures[name] = v; });
 }
 
 }  // namespace latsim::pipelines::frame_stages

@@ -3,12 +3,9 @@
 // compositor (SPEC section 10; docs/modern.md).
 #pragma once
 
-#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "frame_stages/compositor.hpp"
 #include "frame_stages/pose_sampler.hpp"
@@ -27,15 +24,17 @@ namespace latsim::pipelines::frame_stages {
 /// the compositor's flow of warps, and reports their figures.
 class FrameStagesPipeline final : public Pipeline {
  public:
-  explicit FrameStagesPipeline(FrameStagesSpec spec);
+  /// /pipeline as read (frame_stages/bind.cpp): processors and stages resolved by name.
+  struct Params {
+    FrameStagesSpec spec;
+  };
+
+  explicit FrameStagesPipeline(const Params& params);
   ~FrameStagesPipeline() override;
 
-  std::string name() const override { return "frame_stages"; }
   void start(RunContext& ctx) override;
-  void finish(RunContext& ctx, nlohmann::json& figures) override;
-
-  /// Every figure of the pipeline, by name (what finish() reports).
-  void report(const std::function<void(const std::string&, const nlohmann::json&)>& put) const;
+  /// Reports frames, misses, warps and residual errors to the recorder.
+  void finish(RunContext& ctx) override;
 
  private:
   FlowEnv env(des::RandomStream& stream);

@@ -37,7 +37,8 @@ StageFlow::StageFlow(const std::string& kind, std::vector<StageSpec> stages, Lat
     runs_.back().last = static_cast<int>(i);
     started_.push_back(std::make_unique<PrefixProgress>(env_.sim));
     ended_.push_back(std::make_unique<PrefixProgress>(env_.sim));
-    estimates_.emplace_back(nominal_span(static_cast<int>(i), u), late_.window);
+    estimates_.emplace_back(nominal_span(static_cast<int>(i), u) + preemption_wait(static_cast<int>(i), u),
+                            late_.window);
     last_deadline_.push_back(des::Time::ps(-1));
   }
 }
@@ -58,6 +59,21 @@ des::Time StageFlow::nominal_span(int first, int last) const {
     if (s.start == StartRule::stream && end < prev_end) end = prev_end;
   }
   return end;
+}
+
+des::Time StageFlow::preemption_wait(int first, int last) const {
+  // A flow that does not yield may still find a processor in the middle of
+  // another flow's slice: once per run, the longest slice of its processors.
+  if (env_.yields) return des::Time::zero();
+  des::Time wait;
+  for (int k = first; k <= last; ++k) {
+    const StageSpec& s = stages_[static_cast<size_t>(k)];
+    if (k > first && stages_[static_cast<size_t>(k - 1)].processors == s.processors) continue;
+    des::Time longest;
+    for (int p : s.processors) longest = std::max(longest, env_.preemption_slices[static_cast<size_t>(p)]);
+    wait += longest;
+  }
+  return wait;
 }
 
 des::Time StageFlow::expected_completion(int from, des::Time t) const {
@@ -160,7 +176,7 @@ des::Process StageFlow::worker(int r, int lane) {
   const int lanes = static_cast<int>(run.processors.size());
   const int proc_index = run.processors[static_cast<size_t>(lane)];
   des::Resource& proc = *env_.processors[static_cast<size_t>(proc_index)];
-  const des::Time slice = env_.preemption_slices[static_cast<size_t>(proc_index)];
+  const des::Time slice = env_.yields ? env_.preemption_slices[static_cast<size_t>(proc_index)] : des::Time::zero();
   const bool last_run = r + 1 == static_cast<int>(runs_.size());
   for (int64_t j = lane;; j += lanes) {
     // Input: admission for the first run, the feeding stage for the others.

@@ -62,6 +62,9 @@ struct FlowEnv {
   const PoseSampler& poses;
   des::RandomStream& stream;                     ///< stage durations that vary
   Timeline* timeline = nullptr;
+  /// Whether this flow's stages yield their processor between preemption
+  /// slices (the application's do; the compositor's run to completion).
+  bool yields = true;
 };
 
 /// Runs jobs 0, 1, 2 ... through a list of stages. Consecutive stages on the
@@ -86,6 +89,9 @@ class StageFlow {
   /// End of stage `last` when stage `first` starts at zero and every stage
   /// takes its nominal time (stream lags included, no waiting).
   des::Time nominal_span(int first, int last) const;
+  /// The longest a non-yielding flow may wait for other flows' preemption
+  /// slices between the start of stage `first` and the end of `last`.
+  des::Time preemption_wait(int first, int last) const;
   /// When a job whose stage `from` begins at t completes, by nominal times,
   /// retrace waits and late deadlines.
   des::Time expected_completion(int from, des::Time t) const;

@@ -17,7 +17,8 @@ namespace latsim::pipelines {
   X(pxpl5_slats_pipeline)           \
   X(arp_pipeline)                   \
   X(priority_pipeline)              \
-  X(region_priority_pipeline)
+  X(region_priority_pipeline)       \
+  X(frame_stages_pipeline)
 
 #define LATSIM_DECLARE_PIPELINE(entry) PipelineEntry entry();
 LATSIM_BUILTIN_PIPELINES(LATSIM_DECLARE_PIPELINE)

@@ -11,7 +11,8 @@
 #include "latsim/pipelines/latency_recorder.hpp"
 #include "latsim/pipelines/smear_recorder.hpp"
 #include "latsim/pipelines/tracker_host.hpp"
-#include "latsim/scenario/config.hpp"
+#include "latsim/display/params.hpp"
+#include "latsim/pipelines/run_files.hpp"
 #include "latsim/tracker/transport.hpp"
 
 namespace latsim::testing {
@@ -67,48 +68,55 @@ inline std::shared_ptr<tracker::MotionSource> walking(double speed_m_s) {
 struct Rig {
   des::Simulator sim;
   std::shared_ptr<tracker::MotionSource> motion;
+  tracker::TrackerParams tracker_params;
   tracker::Tracker tracker;
   tracker::DirectLink link;
   pipelines::TrackerHost host;
+  display::DisplayParams display_params;
   display::Display display;
   pipelines::LatencyRecorder recorder;
-  scenario::ScenarioDocument doc;
+  pipelines::RunFiles files;
   std::unique_ptr<pipelines::RunContext> ctx;
   fs::FrameStagesPipeline pipeline;
   std::unique_ptr<pipelines::SmearRecorder> smear;
   nlohmann::json figures;
 
-  static tracker::TrackerParams tracker_params(int hz) {
+  static tracker::TrackerParams tracker_of(int hz) {
     tracker::TrackerParams p;
     p.period = des::RationalSeconds::period_of_hz(hz);
     return p;
   }
-  static display::RasterTiming timing(const RigOptions& o) {
-    display::RasterParams p;
+  static display::DisplayParams display_of(const RigOptions& o) {
+    display::DisplayParams d;
+    display::RasterParams& p = d.raster;
     p.field_period = o.field_period;
     p.width_px = 16;
     p.height_px = o.lines;
     p.vblank_lines = 0;
     p.hblank_px = 0;
-    return display::RasterTiming(p);
+    d.fidelity = display::ScanoutFidelity::Line;
+    d.persistence = o.persistence;
+    return d;
   }
 
   explicit Rig(fs::FrameStagesSpec spec, RigOptions o = {})
       : motion(o.motion),
-        tracker(tracker_params(o.tracker_hz), *motion, des::RandomStream(1, "tracker", 0)),
+        tracker_params(tracker_of(o.tracker_hz)),
+        tracker(tracker_params, *motion, des::RandomStream(1, "tracker", 0)),
         host(sim, tracker, link),
-        display(sim, timing(o), 1, display::ScanoutFidelity::Line),
+        display_params(display_of(o)),
+        display(sim, display::RasterTiming(display_params.raster), 1, display_params.fidelity),
         recorder(sim, *motion, host, display.timing(), pipelines::ProbeSet{}, 0.064, false, false),
-        doc(scenario::ScenarioDocument::from_json(nlohmann::json::object(), ".")),
-        pipeline(std::move(spec)) {
+        pipeline(fs::FrameStagesPipeline::Params{std::move(spec)}) {
     display.add_listener(&recorder);
     if (o.persistence) {
       display.set_persistence(*o.persistence);
+      recorder.set_persistence(&display.persistence());
       smear = std::make_unique<pipelines::SmearRecorder>(recorder, *motion);
       display.add_listener(smear.get());
     }
-    ctx.reset(new pipelines::RunContext{sim, doc.root(), doc.root(), 1, 0, des::Time::zero(), *motion, host, display,
-                                        recorder, 0.064, false, nullptr, nullptr, {}});
+    ctx.reset(new pipelines::RunContext{sim, 1, 0, des::Time::zero(), *motion, tracker_params, link, host, display,
+                                        display_params, nullptr, recorder, files, 0.064, false, nullptr, nullptr});
   }
 
   /// Runs for `seconds` of simulated time and collects the pipeline's figures.
@@ -119,7 +127,8 @@ struct Rig {
     display.start(end);
     pipeline.start(*ctx);
     sim.run_until(end);
-    pipeline.finish(*ctx, figures);
+    pipeline.finish(*ctx);
+    figures = recorder.figures();
   }
 
   /// A summary statistic ("min", "max", "mean", "count") of a recorded distribution.
