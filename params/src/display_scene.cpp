@@ -18,6 +18,31 @@ void gallery(Section& s, renderer::GalleryParams& g) {
             .doc = "tessellation step (a divisor of the region size keeps segments aligned with regions)"});
 }
 
+void persistence(Section& s, display::PersistenceParams& p, const display::RasterParams& raster) {
+  using Mode = display::PersistenceParams::Mode;
+  const auto flash = [&p](Section& m) {
+    m.duration("lit_ms", p.lit, {.unit = "ms", .min = 0.0, .above_min = true, .required = true, .doc = "how long each flash lasts"});
+  };
+  s.modes("type", "",
+          {{"full", "sample and hold: a row stays lit until it is written again", [&p](Section&) { p.mode = Mode::full; }},
+           {"rolling", "each row flashes for `lit_ms` once it has been written and has settled",
+            [&p, flash](Section& m) {
+              p.mode = Mode::rolling;
+              flash(m);
+            }},
+           {"global", "the whole panel flashes for `lit_ms` once every row has been written and has settled",
+            [&p, flash](Section& m) {
+              p.mode = Mode::global;
+              flash(m);
+            }}},
+          {.doc = "the illumination"});
+  s.duration("response_ms", p.response, {.unit = "ms", .doc = "pixel response: the whole transition from the old value to the new"});
+  // A row is written once per frame (two fields when interlaced).
+  const double frame_ms = raster.field_period.to_seconds() * 1e3 * (raster.interlaced ? 2 : 1);
+  s.check("lit_ms", p.mode == Mode::full || p.lit.to_ms() <= frame_ms + 1e-9,
+          "a flash cannot last longer than the frame period (each row is written once a frame)");
+}
+
 }  // namespace
 
 void bind(Section& s, display::DisplayParams& p) {
@@ -39,6 +64,9 @@ void bind(Section& s, display::DisplayParams& p) {
             {"pixel", display::ScanoutFidelity::Pixel}},
            {.doc = "fidelity: one event per field, per line (sees mid-field swaps) or per pixel"});
   s.integer("pixel_stride", p.pixel_stride, {.unit = "px", .min = 1.0, .max = 16384.0, .doc = "pixel fidelity: pixels per event"});
+  s.optional_object("persistence", p.persistence, [&r](Section& o, display::PersistenceParams& v) { persistence(o, v, r); },
+                    {.doc = "how long a written pixel stays lit (absent: lit at its scanout instant, as a CRT); "
+                            "motion-to-photon latency is taken at the middle of the lit interval"});
 }
 
 void bind(Section& s, SceneParams& p) {

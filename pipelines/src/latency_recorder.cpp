@@ -200,7 +200,8 @@ void LatencyRecorder::record_probes(const display::ScanoutSpan& span, const trac
     const ProbeHit& hit = *h;
     const int xi = static_cast<int>(hit.x_px);
     if (xi < span.x_begin || xi >= span.x_end) continue;
-    const des::Time t = timing_.pixel_time(span.field, span.line, xi);
+    des::Time t = timing_.pixel_time(span.field, span.line, xi);
+    if (persistence_) t = persistence_->lit(span.field, t).middle();
     const tracker::Pose truth = eye_pose_of(motion_.pose_at(t), span.eye, ipd_m_, stereo_);
     const glm::dvec3 p = probes_.points_m[hit.probe];
     const glm::dvec3 drawn_head_dir = glm::conjugate(drawn.orientation) * glm::normalize(p - drawn.position_m);

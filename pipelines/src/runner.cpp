@@ -11,6 +11,7 @@
 #include "latsim/params/shared.hpp"
 #include "latsim/pipelines/frame_capture.hpp"
 #include "latsim/pipelines/latency_recorder.hpp"
+#include "latsim/pipelines/smear_recorder.hpp"
 #include "latsim/pipelines/timeline.hpp"
 #include "latsim/pipelines/tracker_host.hpp"
 #include "latsim/tracker/params.hpp"
@@ -79,6 +80,7 @@ struct Run {
   std::unique_ptr<display::Display> display;
   std::unique_ptr<LatencyRecorder> recorder;
   std::unique_ptr<FrameCapture> frames;  // only when the scenario asks for frames
+  std::unique_ptr<SmearRecorder> smear;  // only on a display with persistence
   RunFiles files;
   Timeline timeline;
   std::unique_ptr<Pipeline> pipeline;
@@ -119,12 +121,19 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
   run.recorder->enable_ledger(options.write_ledger);
   run.recorder->enable_sample_log(options.write_samples);
   run.display->add_listener(run.recorder.get());
+  if (p.display.persistence) {
+    run.display->set_persistence(*p.display.persistence);
+    run.recorder->set_persistence(&run.display->persistence());
+    run.smear = std::make_unique<SmearRecorder>(*run.recorder, *run.motion);
+    run.display->add_listener(run.smear.get());
+  }
   run.files = RunFiles(options.out_dir);
   if (p.frames && p.frames->enabled) {
     run.frames = std::make_unique<FrameCapture>(
         *p.frames, p.scene ? p.scene->geometry : renderer::SceneSpec{},
         FrameCaptureInputs{*run.recorder, *run.host, *run.motion, run.display->timing(), p.display.hfov_deg,
-                           p.host.ipd_m, stereo, run.files});
+                           p.host.ipd_m, stereo, run.files,
+                           p.display.persistence ? &run.display->persistence() : nullptr});
     run.display->add_listener(run.frames.get());
   }
   LatencyRecorder* rec = run.recorder.get();

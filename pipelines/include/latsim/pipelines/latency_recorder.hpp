@@ -66,6 +66,10 @@ class LatencyRecorder : public display::ScanoutListener {
   void on_field_start(int eye, int64_t field, des::Time retrace) override;
   void on_scanout(const display::ScanoutSpan& span) override;
 
+  /// The display's persistence, so that a probe is judged at the middle of
+  /// its pixel's lit interval (nullptr: at its scanout instant).
+  void set_persistence(const display::Persistence* persistence) { persistence_ = persistence; }
+
   /// One row per displayed image: every stage timestamp (the ledger).
   void enable_ledger(bool on) { ledger_on_ = on; }
   const std::vector<nlohmann::json>& ledger() const { return ledger_; }
@@ -90,6 +94,7 @@ class LatencyRecorder : public display::ScanoutListener {
   double ipd_m_;
   bool stereo_;
   bool keep_samples_;
+  const display::Persistence* persistence_ = nullptr;
   struct Held { ImageRecord record; bool shown = false; };
   std::map<int64_t, Held> images_;
   ProbeCache probe_cache_[2];

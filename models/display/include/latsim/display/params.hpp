@@ -1,17 +1,23 @@
 // Everything the scenario's "display" object describes, as a plain struct.
 #pragma once
 
+#include <optional>
+
 #include "latsim/display/display.hpp"
+#include "latsim/display/persistence.hpp"
 #include "latsim/display/raster_timing.hpp"
 
 namespace latsim::display {
 
-/// One display: its raster, field of view and how finely scanout is simulated.
+/// One display: its raster, field of view, how finely scanout is simulated
+/// and how long its pixels stay lit.
 struct DisplayParams {
   RasterParams raster;
   double hfov_deg = 90.0;
   ScanoutFidelity fidelity = ScanoutFidelity::Field;
   int pixel_stride = 1;
+  /// How long a written pixel is lit; none: at its scanout instant only.
+  std::optional<PersistenceParams> persistence;
 };
 
 }  // namespace latsim::display
