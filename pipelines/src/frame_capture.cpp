@@ -13,6 +13,7 @@
 #include "latsim/renderer/camera.hpp"
 #include "latsim/renderer/image_ops.hpp"
 #include "latsim/renderer/ray_caster.hpp"
+#include "warped_spans.hpp"
 
 namespace latsim::pipelines {
 
@@ -27,6 +28,8 @@ struct ShownSpan {
   bool lit = false;
   tracker::Pose eye_pose;
   des::Time measured_at;
+  ImageRecord::Warp warp = ImageRecord::Warp::none;
+  tracker::Pose source_pose;  ///< warped: the pose the application rendered from
 };
 
 /// Everything one field of the captured eye showed, kept until the field ends.
@@ -37,6 +40,8 @@ struct Collection {
   bool pixel_mode = false;                  ///< pixels from a PixelSource instead of images
   std::vector<std::vector<ShownSpan>> lines;  ///< image mode: spans per field line
   std::vector<ShownPixel> pixels;           ///< pixel mode: lines x width
+  bool warped = false;                      ///< some span showed a time-warped image
+  int64_t undefined_px = 0;                 ///< pixels a warp had nothing for
 };
 
 std::string capture_name(int64_t index, const char* what) {
@@ -67,6 +72,7 @@ struct FrameCapture::Impl {
   std::optional<renderer::Camera> camera;
   // Persistent across fields: an interlaced field replaces only its own rows.
   renderer::Frame displayed;
+  renderer::Frame unwarped;  ///< the application's images before time warp
   renderer::Frame truth;
   std::vector<float> age_ms;
   int64_t entries = 0;
@@ -109,14 +115,16 @@ struct FrameCapture::Impl {
                            std::span<ShownPixel>(c.pixels).subspan(offset, static_cast<size_t>(span.x_end - span.x_begin)));
       return;
     }
-    ShownSpan s{span.x_begin, span.x_end, false, {}, {}};
+    ShownSpan s{span.x_begin, span.x_end, false, {}, {}, ImageRecord::Warp::none, {}};
     if (const ImageRecord* img = in.recorder.image(span.image_id)) {
       s.lit = true;
       s.eye_pose = img->eye_pose;
       s.measured_at = img->sample.measured_at;
+      s.warp = img->warp;
+      s.source_pose = img->source_pose;
       if (img->orientation_at_scanout) {
         // Address recalculation: the orientation is looked up as the pixel is fetched.
-        if (const auto newest = in.host.newest_at(span.photon_time)) {
+        if (const auto newest = in.host.newest_at(span.written_at)) {
           s.eye_pose.orientation = eye_pose_of(newest->pose, span.eye, in.ipd_m, in.stereo).orientation;
         }
       }
@@ -130,6 +138,7 @@ struct FrameCapture::Impl {
     ++casters_built;
     camera.emplace(in.hfov_deg, width(), height());
     displayed = renderer::Frame::cleared(width(), height(), background);
+    unwarped = renderer::Frame::cleared(width(), height(), background);
     truth = renderer::Frame::cleared(width(), height(), background);
     age_ms.assign(static_cast<size_t>(width()) * static_cast<size_t>(height()), std::numeric_limits<float>::quiet_NaN());
   }
@@ -170,7 +179,7 @@ struct FrameCapture::Impl {
     std::vector<renderer::EyePose> row_poses(static_cast<size_t>(height()));
     std::vector<PixelRay> list;
     for (int j = 0; j < in.timing.lines_per_field(); ++j) {
-      const tracker::Pose head = in.motion.pose_at(in.timing.line_time(field, j));
+      const tracker::Pose head = in.motion.pose_at(photon(field, in.timing.line_time(field, j)));
       const renderer::EyePose pose = to_eye(eye_pose_of(head, eye, in.ipd_m, in.stereo));
       const int row = in.timing.row_of(field, j);
       row_poses[static_cast<size_t>(row)] = pose;
@@ -182,6 +191,11 @@ struct FrameCapture::Impl {
     else caster->render_scanlines(*camera, row_poses, field_rows(field), truth, options());
   }
 
+  /// When a pixel written at `written` is seen: the middle of its lit interval.
+  des::Time photon(int64_t field, des::Time written) const {
+    return in.persistence ? in.persistence->lit(field, written).middle() : written;
+  }
+
   void clear_pixel(int x, int row) {
     displayed.colour.at(x, row) = background;
     displayed.depth.at(x, row) = std::numeric_limits<float>::infinity();
@@ -190,7 +204,7 @@ struct FrameCapture::Impl {
   void set_age(int64_t field, int line, int x, bool lit, des::Time measured_at) {
     const int row = in.timing.row_of(field, line);
     const size_t i = static_cast<size_t>(row) * static_cast<size_t>(width()) + static_cast<size_t>(x);
-    age_ms[i] = lit ? static_cast<float>((in.timing.pixel_time(field, line, x) - measured_at).to_ms())
+    age_ms[i] = lit ? static_cast<float>((photon(field, in.timing.pixel_time(field, line, x)) - measured_at).to_ms())
                     : std::numeric_limits<float>::quiet_NaN();
   }
 
@@ -214,27 +228,32 @@ struct FrameCapture::Impl {
           clear_pixel(x, in.timing.row_of(c.field, j));
   }
 
-  void cast_displayed_images(const Collection& c) {
+  void cast_displayed_images(Collection& c) {
     // Rows showing one image across the whole width are cast as scanlines
     // from that image's pose; rows split by a swap during the line (pixel
-    // scanout) or left unlit are filled span by span afterwards.
+    // scanout) or left unlit are filled span by span afterwards, and
+    // time-warped spans are drawn as the compositor made them.
     const int lines = in.timing.lines_per_field();
     std::vector<renderer::EyePose> row_poses(static_cast<size_t>(height()));
     std::vector<char> whole(static_cast<size_t>(lines), 0);
     std::vector<PixelRay> split;
+    std::vector<WarpedSpan> warped;
     for (int j = 0; j < lines; ++j) {
       const int row = in.timing.row_of(c.field, j);
       const auto& spans = c.lines[static_cast<size_t>(j)];
-      whole[static_cast<size_t>(j)] =
-          spans.size() == 1 && spans[0].lit && spans[0].x_begin == 0 && spans[0].x_end == width();
+      whole[static_cast<size_t>(j)] = spans.size() == 1 && spans[0].lit && spans[0].x_begin == 0 &&
+                                      spans[0].x_end == width() && spans[0].warp == ImageRecord::Warp::none;
       if (whole[static_cast<size_t>(j)]) row_poses[static_cast<size_t>(row)] = to_eye(spans[0].eye_pose);
       for (int x = 0; x < width(); ++x) set_age(c.field, j, x, false, {});
-      for (const ShownSpan& s : spans)
+      for (const ShownSpan& s : spans) {
+        if (s.lit && s.warp != ImageRecord::Warp::none)
+          warped.push_back(WarpedSpan{row, s.x_begin, s.x_end, s.warp, s.source_pose, s.eye_pose});
         for (int x = s.x_begin; x < s.x_end; ++x) {
           set_age(c.field, j, x, s.lit, s.measured_at);
-          if (!whole[static_cast<size_t>(j)] && s.lit)
+          if (!whole[static_cast<size_t>(j)] && s.lit && s.warp == ImageRecord::Warp::none)
             split.push_back({x, row, renderer::Ray{s.eye_pose.position_m, camera->pixel_ray(x, row, s.eye_pose.orientation)}});
         }
+      }
     }
     caster->render_scanlines(*camera, row_poses, field_rows(c.field), displayed, options());
     for (int j = 0; j < lines; ++j) {
@@ -243,9 +262,13 @@ struct FrameCapture::Impl {
       for (int x = 0; x < width(); ++x) clear_pixel(x, row);
     }
     cast_pixel_rays(split, displayed);
+    if (warped.empty()) return;
+    c.warped = true;
+    unwarped = displayed;
+    c.undefined_px = draw_warped_spans(*caster, *camera, warped, displayed, unwarped, options(), background);
   }
 
-  void process(const Collection& c) {
+  void process(Collection& c) {
     ensure_renderer();
     cast_truth(c.field, c.pixel_mode);
     if (c.pixel_mode) cast_displayed_pixels(c);
@@ -270,7 +293,9 @@ struct FrameCapture::Impl {
       write("truth", truth.colour);
       write("diff", renderer::difference_image(displayed.colour, truth.colour, diff_gain));
       write("age", renderer::heat_map(age_ms, width(), height(), age_scale_ms));
+      if (c.warped) write("unwarped", unwarped.colour);
     }
+    if (c.warped) r.set(at + "undefined_px", c.undefined_px);
     float max_age = 0.0f;
     for (float a : age_ms)
       if (!std::isnan(a) && a > max_age) max_age = a;
@@ -304,7 +329,7 @@ void FrameCapture::on_field_start(int eye, int64_t field, des::Time) {
   Impl& m = *impl_;
   if (eye != m.eye) return;
   if (m.current && m.current->field != field) {
-    const Collection done = std::move(*m.current);
+    Collection done = std::move(*m.current);
     m.current.reset();
     m.process(done);
   }
@@ -320,7 +345,7 @@ void FrameCapture::on_scanout(const display::ScanoutSpan& span) {
 void FrameCapture::finish() {
   Impl& m = *impl_;
   if (m.current) {
-    const Collection done = std::move(*m.current);
+    Collection done = std::move(*m.current);
     m.current.reset();
     m.process(done);
   }

@@ -44,6 +44,10 @@ class Warper {
   WarpedFrame run() {
     for (int y = 0; y + 1 < h_; ++y)
       for (int x = 0; x + 1 < w_; ++x) draw_quad(x, y);
+    // A pixel no continuous quad touches (a lone sky pixel between surfaces)
+    // still lands where its own centre goes, if nothing nearer is there.
+    for (int y = 0; y < h_; ++y)
+      for (int x = 0; x < w_; ++x) draw_point(x, y);
     out_.undefined_px = static_cast<int64_t>(std::count(out_.defined.begin(), out_.defined.end(), uint8_t{0}));
     return std::move(out_);
   }
@@ -93,6 +97,19 @@ class Warper {
     // Two triangles: (00, 10, 11) and (00, 11, 01).
     draw_triangle(c, xs, ys, {0, 1, 3});
     draw_triangle(c, xs, ys, {0, 3, 2});
+  }
+
+  void draw_point(int x, int y) {
+    const Projected& g = grid_[idx(x, y)];
+    if (!g.valid) return;
+    const int px = static_cast<int>(std::floor(g.p.x)), py = static_cast<int>(std::floor(g.p.y));
+    if (px < 0 || px >= w_ || py < 0 || py >= h_) return;
+    const size_t o = idx(px, py);
+    if (out_.defined[o]) return;
+    zbuf_[o] = g.depth;
+    out_.frame.colour.at(px, py) = src_.colour.at(x, y);
+    out_.frame.depth.at(px, py) = src_.depth.at(x, y);
+    out_.defined[o] = 1;
   }
 
   void draw_triangle(const std::array<const Projected*, 4>& c, const std::array<int, 4>& xs,

@@ -52,6 +52,9 @@ struct FrameCaptureInputs {
   double ipd_m = 0.064;
   bool stereo = false;
   RunFiles& files;                        ///< where the images go (or nowhere: cast and measure only)
+  /// The display's persistence: the truth is taken at the middle of each
+  /// pixel's lit interval (nullptr: at its scanout instant).
+  const display::Persistence* persistence = nullptr;
 };
 
 /// Listens to scanout and, for each captured field of one eye, collects per
@@ -59,6 +62,8 @@ struct FrameCaptureInputs {
 /// complete it ray-casts the displayed image (persistent across fields, so an
 /// interlaced field shows only its rows and tears show), the truth, the
 /// enhanced difference and the pixel-age heat map into frames/ of the run.
+/// Time-warped images are drawn as the compositor made them, with the
+/// application's image before the warp beside them.
 class FrameCapture final : public display::ScanoutListener {
  public:
   /// Captures as `frames` says, of `scene`; loads nothing yet.

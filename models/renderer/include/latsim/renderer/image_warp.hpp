@@ -33,7 +33,8 @@ struct WarpedFrame {
 /// differ by more than `break_ratio` (or mix surface and sky) spans an
 /// occlusion edge and is not drawn, so the surfaces a translation uncovers
 /// stay `undefined` (disocclusion gaps), as do the edges no source pixel
-/// reaches. With `shown` == `source` the result equals the source exactly.
+/// reaches; a pixel no quad covers takes the source pixel whose centre lands
+/// in it, if any. With `shown` == `source` the result equals the source exactly.
 WarpedFrame warp_with_depth(const Frame& source, const Camera& camera, const EyePose& source_pose,
                             const EyePose& shown_pose, const glm::vec3& undefined, double break_ratio = 1.1);
 
