@@ -84,7 +84,7 @@ int sweep_here(const SweepRequest& request, const SweepPlan& plan, const std::op
     return tally.failures.empty() ? kExitOk : kExitFailure;
   }
   const auto tables_start = std::chrono::steady_clock::now();
-  const size_t gathered = write_tables(plan, work.store, temporaries);
+  const size_t gathered = write_tables(plan, work.store, request.jobs, temporaries);
   phases.tables_s = seconds_since(tables_start);
   std::printf("sweep: %zu runs %s on %u thread(s) in %.2f s -> %s\n", plan.runs().size(), tally.counts().c_str(),
               request.jobs, seconds_since(start), (work.store.out_dir() / "results.csv").c_str());
@@ -103,7 +103,7 @@ int collect(const SweepRequest& request, const SweepPlan& plan) {
   RunClaims claims(store.claims_dir(), std::chrono::seconds(request.stale_after_s));
   size_t temporaries = 0;
   const auto start = std::chrono::steady_clock::now();
-  const size_t gathered = write_tables(plan, store, temporaries);
+  const size_t gathered = write_tables(plan, store, available_cpus(), temporaries);
   const double tables_s = seconds_since(start);
   const auto missing = missing_runs(plan, store, claims);
   std::printf("sweep: collected %zu of %zu runs -> %s\n", gathered, plan.runs().size(),

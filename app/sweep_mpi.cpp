@@ -314,7 +314,8 @@ int lead(const SweepRequest& request, int size) {
 
   size_t temporaries = work.executor.temporaries_removed() + dispatcher.remote_temporaries();
   const auto tables_start = std::chrono::steady_clock::now();
-  const size_t gathered = write_tables(*plan, work.store, temporaries);
+  // Every rank is done: rank 0 may use its whole node for the tables.
+  const size_t gathered = write_tables(*plan, work.store, available_cpus(), temporaries);
   phases.tables_s = seconds_since(tables_start);
   std::printf("sweep: %zu runs %s on %d MPI rank(s) x %u thread(s) in %.2f s -> %s\n", plan->runs().size(),
               tally.counts().c_str(), size, request.jobs, seconds_since(start),

@@ -7,8 +7,11 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <optional>
+#include <stdexcept>
 
 #include "latsim/pipelines/runner.hpp"
+#include "parallel_for.hpp"
 #include "results_db.hpp"
 #include "run_table.hpp"
 
@@ -57,11 +60,24 @@ class TablesLock {
 
 }  // namespace
 
-size_t write_tables(const SweepPlan& plan, const SweepStore& store, size_t& temporaries_removed) {
+size_t write_tables(const SweepPlan& plan, const SweepStore& store, unsigned threads, size_t& temporaries_removed) {
   const TablesLock lock(store.out_dir());
+  // Parsing the summaries is most of the reading, and independent per run.
+  const auto& runs = plan.runs();
+  std::vector<std::optional<nlohmann::json>> summaries(runs.size());
+  std::vector<std::string> errors(runs.size());
+  parallel_for(runs.size(), threads, [&](size_t i) {
+    try {
+      summaries[i] = store.load_summary(runs[i].run_id);
+    } catch (const std::exception& e) {
+      errors[i] = e.what();
+    }
+  });
+  for (const auto& error : errors)
+    if (!error.empty()) throw std::runtime_error(error);
   std::vector<RunRecord> records;
-  for (const auto& run : plan.runs()) {
-    auto summary = store.load_summary(run.run_id);
+  for (const auto& run : runs) {
+    auto& summary = summaries[run.index];
     if (!summary) continue;
     RunRecord record{run.run_id, run.point, run.seed, run.replication, {}, std::move(*summary)};
     for (size_t a = 0; a < plan.axes().size(); ++a) record.values.push_back(plan.axes()[a].values[run.value_indices[a]]);

@@ -12,11 +12,12 @@
 
 namespace latsim::app {
 
-/// Reads every finished run's summary in plan order and writes results.csv
-/// and results.sqlite (removing temporaries a killed writer of them left, and
-/// the claim files left for finished runs). Returns how many runs the tables
-/// hold; `temporaries_removed` grows by the temporaries removed.
-size_t write_tables(const SweepPlan& plan, const SweepStore& store, size_t& temporaries_removed);
+/// Reads every finished run's summary (on `threads` threads) and writes
+/// results.csv and results.sqlite in plan order (removing temporaries a killed
+/// writer of them left, and the claim files left for finished runs). Returns
+/// how many runs the tables hold; `temporaries_removed` grows by the
+/// temporaries removed.
+size_t write_tables(const SweepPlan& plan, const SweepStore& store, unsigned threads, size_t& temporaries_removed);
 
 /// One line per unfinished run, in plan order: "<run id> (<axis values>)",
 /// and who runs it when a live process holds its claim.
