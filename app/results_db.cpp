@@ -57,7 +57,14 @@ class Insert {
   Insert& operator=(const Insert&) = delete;
   ~Insert() { sqlite3_finalize(stmt_); }
 
+  /// Binds without a copy: `v` must live until run() (every caller's string
+  /// does: a record's, its flattened figures', or one inside its summary).
   Insert& text(const std::string& v) {
+    sqlite3_bind_text(stmt_, ++param_, v.c_str(), static_cast<int>(v.size()), SQLITE_STATIC);
+    return *this;
+  }
+  /// Binds a copy, for a string about to go.
+  Insert& text_copy(const std::string& v) {
     sqlite3_bind_text(stmt_, ++param_, v.c_str(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
     return *this;
   }
@@ -78,9 +85,9 @@ class Insert {
     if (v.is_number_integer()) return integer(v.get<int64_t>());
     if (v.is_number()) return real(v.get<double>());
     if (v.is_boolean()) return integer(v.get<bool>() ? 1 : 0);
-    if (v.is_string()) return text(v.get<std::string>());
+    if (v.is_string()) return text(v.get_ref<const std::string&>());
     if (v.is_null()) return null();
-    return text(v.dump());
+    return text_copy(v.dump());
   }
   Insert& optional_number(const Json& object, const char* key) {
     return object.contains(key) && object[key].is_number() ? value(object[key]) : null();
@@ -130,7 +137,7 @@ void insert_records(Database& db, const std::vector<std::string>& axis_pointers,
     run.text(r.run_id).integer(static_cast<int64_t>(i)).integer(static_cast<int64_t>(r.point));
     run.integer(static_cast<int64_t>(r.seed)).integer(static_cast<int64_t>(r.replication));
     run.optional_number(s, "events").optional_number(s, "wall_s").optional_number(s, "peak_rss_mb");
-    if (s.contains("fingerprint") && s["fingerprint"].is_string()) run.text(s["fingerprint"].get<std::string>());
+    if (s.contains("fingerprint") && s["fingerprint"].is_string()) run.text(s["fingerprint"].get_ref<const std::string&>());
     else run.null();
     for (const auto& v : r.values) run.value(v);
     run.run();
