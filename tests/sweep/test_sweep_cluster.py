@@ -118,6 +118,11 @@ def shards():
     check(proc.returncode == 2 and "--shard" in proc.stderr and not os.path.exists(out), f"--shard 3/3: {proc.stderr}")
     proc = latsim("sweep", sweep, "--out", out, "--shard", "env", env={**os.environ, "SLURM_ARRAY_TASK_ID": "x"})
     check(proc.returncode == 2 and not os.path.exists(out), f"--shard env with a bad task id: {proc.stderr}")
+    proc = latsim("sweep", sweep, "--out", out, "--collect")
+    check(proc.returncode == 2 and "not a sweep directory" in proc.stderr and not os.path.exists(out),
+          f"--collect of nothing: {proc.stderr}")
+    proc = latsim("sweep", sweep, "--out", out, "--shard", "0/3", "--mpi")
+    check(proc.returncode == 2 and not os.path.exists(out), f"--shard with --mpi: {proc.stderr}")
 
     def start_shard(index, extra_env=None):
         spec = "env" if extra_env else f"{index}/3"
