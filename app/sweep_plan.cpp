@@ -83,7 +83,7 @@ void apply_overrides(Json& doc, const Json& sweep, const fs::path& file) {
   }
 }
 
-SweepAxis read_axis(const Json& axis, const std::string& where, const fs::path& file) {
+SweepAxis read_axis(const Json& axis, const std::string& where, const fs::path& file, bool allow_repeats) {
   if (!axis.is_object()) throw SweepError(file, where, "an axis must be an object with \"pointer\" and \"values\" or \"range\"");
   check_keys(axis, {"pointer", "values", "range"}, file, where);
   if (!axis.contains("pointer") || !axis["pointer"].is_string())
@@ -108,8 +108,11 @@ SweepAxis read_axis(const Json& axis, const std::string& where, const fs::path& 
     result.values = expand_range(axis["range"], file, where + "/range");
     result.from_range = true;
   }
+  // A repeated value would run a point twice, except in zip mode, where the
+  // other axes tell the points apart (two points that are the same scenario
+  // are still caught when the runs are planned).
   std::set<std::string> seen;
-  for (size_t i = 0; i < result.values.size(); ++i)
+  for (size_t i = 0; i < result.values.size() && !allow_repeats; ++i)
     if (!seen.insert(result.values[i].dump()).second)
       throw SweepError(file, where + (has_values ? "/values/" + std::to_string(i) : "/range"),
                        "value " + value_text(result.values[i]) + " appears twice on this axis");
@@ -226,7 +229,7 @@ SweepPlan SweepPlan::from_json(const Json& sweep, const fs::path& sweep_file, co
   std::set<std::string> pointers;
   for (size_t i = 0; i < sweep["axes"].size(); ++i) {
     const std::string where = "/axes/" + std::to_string(i);
-    SweepAxis axis = read_axis(sweep["axes"][i], where, file);
+    SweepAxis axis = read_axis(sweep["axes"][i], where, file, mode == "zip");
     if (!pointers.insert(axis.pointer).second)
       throw SweepError(file, where + "/pointer", "\"" + axis.pointer + "\" is already swept by an earlier axis");
     const Json::json_pointer ptr(axis.pointer);

@@ -100,7 +100,9 @@ void Compositor::on_complete(JobRecord& warp) {
   const bool late = ctx_.sim.now() > warp.deadline;
   if (late) ++warps_late_;
   for (int eye = 0; eye < ctx_.display.eyes(); ++eye) {
-    const int64_t id = ctx_.recorder.register_image(warped_record(warp, warp.tag, src, eye));
+    ImageRecord rec = warped_record(warp, warp.tag, src, eye);
+    rec.continues_image = clock_.slot_of(warp.deadline).strip > 0;
+    const int64_t id = ctx_.recorder.register_image(rec);
     rewarps_.emplace(id, rewarps);
     // One strip: swapped in at the retrace (the next one if this warp is
     // late). Strips: written into the front buffer just ahead of the beam.

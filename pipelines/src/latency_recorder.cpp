@@ -148,12 +148,15 @@ void LatencyRecorder::on_scanout(const display::ScanoutSpan& span) {
 }
 
 void LatencyRecorder::first_shown(const ImageRecord& img, const display::ScanoutSpan& span) {
-  const des::Time scan_start = timing_.scanout_start(span.field);
+  // The image's scanout starts with the first span that shows it: line 0 of
+  // the field for an image swapped in at a retrace, the line being scanned
+  // for one shown at once (tearing) or written just ahead of the beam (a strip).
+  const des::Time scan_start = span.written_at;
   const double render_latency_ms = (scan_start - img.render_start).to_ms();
   add("render_latency_ms", render_latency_ms);
   add("render_latency_fields", render_latency_ms / timing_.field_period_ms());
   add("tracker_to_render_ms", (img.render_start - img.sample.measured_at).to_ms());
-  count("images_shown");
+  if (!img.continues_image) count("images_shown");
   if (!ledger_on_) return;
   const des::Time swap = timing_.field_start(span.field);
   const des::Time scan_end = timing_.line_time(span.field, timing_.lines_per_field() - 1);

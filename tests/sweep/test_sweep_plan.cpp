@@ -155,6 +155,17 @@ TEST_CASE("sweep file errors name the JSON pointer", "[sweep]") {
              Catch::Contains("/overrides/~1nowhere~1x: "));
 }
 
+TEST_CASE("in zip mode a value may repeat on an axis, but two points may not be the same scenario", "[sweep]") {
+  Scratch s;
+  const Json labels = {{"pointer", "/duration_s"}, {"values", {1, 2, 3}}};
+  const Json rates = {{"pointer", "/display/refresh_hz"}, {"values", {60, 60, 90}}};
+  Json sweep = {{"base", "base.json"}, {"axes", {labels, rates}}, {"mode", "zip"}};
+  const auto plan = plan_of(s, sweep);
+  CHECK(plan.point_count() == 3);
+  sweep["axes"] = {{{"pointer", "/duration_s"}, {"values", {1, 1}}}, {{"pointer", "/display/refresh_hz"}, {"values", {60, 60}}}};
+  CHECK_THAT(error_of(s, sweep), Catch::Contains("run the same scenario"));
+}
+
 TEST_CASE("overrides and the sweep seed apply to every run and change its id", "[sweep]") {
   Scratch s;
   Json sweep = {{"base", "base.json"}, {"axes", {{{"pointer", "/display/refresh_hz"}, {"values", {60}}}}}};

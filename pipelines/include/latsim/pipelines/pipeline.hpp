@@ -52,6 +52,9 @@ struct ImageRecord {
   Warp warp = Warp::none;
   tracker::Pose source_pose;
   des::Time orientation_measured_at;
+  /// A later strip of a refresh's image (continuous time warp): its latency
+  /// is its own, but it is not another image in the frame rate.
+  bool continues_image = false;
 };
 
 /// The pose of one eye of a head: stereo eyes sit ipd/2 either side along the
