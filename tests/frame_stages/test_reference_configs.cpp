@@ -181,3 +181,45 @@ TEST_CASE("reference: continuous time warp warps 2 ms strips just ahead of the b
   s.warp = w;
   check_range(s, 2.0, 2.0 + 1.9, 500);
 }
+
+TEST_CASE("reference: 144 Hz and 59.94 Hz displays hold one refresh of latency plus the scanout") {
+  // The vsync configuration on other refresh rates: the pose read at a
+  // retrace (up to 1 ms old: the retraces no longer fall on whole
+  // milliseconds), shown from the next one, the bottom line 159/160 of a
+  // refresh later: min in [T, T + 1), max in [T + 159 T / 160, that + 1).
+  for (const auto& [num, den] : {std::pair<int64_t, int64_t>{144, 1}, {60000, 1001}}) {
+    FrameStagesSpec s = base({"cpu", "gpu"}, 2);
+    s.stages = {stage("I", {0}, 0.5, kRetrace, true), stage("G", {1}, 1)};
+    latsim::testing::RigOptions o;
+    o.field_period = latsim::des::RationalSeconds::period_of_hz(num, den);
+    Rig rig(s, o);
+    rig.run(2.0);
+    const double t_ms = 1000.0 * static_cast<double>(den) / static_cast<double>(num);
+    INFO(t_ms);
+    CHECK(rig.mtp("min") >= t_ms - 1e-6);
+    CHECK(rig.mtp("min") < t_ms + 1.0);
+    CHECK(rig.mtp("max") >= t_ms * (1.0 + 159.0 / 160.0) - 1e-6);
+    CHECK(rig.mtp("max") < t_ms * (1.0 + 159.0 / 160.0) + 1.0);
+    CHECK(rig.figures["frames_missed"].get<int64_t>() == 0);
+  }
+}
+
+TEST_CASE("reference: an hour of late-sampled view bypass keeps the exact range") {
+  // Late scheduling aims at retraces computed from their index: after an hour
+  // (225,000 refreshes) the view is still read exactly 12 ms before the
+  // retrace that shows it. Two lines keep the hour cheap: the bottom one is lit
+  // 8 ms after the top one.
+  FrameStagesSpec s = base({"cpu1", "cpu2", "gpu"}, 3);
+  StageSpec i2 = stage("I2", {kCpu2}, 1, kLate, true);
+  i2.until = 4;
+  s.stages = {stage("I", {kCpu1}, 1, kRetrace, true), stage("S", {kCpu1}, 9), i2, stage("R", {kCpu2}, 9),
+              streaming("G", {kGpu}, 10, 1)};
+  latsim::testing::RigOptions o;
+  o.lines = 2;
+  Rig rig(s, o);
+  rig.run(3600.0);
+  CHECK(rig.mtp("min") == Approx(12.0).margin(1e-6));
+  CHECK(rig.mtp("max") == Approx(20.0).margin(1e-6));
+  CHECK(rig.figures["frames_missed"].get<int64_t>() == 0);
+  CHECK(rig.figures["frames_rendered"].get<int64_t>() >= 225000 - 3);
+}
