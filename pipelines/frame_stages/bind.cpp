@@ -135,8 +135,10 @@ std::vector<StageSpec> resolve(Section& s, const std::string& key, const std::ve
     samples = samples || k.samples_pose;
     out.push_back(std::move(st));
   }
-  s.check(key, !stages.empty(), "give at least one stage");
-  s.check(key, samples, "no stage reads the head pose: mark the input stage with \"samples_pose\": true");
+  // `key` may be a path ("timewarp/stages"): check by pointer so its slash is not escaped as part of one key.
+  const std::string list = s.pointer() + "/" + key;
+  s.check_pointer(list, !stages.empty(), "give at least one stage");
+  s.check_pointer(list, samples, "no stage reads the head pose: mark the input stage with \"samples_pose\": true");
   return out;
 }
 

@@ -44,6 +44,27 @@ printf 't_s,px,py,pz,qw,qx,qy,qz\n0,0,0,0,1,0,0,0\n0.5,0,0,0,1,0,zero,0\n' >"$tm
 check malformed_trace "bad_trace.csv:3:" "{$base}" --set /motion='{"type": "trace", "file": "'"$tmp"'/bad_trace.csv"}'
 check include_missing "/include" "{\"include\": \"no_such_base.json\", $base}"
 
+# The staged frame pipeline's cross-field rules and the display's persistence.
+fs="$base"', "pipeline": {"type": "frame_stages", "processors": [{"name": "cpu"}, {"name": "gpu"}], "stages": [{"name": "I", "on": "cpu", "samples_pose": true, "cost": {"fixed_ms": 1}}, {"name": "G", "on": "gpu", "cost": {"fixed_ms": 1}}]}'
+warp='{"stages": [{"name": "W", "on": "gpu", "samples_pose": true, "cost": {"fixed_ms": 1}}]}'
+check fs_unknown_processor "/pipeline/stages/1/on" "{$fs}" --set /pipeline/stages/1/on='"gpu2"'
+check fs_duplicate_processor "/pipeline/processors/1/name" "{$fs}" --set /pipeline/processors/1/name='"cpu"'
+check fs_stream_first "/pipeline/stages/0/start" "{$fs}" --set /pipeline/stages/0/start='"stream"'
+check fs_stream_same_processor "/pipeline/stages/1/start" "{$fs}" --set /pipeline/stages/1/on='"cpu"' --set /pipeline/stages/1/start='"stream"'
+check fs_until_earlier "/pipeline/stages/1/until" "{$fs}" --set /pipeline/stages/1/start='"late"' --set /pipeline/stages/1/until='"I"'
+check fs_until_not_late "/pipeline/stages/0/until" "{$fs}" --set /pipeline/stages/0/until='"G"'
+check fs_no_pose "/pipeline/stages:" "{$fs}" --set /pipeline/stages/0/samples_pose=false
+check fs_no_stages "/pipeline/stages:" "{$fs}" --set /pipeline/stages='[]'
+check fs_endless "/pipeline/vsync" "{$fs}" --set /pipeline/vsync=false --set /pipeline/stages/0/cost/fixed_ms=0 --set /pipeline/stages/1/cost/fixed_ms=0
+check fs_warp_no_pose "/pipeline/timewarp/stages:" "{$fs}" --set /pipeline/timewarp='{"stages": [{"name": "W", "on": "gpu", "cost": {"fixed_ms": 1}}]}'
+check fs_warp_no_stages "/pipeline/timewarp/stages:" "{$fs}" --set /pipeline/timewarp='{"stages": []}'
+check fs_strips_field "/pipeline/timewarp/strips" "{$fs}" --set /pipeline/timewarp="$warp" --set /pipeline/timewarp/strips=4
+check fs_strips_lines "/pipeline/timewarp/strips" "{$fs}" --set /display/scanout='"line"' --set /pipeline/timewarp="$warp" --set /pipeline/timewarp/strips=10000
+check persistence_too_long "/display/persistence/lit_ms" "{$fs}" --set /display/persistence='{"type": "rolling", "lit_ms": 20}'
+check persistence_no_lit "/display/persistence/lit_ms" "{$fs}" --set /display/persistence='{"type": "global"}'
+check persistence_type "/display/persistence/type" "{$fs}" --set /display/persistence='{"type": "half"}'
+check persistence_response "/display/persistence/response_ms" "{$fs}" --set /display/persistence='{"type": "full", "response_ms": -1}'
+
 "$LATSIM" run "$tmp/none.json" --out "$tmp/out_none" 2>"$tmp/stderr"
 if [ $? -ne 2 ]; then echo "FAIL missing file: exit code"; fail=1; fi
 
