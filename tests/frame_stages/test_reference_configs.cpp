@@ -223,3 +223,34 @@ TEST_CASE("reference: an hour of late-sampled view bypass keeps the exact range"
   CHECK(rig.figures["frames_missed"].get<int64_t>() == 0);
   CHECK(rig.figures["frames_rendered"].get<int64_t>() >= 225000 - 3);
 }
+
+TEST_CASE("reference: an hour of continuous time warp keeps every strip on its line") {
+  // The continuous time warp above on 16 lines of 1 ms (8 strips of two
+  // lines) for an hour: 1.8 million strips, each aimed at its first line's
+  // instant computed from the refresh and strip index. Strip s of a refresh
+  // is warped from V + 2s - 1 (a 500 Hz sample taken 1 ms earlier, on an
+  // even millisecond) to V + 2s, when its first line is lit; its second line
+  // is lit 1 ms later: 2 - 3 ms, every strip on time. Frame 0 completes at
+  // 29 ms (G streams from 17 for 12 ms), so the first strip warped is the one
+  // due at 30 ms (strip 7 of refresh 1); then every strip of refreshes 2 to
+  // 224,999, and strip 0 of refresh 225,000, due at the end instant:
+  // 1 + 8 x 224,998 + 1 = 1,799,986 warps.
+  FrameStagesSpec s = base({"cpu1", "cpu2", "gpu", "warp"}, 2);
+  s.stages = {stage("I", {kCpu1}, 1, kRetrace, true), stage("S", {kCpu1}, 9), stage("R", {kCpu2}, 11, kRetrace),
+              streaming("G", {kGpu}, 12, 1)};
+  WarpSpec w;
+  w.mode = WarpSpec::Mode::positional;
+  w.strips = 8;
+  w.stages = {stage("W", {3}, 1, kLate, true)};
+  s.warp = w;
+  latsim::testing::RigOptions o;
+  o.tracker_hz = 500;
+  o.lines = 16;
+  Rig rig(s, o);
+  rig.run(3600.0);
+  CHECK(rig.mtp("min") == Approx(2.0).margin(1e-6));
+  CHECK(rig.mtp("max") == Approx(3.0).margin(1e-6));
+  CHECK(rig.figures["warps"].get<int64_t>() == 1799986);
+  CHECK(rig.figures["warps_late"].get<int64_t>() == 0);
+  CHECK(rig.figures["frames_missed"].get<int64_t>() == 0);
+}
