@@ -13,6 +13,16 @@ for f in figures.json frames.csv samples.csv timeline.csv; do
 done
 "$LATSIM" run scenarios/hmd_60hz_serial_poll.json --out "$tmp/c" "${args[@]}" --seed 99
 if cmp -s "$tmp/a/figures.json" "$tmp/c/figures.json"; then echo "FAIL: seed has no effect"; exit 1; fi
+# The same for staged frames whose GPU time varies per frame, with a time-warp
+# compositor preempting that GPU: same seed, same bytes; another seed, other times.
+fs=(--set /duration_s=2 --set '/pipeline/stages/3/cost={"fixed_ms": 16.667, "variation": "uniform", "variation_fraction": 0.3}' --ledger --samples -q)
+"$LATSIM" run scenarios/modern/timewarp_overload.json --out "$tmp/fa" "${fs[@]}"
+"$LATSIM" run scenarios/modern/timewarp_overload.json --out "$tmp/fb" "${fs[@]}"
+for f in figures.json frames.csv samples.csv timeline.csv; do
+  cmp "$tmp/fa/$f" "$tmp/fb/$f" || { echo "FAIL: frame_stages $f differs between identical runs"; exit 1; }
+done
+"$LATSIM" run scenarios/modern/timewarp_overload.json --out "$tmp/fc" "${fs[@]}" --seed 99
+if cmp -s "$tmp/fa/timeline.csv" "$tmp/fc/timeline.csv"; then echo "FAIL: frame_stages: seed has no effect"; exit 1; fi
 # No temporary files are left behind by atomic writes.
 if ls "$tmp"/a/*.tmp* >/dev/null 2>&1; then echo "FAIL: temporary files left"; exit 1; fi
 # The ledger's stage durations add up exactly to scanout end minus measurement.
