@@ -16,7 +16,7 @@ void print_usage(std::FILE* out) {
       "commands:\n"
       "  run SCENARIO.json       run one scenario, write DIR/summary.json and friends\n"
       "  validate SCENARIO.json  check scenario files without running them\n"
-      "  capacity SCENARIO.json  largest triangle count that never misses a field\n"
+      "  capacity SCENARIO.json  largest triangle count whose missed-field fraction stays within a threshold\n"
       "  sweep SWEEP.json        run a parameter sweep (parallel, resumable)\n"
       "  fidelity SCENARIO.json  what each step of simulation fidelity changes and costs\n"
       "  report DIR              tables and plots from a run or a sweep\n"

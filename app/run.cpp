@@ -113,13 +113,18 @@ int command_validate(int argc, char** argv) {
 }
 
 int command_capacity(int argc, char** argv) {
-  CLI::App app{"Bisect for the largest triangle count that never misses a field", "latsim capacity"};
-  std::string file, pointer = "/scene/triangles", metric = "missed_fields", out_dir;
+  CLI::App app{"Bisect for the largest triangle count whose missed-field fraction stays at or below a threshold",
+               "latsim capacity"};
+  std::string file, pointer = "/scene/triangles", metric = "missed_field_fraction", out_dir;
   std::vector<std::string> sets;
   int64_t lo = 0, hi = 100000;
+  double threshold = 0.0;
   app.add_option("scenario", file, "scenario JSON file")->required();
   app.add_option("--pointer", pointer, "the JSON pointer of the count to vary")->capture_default_str();
-  app.add_option("--metric", metric, "figure that must stay zero")->capture_default_str();
+  app.add_option("--metric", metric, "figure that must stay at or below the threshold")->capture_default_str();
+  app.add_option("--threshold", threshold, "largest acceptable value of the metric (0: no field missed)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   app.add_option("--max", hi, "upper bound of the search")->capture_default_str();
   app.add_option("--out,-o", out_dir, "also write DIR/capacity.json (the result and every count tried)");
   app.add_option("--set", sets, "override a value: /json/pointer=value (repeatable)");
@@ -131,34 +136,37 @@ int command_capacity(int argc, char** argv) {
     if (out_dir.empty()) return;
     std::filesystem::create_directories(out_dir);
     const nlohmann::json doc{{"scenario", file},         {"pointer", pointer}, {"metric", metric},
-                             {"max_triangles_per_field", max_count}, {"note", note}, {"tried", tried},
+                             {"threshold", threshold},   {"max_triangles_per_field", max_count},
+                             {"note", note},             {"tried", tried},
                              {"command_line", command_line_of(argc, argv)}, {"latsim", pipelines::latsim_version()},
                              {"git_revision", pipelines::latsim_git_revision()}};
     pipelines::write_file_atomically(std::filesystem::path(out_dir) / "capacity.json", doc.dump(2) + "\n");
   };
   try {
-    auto misses_at = [&](int64_t n) {
+    // Whether the scenario with count n keeps the metric within the threshold.
+    auto fits = [&](int64_t n) {
       std::vector<std::string> s = sets;
       s.push_back(pointer + "=" + std::to_string(n));
       const auto summary = pipelines::run_scenario(pipelines::load_scenario(file, s), pipelines::RunOptions{});
       const auto& f = summary["figures"];
-      if (!f.contains(metric)) throw scenario::ScenarioError(pointer, "this pipeline reports no \"" + metric + "\"");
-      const double misses = f[metric].get<double>();
-      tried.push_back({{"count", n}, {metric, misses}});
-      return misses;
+      if (!f.contains(metric) || !f[metric].is_number())
+        throw scenario::ScenarioError(pointer, "this pipeline reports no number \"" + metric + "\"");
+      const double value = f[metric].get<double>();
+      tried.push_back({{"count", n}, {metric, value}});
+      return value <= threshold;
     };
-    if (misses_at(lo) > 0) {
-      finish(-1, " (misses fields even with none)");
+    if (!fits(lo)) {
+      finish(-1, " (over the threshold even with none)");
       return kExitOk;
     }
-    if (misses_at(hi) == 0) {
-      finish(hi, " (never missed up to --max: raise it)");
+    if (fits(hi)) {
+      finish(hi, " (within the threshold up to --max: raise it)");
       return kExitOk;
     }
-    // Invariant: lo never misses, hi misses.
+    // Invariant: lo fits, hi does not.
     while (hi - lo > 1) {
       const int64_t mid = lo + (hi - lo) / 2;
-      (misses_at(mid) > 0 ? hi : lo) = mid;
+      (fits(mid) ? lo : hi) = mid;
     }
     finish(lo, "");
   } catch (const scenario::ScenarioError& e) {

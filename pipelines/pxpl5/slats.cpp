@@ -2,6 +2,7 @@
 // by an asynchronous host.
 #include <memory>
 
+#include "latsim/pipelines/latency_recorder.hpp"
 #include "latsim/pxpl5/slats_engine.hpp"
 #include "pxpl5/wiring.hpp"
 
@@ -14,16 +15,16 @@ class Pxpl5SlatsPipeline final : public Pipeline {
  public:
   struct Params {
     pxpl5::SlatsParams slats;
-    pxpl5::Workload workload;
+    Pxpl5Common common;
   };
 
   explicit Pxpl5SlatsPipeline(const Params& p) : p_(p) {}
 
   void start(RunContext& ctx) override {
     wiring_ = std::make_unique<Pxpl5Wiring>(ctx);
-    // Slats renders one bin of every triangle, so only the count matters.
+    p_.slats.stereo = p_.common.stereo;
     engine_ = std::make_unique<pxpl5::SlatsEngine>(ctx.sim, p_.slats, wiring_->field_timing(), wiring_->grid(),
-                                                   p_.workload.triangles, wiring_->hooks());
+                                                   wiring_->workload(p_.common), wiring_->hooks());
     // SEND is asynchronous: every sample the host sees goes to the GP.
     ctx.host.on_delivery([this](const tracker::TrackerSample& s, des::Time) {
       engine_->host_sample(wiring_->remember(s));
@@ -32,8 +33,17 @@ class Pxpl5SlatsPipeline final : public Pipeline {
   }
 
   void finish(RunContext& ctx) override {
-    wiring_->report(engine_->utilisation(ctx.duration), engine_->missed_fields(), engine_->torn_fields(),
-                    engine_->fields_shown());
+    const pxpl5::FieldCounts& c = engine_->counts();
+    wiring_->report(engine_->utilisation(ctx.duration), c.complete);
+    LatencyRecorder& r = ctx.recorder;
+    r.set("missed_fields", c.missed);
+    r.set("missed_field_fraction", c.missed_fraction());
+    r.set("torn_fields", c.torn);
+    r.set("fields_never_started", c.never_started);
+    r.set("backup_copies", c.backup_copies);
+    if (c.missed > 0)
+      r.warn("Slats missed " + std::to_string(c.missed) + " of " + std::to_string(c.complete + c.missed) +
+             " fields: their work did not fit (see missed_fields, torn_fields, deadline_slack_ms)");
   }
 
  private:
@@ -46,15 +56,23 @@ void bind(scenario::Section& s, Pxpl5SlatsPipeline::Params& p, const params::Sha
   pxpl5::SlatsParams& q = p.slats;
   bind_hardware(s, q.hw);
   s.duration("gp_us_per_triangle", q.gp_time_per_triangle,
-             {.unit = "us", .doc = "both eyes, one pass: transform, clip, light, set up plane equations twice"});
+             {.unit = "us", .doc = "a triangle on screen, both eyes in one pass: transform, clip, light, set up plane "
+                                   "equations twice"});
+  s.duration("gp_us_per_rejected_triangle", q.gp_time_per_rejected_triangle,
+             {.unit = "us", .doc = "a triangle outside both eyes' views: transform its corners twice, clip test"});
   s.duration("gp_field_overhead_us", q.gp_field_overhead, {.unit = "us", .doc = "take the newest transforms, set up, flush"});
   s.duration("region_finish_us", q.region_finish_time, {.unit = "us", .doc = "Gouraud: no deferred shading, just wrap up"});
   s.duration("host_compute_us", q.host_compute_time, {.unit = "us", .doc = "host: both eyes' viewing transforms"});
   s.integer("host_message_words", q.host_message_words, {.min = 0.0, .max = 1048576.0, .doc = "host to processor message"});
   s.flag("copy_optimisation", q.copy_optimisation,
          {.doc = "lower regions may arrive until the beam reaches them; false: every region by the retrace"});
-  s.flag("backup_field", q.backup_field, {.doc = "show a backup of the last complete field instead of a torn one"});
-  bind_pxpl5_scene(s, shared, q.hw, q.stereo, p.workload);
+  s.flag("backup_field", q.backup_field,
+         {.doc = "a late region is replaced by its backup from the last complete field, copied like any region"});
+  // Lower regions are written while the field is being scanned out; a display
+  // that samples the whole field at its retrace would show them a field late.
+  s.check_pointer("/display/scanout", shared.display.fidelity != display::ScanoutFidelity::Field,
+                  "Slats writes regions into the displayed frame buffer during scanout: use \"line\" or \"pixel\"");
+  bind_pxpl5_common(s, shared, q.hw, p.common);
 }
 
 }  // namespace
@@ -63,7 +81,8 @@ PipelineEntry pxpl5_slats_pipeline() {
   return pipeline_entry<Pxpl5SlatsPipeline>(
       "pxpl5_slats",
       "Pixel-Planes 5 Slats: field-synchronous rendering of both eyes by one processor with static region binding, "
-      "fed by an asynchronous host; one field of rendering latency (see docs/pxpl5.md). Reads /scene's `triangles`.");
+      "fed by an asynchronous host, as processes on the GP, ring channels, renderers and frame-buffer ports (see "
+      "docs/pxpl5.md). Reads /scene's `triangles`, or with `workload: view` its geometry.");
 }
 
 }  // namespace latsim::pipelines

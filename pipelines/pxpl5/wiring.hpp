@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "latsim/des/stats.hpp"
 #include "latsim/pipelines/pipeline.hpp"
@@ -17,12 +18,25 @@
 
 namespace latsim::pipelines {
 
+/// Where the triangles of each image come from.
+enum class Pxpl5WorkloadKind {
+  synthetic,  ///< /scene's `triangles` and `regions_per_triangle`, the same for every image (calibration)
+  view,       ///< /scene's geometry inside each eye's view at the pose the image uses
+};
+
+/// What both pipelines read besides their own costs.
+struct Pxpl5Common {
+  bool stereo = true;
+  Pxpl5WorkloadKind workload = Pxpl5WorkloadKind::synthetic;
+  pxpl5::Workload synthetic;
+};
+
 /// Declares the /pipeline keys both Pixel-Planes 5 pipelines share.
 void bind_hardware(scenario::Section& s, pxpl5::HardwareParams& p);
-/// Declares what both read from the shared sections: stereo and the /scene
-/// workload (both required); `stereo` and `workload` are filled from them.
-void bind_pxpl5_scene(scenario::Section& s, const params::SharedParams& shared, const pxpl5::HardwareParams& hw,
-                      bool& stereo, pxpl5::Workload& workload);
+/// Declares `workload` and what both read from the shared sections: stereo and
+/// the /scene workload (both required).
+void bind_pxpl5_common(scenario::Section& s, const params::SharedParams& shared, const pxpl5::HardwareParams& hw,
+                       Pxpl5Common& common);
 
 /// Connects a pxpl5 engine to a run: host samples in, images to the recorder
 /// and display, stage intervals to the timeline, named samples to figures.
@@ -36,20 +50,27 @@ class Pxpl5Wiring {
   pxpl5::FieldTiming field_timing() const;
   /// The display's screen in 128 x 128 renderer regions.
   pxpl5::RegionGrid grid() const;
+  /// The workload the scenario asks for (valid while this wiring lives).
+  pxpl5::WorkloadSource& workload(const Pxpl5Common& common);
   /// Hooks that feed this wiring; valid while it lives.
   pxpl5::EngineHooks hooks();
   /// Remembers a sample the host delivered and returns its token.
   int64_t remember(const tracker::TrackerSample& sample);
-  /// Reports the collected distributions and the given counts to the recorder.
-  void report(const pxpl5::Utilisation& utilisation, int64_t missed_fields, int64_t torn_fields,
-              int64_t frames_completed) const;
+  /// Reports the collected distributions and utilisation to the recorder.
+  void report(const pxpl5::Utilisation& utilisation, int64_t frames_completed) const;
 
  private:
   void present(const pxpl5::FrameReady& frame);
+  void region_written(const pxpl5::RegionWrite& write);
+  /// The recorder's id of an image (registered on first use), -1 without a sample.
+  int64_t image_id(int64_t frame, const pxpl5::EyeImage& image);
+  tracker::Pose eye_pose_of_token(int64_t token, int eye) const;
 
   RunContext* ctx_;
   std::map<int64_t, tracker::TrackerSample> samples_;  // by tracker index, recent ones only
   std::map<std::string, des::Distribution> samples_by_name_;
+  std::map<std::pair<int64_t, int>, int64_t> image_ids_;  // (frame, eye) -> recorder id, recent ones only
+  std::unique_ptr<pxpl5::WorkloadSource> workload_;
   int64_t images_without_sample_ = 0;
 };
 

@@ -28,7 +28,7 @@ uint64_t RunRecord::stage_fingerprint() const {
   return h;
 }
 
-FieldTiming ntsc_timing() { return FieldTiming(des::Time::zero(), des::RationalSeconds{1, 60}, 22, 240); }
+FieldTiming ntsc_timing() { return FieldTiming(des::Time::zero(), des::RationalSeconds{1, 60}, 22, 240, true); }
 
 RegionGrid ntsc_grid() { return RegionGrid::for_screen(640, 480, true, 128); }
 
@@ -40,6 +40,7 @@ EngineHooks recording_hooks(RunRecord& rec, std::function<int64_t(des::Time)> ne
   h.frame_ready = [&rec](const FrameReady& f) { rec.frames.push_back(f); };
   h.stage = [&rec](const StageInterval& s) { rec.stages.push_back(s); };
   h.sample = [&rec](const std::string& name, double v) { rec.samples[name].add(v); };
+  h.region_written = [&rec](const RegionWrite& w) { rec.writes.push_back(w); };
   return h;
 }
 
@@ -53,8 +54,8 @@ RunRecord run_rc(const RcParams& params, const Workload& workload, des::Time dur
   des::Simulator sim;
   const des::PeriodicSchedule tracker(des::Time::zero(), kTrackerPeriod);
   auto newest = [tracker](des::Time t) { return tracker.index_at_or_before(t); };
-  RcEngine engine(sim, params, ntsc_timing(), ntsc_grid(), workload, des::RandomStream(seed, "pxpl5.bins"),
-                  recording_hooks(rec, newest));
+  SyntheticWorkload source(workload, ntsc_grid().regions(), des::RandomStream(seed, "pxpl5.bins"));
+  RcEngine engine(sim, params, ntsc_timing(), ntsc_grid(), source, recording_hooks(rec, newest));
   engine.start(duration);
   sim.run_until(duration);
   rec.utilisation = engine.utilisation(duration);
@@ -64,9 +65,14 @@ RunRecord run_rc(const RcParams& params, const Workload& workload, des::Time dur
 }
 
 RunRecord run_slats(const SlatsParams& params, int64_t triangles, des::Time duration) {
+  SyntheticWorkload source(Workload{triangles, 1.3}, ntsc_grid().regions(), des::RandomStream(1, "pxpl5.bins"));
+  return run_slats(params, source, duration);
+}
+
+RunRecord run_slats(const SlatsParams& params, WorkloadSource& source, des::Time duration) {
   RunRecord rec;
   des::Simulator sim;
-  SlatsEngine engine(sim, params, ntsc_timing(), ntsc_grid(), triangles, recording_hooks(rec, {}));
+  SlatsEngine engine(sim, params, ntsc_timing(), ntsc_grid(), source, recording_hooks(rec, {}));
   const des::PeriodicSchedule tracker(des::Time::zero(), kTrackerPeriod);
   const des::KindId kind = sim.kind("tracker.sample");
   std::function<void(int64_t)> deliver = [&](int64_t k) {
@@ -77,8 +83,9 @@ RunRecord run_slats(const SlatsParams& params, int64_t triangles, des::Time dura
   engine.start(duration);
   sim.run_until(duration);
   rec.utilisation = engine.utilisation(duration);
-  rec.missed_fields = engine.missed_fields();
-  rec.torn_fields = engine.torn_fields();
+  rec.counts = engine.counts();
+  rec.missed_fields = rec.counts.missed;
+  rec.torn_fields = rec.counts.torn;
   rec.sim_fingerprint = sim.fingerprint();
   rec.field_ms = ntsc_timing().period_ms();
   return rec;

@@ -17,6 +17,8 @@ struct RunRecord {
   std::vector<StageInterval> stages;
   std::map<std::string, des::Distribution> samples;
   std::vector<FrameReady> frames;
+  std::vector<RegionWrite> writes;
+  FieldCounts counts;
   Utilisation utilisation;
   int64_t missed_fields = 0;
   int64_t torn_fields = 0;
@@ -34,7 +36,9 @@ RegionGrid ntsc_grid();
 
 /// A tracker feeding the host a new sample token every tracker period.
 RunRecord run_rc(const RcParams& params, const Workload& workload, des::Time duration, uint64_t seed = 1);
+/// Slats on `triangles` synthetic on-screen triangles, or on any workload.
 RunRecord run_slats(const SlatsParams& params, int64_t triangles, des::Time duration);
+RunRecord run_slats(const SlatsParams& params, WorkloadSource& source, des::Time duration);
 
 /// RC with every TRANSFORM and RENDER cost set to zero except the copy.
 RcParams trivial_rc_params();

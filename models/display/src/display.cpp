@@ -17,7 +17,8 @@ Display::Display(des::Simulator& sim, RasterTiming timing, int eyes, ScanoutFide
       fidelity_(fidelity),
       pixel_stride_(pixel_stride),
       front_(static_cast<size_t>(eyes), -1),
-      pending_(static_cast<size_t>(eyes), -1) {
+      pending_(static_cast<size_t>(eyes), -1),
+      written_(static_cast<size_t>(eyes)) {
   if (eyes < 1 || eyes > 2) throw std::invalid_argument("a display has one or two eyes");
   if (pixel_stride < 1) throw std::invalid_argument("pixel stride must be at least 1");
   kind_retrace_ = sim_.kind("display.retrace");
@@ -25,7 +26,28 @@ Display::Display(des::Simulator& sim, RasterTiming timing, int eyes, ScanoutFide
   if (fidelity_ == ScanoutFidelity::Pixel) kind_pixel_ = sim_.kind("display.pixel");
 }
 
-void Display::present_now(int eye, int64_t image_id) { front_.at(eye) = image_id; }
+void Display::present_now(int eye, int64_t image_id) {
+  front_.at(eye) = image_id;
+  written_.at(eye).clear();
+}
+
+void Display::write_region_now(int eye, const BufferRegion& region, int64_t image_id) {
+  if (region.x_begin >= region.x_end || region.row_begin >= region.row_end || region.row_step < 1)
+    throw std::invalid_argument("an empty frame-buffer region");
+  for (WrittenRegion& w : written_.at(eye)) {
+    if (w.region == region) {
+      w.image_id = image_id;
+      return;
+    }
+    const BufferRegion& o = w.region;
+    const bool columns_meet = region.x_begin < o.x_end && o.x_begin < region.x_end;
+    bool rows_meet = false;
+    for (int row = region.row_begin; row < region.row_end && !rows_meet; row += region.row_step)
+      rows_meet = o.contains_row(row);
+    if (columns_meet && rows_meet) throw std::invalid_argument("frame-buffer regions overlap");
+  }
+  written_[static_cast<size_t>(eye)].push_back(WrittenRegion{region, image_id});
+}
 
 void Display::present_at_next_retrace(int eye, int64_t image_id) { pending_.at(eye) = image_id; }
 
@@ -47,6 +69,7 @@ void Display::retrace(int64_t field) {
     if (pending_[eye] >= 0) {
       front_[eye] = pending_[eye];
       pending_[eye] = -1;
+      written_[eye].clear();
     }
   }
   ++fields_shown_;
@@ -113,7 +136,35 @@ void Display::emit(int eye, int64_t field, int line, int x_begin, int x_end, des
     span.photon_time = t;
   }
   span.image_id = front_[static_cast<size_t>(eye)];
+  if (!written_[static_cast<size_t>(eye)].empty()) return emit_regions(span);
   for (auto* l : listeners_) l->on_scanout(span);
+}
+
+void Display::emit_regions(ScanoutSpan span) {
+  std::vector<const WrittenRegion*> on_row;  // at most a few dozen regions per eye
+  for (const WrittenRegion& w : written_[static_cast<size_t>(span.eye)])
+    if (w.region.contains_row(span.row) && w.region.x_begin < span.x_end && span.x_begin < w.region.x_end)
+      on_row.push_back(&w);
+  std::sort(on_row.begin(), on_row.end(),
+            [](const WrittenRegion* a, const WrittenRegion* b) { return a->region.x_begin < b->region.x_begin; });
+  const int x_end = span.x_end;
+  const int64_t front = span.image_id;
+  const auto send = [&](int x0, int x1, int64_t id) {
+    if (x0 >= x1) return;
+    ScanoutSpan part = span;
+    part.x_begin = x0;
+    part.x_end = x1;
+    part.image_id = id;
+    for (auto* l : listeners_) l->on_scanout(part);
+  };
+  int x = span.x_begin;
+  for (const WrittenRegion* w : on_row) {
+    send(x, std::max(x, w->region.x_begin), front);
+    x = std::max(x, w->region.x_begin);
+    send(x, std::min(x_end, w->region.x_end), w->image_id);
+    x = std::max(x, std::min(x_end, w->region.x_end));
+  }
+  send(x, x_end, front);
 }
 
 }  // namespace latsim::display

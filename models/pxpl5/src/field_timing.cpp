@@ -4,8 +4,9 @@
 
 namespace latsim::pxpl5 {
 
-FieldTiming::FieldTiming(des::Time t0, des::RationalSeconds period, int vblank_lines, int active_lines)
-    : schedule_(t0, period), vblank_lines_(vblank_lines), active_lines_(active_lines) {
+FieldTiming::FieldTiming(des::Time t0, des::RationalSeconds period, int vblank_lines, int active_lines,
+                         bool interlaced)
+    : schedule_(t0, period), vblank_lines_(vblank_lines), active_lines_(active_lines), interlaced_(interlaced) {
   if (vblank_lines < 0 || active_lines <= 0) throw std::invalid_argument("FieldTiming: bad line counts");
 }
 

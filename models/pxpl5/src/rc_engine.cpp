@@ -8,19 +8,16 @@
 namespace latsim::pxpl5 {
 
 RcEngine::RcEngine(des::Simulator& sim, RcParams params, FieldTiming timing, RegionGrid grid,
-                   const Workload& workload, des::RandomStream stream, EngineHooks hooks)
+                   WorkloadSource& workload, EngineHooks hooks)
     : sim_(sim),
       p_(params),
       timing_(timing),
       grid_(grid),
+      workload_(workload),
       hooks_(std::move(hooks)),
       work_available_(sim, "pxpl5.rc.work"),
       ring_(sim, params.hw.ring_channels, "pxpl5.ring") {
   if (p_.slaves() < 1) throw std::invalid_argument("RC needs a master and at least one slave GP");
-  for (int e = 0; e < p_.eyes(); ++e) {
-    des::RandomStream eye_stream = stream.substream(e == 0 ? "left" : "right");
-    bins_.push_back(BinCounts::distribute(workload, p_.slaves(), grid_.regions(), eye_stream));
-  }
   for (int s = 0; s < p_.slaves(); ++s) sgp_ports_.push_back(std::make_unique<des::Resource>(sim, 1));
   for (int f = 0; f < p_.hw.frame_buffers; ++f) fb_ports_.push_back(std::make_unique<des::Resource>(sim, 1));
   sgp_busy_.assign(p_.slaves(), des::Time::zero());
@@ -64,16 +61,30 @@ void RcEngine::sample(const std::string& name, double value) {
   if (hooks_.sample) hooks_.sample(name, value);
 }
 
-// SEND(i) may start once EDIT(i-1) has finished; the host takes the newest
-// tracker sample as it starts computing the viewing transforms.
+int64_t RcEngine::newest_sample(des::Time t) const { return hooks_.newest_sample ? hooks_.newest_sample(t) : -1; }
+
+// One slave's TRANSFORM of one eye: set-up, every triangle of its display
+// list (on screen: transform, light, set up; elsewhere: transform and reject)
+// and one bin entry per region an on-screen triangle covers.
+des::Time RcEngine::transform_time(const BinCounts& bins, int s) const {
+  return p_.transform_overhead + p_.transform_time_per_triangle * bins.on_screen(s) +
+         p_.reject_time_per_triangle * (bins.triangles(s) - bins.on_screen(s)) +
+         p_.binitize_time_per_bin * bins.bin_entries(s);
+}
+
+// SEND(i) may start once EDIT(i-1) has finished; unless the read is late,
+// the host takes the newest tracker sample as it starts computing the
+// viewing transforms.
 des::Process RcEngine::send_process() {
   for (int64_t i = 0;; ++i) {
     if (i > 0) co_await frame(i - 1).edit_done;
     if (sim_.now() >= end_) co_return;
     FrameState& f = frame(i);
     const des::Time start = sim_.now();
-    f.sample_read_at = start;
-    f.sample_token = hooks_.newest_sample ? hooks_.newest_sample(start) : -1;
+    if (p_.host_read == HostRead::send_start) {
+      f.sample_read_at = start;
+      f.sample_token = newest_sample(start);
+    }
     co_await sim_.delay(p_.send_time + p_.hw.transfer_time(p_.send_words));
     stage("SEND", i, -1, "host", start, sim_.now());
     sample("stage_ms.SEND", (sim_.now() - start).to_ms());
@@ -89,6 +100,16 @@ des::Process RcEngine::edit_process() {
     co_await frame(i).send_done;
     for (des::Signal* done : eye_conditions(first - 2, first - 3, first - 1)) co_await *done;
     const des::Time start = sim_.now();
+    // The slaves need the viewing transforms from here on: a late read takes
+    // the newest sample now; either way, note how much newer that is.
+    FrameState& f = frame(i);
+    f.measured_token = newest_sample(start);
+    if (p_.host_read == HostRead::late) {
+      f.sample_read_at = start;
+      f.sample_token = f.measured_token;
+    }
+    if (hooks_.sample_age_ms && f.sample_token >= 0 && f.measured_token >= 0)
+      sample("late_read_saving_ms", hooks_.sample_age_ms(f.sample_token, f.measured_token));
     co_await sim_.delay(p_.edit_time);
     for (int s = 0; s < p_.slaves(); ++s) {
       stage("EDIT", i, -1, unit_name("SGP", s + 1), start, sim_.now());
@@ -111,20 +132,21 @@ des::Process RcEngine::transform_process() {
     EyeState& es = eye(n);
     const des::Time start = sim_.now();
     es.transform_start = start;
-    const BinCounts& bins = bins_[e];
+    const EyeWork& work = workload_.work(frame(i).sample_token, e, p_.slaves());
+    es.bins = work.bins;
+    const BinCounts& bins = es.bins;
+    std::vector<des::Time> busy(static_cast<std::size_t>(p_.slaves()));
     des::Time slowest = des::Time::zero();
     for (int s = 0; s < p_.slaves(); ++s) {
-      const des::Time d = p_.transform_overhead + p_.transform_time_per_triangle * bins.triangles(s) +
-                          p_.binitize_time_per_bin * bins.bin_entries(s);
-      stage("TRANSFORM", i, e, unit_name("SGP", s + 1), start, start + d);
-      slowest = std::max(slowest, d);
+      busy[s] = transform_time(bins, s);
+      stage("TRANSFORM", i, e, unit_name("SGP", s + 1), start, start + busy[s]);
+      slowest = std::max(slowest, busy[s]);
     }
     co_await sim_.delay(slowest);
     // Counted once finished, so utilisation never includes work past the run's end.
-    for (int s = 0; s < p_.slaves(); ++s)
-      sgp_busy_[s] += p_.transform_overhead + p_.transform_time_per_triangle * bins.triangles(s) +
-                      p_.binitize_time_per_bin * bins.bin_entries(s);
+    for (int s = 0; s < p_.slaves(); ++s) sgp_busy_[s] += busy[s];
     sample("stage_ms.TRANSFORM", slowest.to_ms());
+    sample("triangles_on_screen", static_cast<double>(work.on_screen_count));
     es.transform_done.trigger();
     // Busiest region (most waiting commands) first; ties in screen order.
     std::vector<int> order(grid_.regions());
@@ -149,7 +171,7 @@ des::Process RcEngine::renderer_process(int k) {
     unrendered_.pop_front();
     EyeState& es = eye(task.eye_seq);
     const int e = static_cast<int>(task.eye_seq % p_.eyes());
-    const BinCounts& bins = bins_[e];
+    const BinCounts& bins = es.bins;
     const des::Time start = sim_.now();
     if (!es.render_started) {
       es.render_started = true;
@@ -231,10 +253,12 @@ void RcEngine::finish_frame(int64_t i) {
     const EyeState& es = eye(i * p_.eyes() + e);
     ready.eyes.push_back(EyeImage{e, f.sample_token, f.sample_read_at, es.transform_start, es.copy_end});
     // The published measure: TRANSFORM start to the end of the eye's COPY.
-    sample("render_latency_fields", (es.copy_end - es.transform_start).to_ms() / field_ms);
-    sample("render_to_scanout_fields", (f.swap_at - es.transform_start).to_ms() / field_ms);
+    sample("transform_to_copy_end_fields", (es.copy_end - es.transform_start).to_ms() / field_ms);
+    sample("transform_to_retrace_fields", (f.swap_at - es.transform_start).to_ms() / field_ms);
   }
   sample("copy_ms_per_frame", (sim_.now() - f.copy_start).to_ms());
+  // Retrace to retrace between consecutive frames: the published "frame time".
+  if (i > 0) sample("frame_time_ms", (f.swap_at - frame(i - 1).swap_at).to_ms());
   ++frames_completed_;
   if (hooks_.frame_ready) hooks_.frame_ready(ready);
 }

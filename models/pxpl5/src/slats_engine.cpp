@@ -1,3 +1,5 @@
+// Slats: construction, the host, the GP and its ring port, the renderers.
+// The copy slots, region deadlines and field verdicts are in slats_copy.cpp.
 #include "latsim/pxpl5/slats_engine.hpp"
 
 #include <algorithm>
@@ -6,31 +8,62 @@
 
 namespace latsim::pxpl5 {
 
+SlatsEngine::FieldWork::FieldWork(des::Simulator& sim, int renderers, int eyes)
+    : eye_copy_end(static_cast<std::size_t>(eyes), des::Time::zero()), eye_on_time(static_cast<std::size_t>(eyes), 0) {
+  render_start = des::Time::max();
+  for (int r = 0; r < renderers; ++r) rendered.push_back(std::make_unique<des::Signal>(sim, "pxpl5.slats.rendered"));
+}
+
 SlatsEngine::SlatsEngine(des::Simulator& sim, SlatsParams params, FieldTiming timing, RegionGrid grid,
-                         int64_t triangles, EngineHooks hooks)
-    : sim_(sim), p_(params), timing_(timing), grid_(grid), triangles_(triangles), hooks_(std::move(hooks)) {
-  if (triangles < 0) throw std::invalid_argument("Slats: negative triangle count");
+                         WorkloadSource& workload, EngineHooks hooks)
+    : sim_(sim),
+      p_(params),
+      timing_(timing),
+      grid_(grid),
+      workload_(workload),
+      hooks_(std::move(hooks)),
+      ring_(sim, params.hw.ring_channels),
+      port_work_(sim, "pxpl5.slats.port"),
+      field_started_(sim, "pxpl5.slats.field"),
+      host_wake_(sim, "pxpl5.slats.host") {
+  if (p_.hw.frame_buffers < p_.eyes()) throw std::invalid_argument("Slats needs a frame buffer per eye");
   // Static binding: column c of every field row of every eye belongs to
   // renderer c mod renderers (5 renderers x top/bottom x 2 eyes = 4 regions each).
   copy_order_.resize(p_.eyes());
+  owned_.assign(p_.hw.renderers, 0);
   for (int e = 0; e < p_.eyes(); ++e)
     for (int row = 0; row < grid_.field_rows; ++row)
       for (int c = 0; c < grid_.columns; ++c) {
         copy_order_[e].push_back(static_cast<int>(regions_.size()));
         regions_.push_back(FieldRegion{e, row, c, c % p_.hw.renderers});
+        ++owned_[c % p_.hw.renderers];
       }
-  renderer_free_.assign(p_.hw.renderers, des::Time::zero());
-  kind_field_ = sim_.kind("pxpl5.field");
-  kind_ready_ = sim_.kind("pxpl5.copy");
-  kind_send_ = sim_.kind("pxpl5.send");
+  for (int e = 0; e < p_.eyes(); ++e) {
+    fb_ports_.push_back(std::make_unique<des::Resource>(sim, 1, unit_name("pxpl5.FB", e)));
+    shown_field_.push_back({std::vector<int64_t>(grid_.field_regions(), -1),
+                            std::vector<int64_t>(grid_.field_regions(), -1)});
+  }
+  backup_.resize(p_.eyes());
+  copy_position_.assign(p_.eyes(), 0);
+  for (int r = 0; r < p_.hw.renderers; ++r) {
+    renderer_ports_.push_back(std::make_unique<des::Resource>(sim, 1, unit_name("pxpl5.R", r)));
+    renderer_free_.push_back(std::make_unique<des::Signal>(sim, "pxpl5.slats.free"));
+    renderer_free_.back()->trigger();  // empty pixel memory; nobody waits yet
+    inbox_arrival_.push_back(std::make_unique<des::Signal>(sim, "pxpl5.slats.inbox"));
+  }
+  inbox_.resize(p_.hw.renderers);
+  if (!timing_.interlaced()) kind_swap_ = sim_.kind("pxpl5.swap");
 }
 
 void SlatsEngine::start(des::Time end) {
   end_ = end;
-  gp_free_ = sim_.now();
-  for (int r = 0; r < p_.hw.renderers; ++r) renderer_free_[r] = sim_.now();
-  const int64_t first = timing_.field_at_or_after(sim_.now());
-  if (timing_.retrace(first) < end_) sim_.at(timing_.retrace(first), kind_field_, [this, first] { field_start(first); });
+  sim_.spawn(host_process(), sim_.kind("pxpl5.send"));
+  sim_.spawn(gp_process(), sim_.kind("pxpl5.transform"));
+  sim_.spawn(port_process(), sim_.kind("pxpl5.ring"));
+  const des::KindId render = sim_.kind("pxpl5.render");
+  for (int r = 0; r < p_.hw.renderers; ++r) sim_.spawn(renderer_process(r), render);
+  const des::KindId copy = sim_.kind("pxpl5.copy");
+  for (int e = 0; e < p_.eyes(); ++e) sim_.spawn(copy_process(e), copy);
 }
 
 void SlatsEngine::stage(const char* name, int64_t frame, int eye, std::string unit, des::Time start, des::Time end) {
@@ -43,173 +76,203 @@ void SlatsEngine::sample(const std::string& name, double value) {
 
 void SlatsEngine::host_sample(int64_t token) {
   host_pending_ = token;
-  if (!host_busy_) send_to_gp();
+  host_wake_.trigger();
+  host_wake_.reset();
 }
 
 // The host computes both eyes' transforms from the newest sample it has and
-// sends them; a sample arriving meanwhile waits and only the newest is sent.
-void SlatsEngine::send_to_gp() {
-  const int64_t token = host_pending_;
-  host_pending_ = -1;
-  host_busy_ = true;
-  const des::Time start = sim_.now();
-  const des::Time message = p_.hw.transfer_time(p_.host_message_words);
-  ring_busy_ += message;
-  sim_.after(p_.host_compute_time + message, kind_send_, [this, token, start] {
+// sends them over a ring channel; a sample arriving meanwhile waits and only
+// the newest is sent.
+des::Process SlatsEngine::host_process() {
+  for (;;) {
+    while (host_pending_ < 0) co_await host_wake_;
+    const int64_t token = host_pending_;
+    host_pending_ = -1;
+    const des::Time start = sim_.now();
+    co_await sim_.delay(p_.host_compute_time);
+    co_await ring_.acquire();
+    const int channel = ring_.claim();
+    const des::Time sent = sim_.now();
+    co_await sim_.delay(p_.hw.transfer_time(p_.host_message_words));
+    ring_.release(channel);
     gp_mailbox_ = token;
+    stage("SEND", -1, -1, unit_name("ring", channel), sent, sim_.now());
     stage("SEND", -1, -1, "host", start, sim_.now());
     sample("stage_ms.SEND", (sim_.now() - start).to_ms());
-    host_busy_ = false;
-    if (host_pending_ >= 0) send_to_gp();
-  });
+  }
 }
 
-// The GP streams a full ring message to every renderer as soon as it holds
-// max_message_words of commands, so rendering overlaps transforming.
-std::vector<des::Time> SlatsEngine::transform_and_render(int64_t shown, des::Time start, des::Time& gp_end) {
-  const int renderers = p_.hw.renderers;
-  std::vector<int> owned(renderers, 0);
-  for (const FieldRegion& r : regions_) ++owned[r.renderer];
-  std::vector<des::Time> busy(renderers), first(renderers);
-  for (int r = 0; r < renderers; ++r) first[r] = busy[r] = std::max(start, renderer_free_[r]);
-
+// At the first retrace at which it is free the GP starts the next field with
+// the newest transforms it holds; fields whose retraces passed while it was
+// busy get no new image. A full message goes to the port as soon as it is full.
+des::Process SlatsEngine::gp_process() {
   const int64_t words_per_triangle = static_cast<int64_t>(p_.hw.words_per_command) * p_.eyes();
   const int64_t per_message = std::max<int64_t>(1, p_.hw.max_message_words / words_per_triangle);
-  des::Time t = start + p_.gp_field_overhead;
-  des::Time port = t;
-  for (int64_t done = 0; done < triangles_;) {
-    const int64_t m = std::min(per_message, triangles_ - done);
-    done += m;
-    t += p_.gp_time_per_triangle * m;
-    port = std::max(port, t);
-    const des::Time transfer = p_.hw.transfer_time(m * words_per_triangle);
-    for (int r = 0; r < renderers; ++r) {
-      port += transfer;  // the GP's ring port sends one copy per renderer
-      ring_busy_ += transfer;
-      const des::Time work = p_.hw.render_time_per_command * (m * owned[r]);
-      busy[r] = std::max(busy[r], port) + work;
-      renderer_busy_ += work;
-    }
-  }
-  gp_end = t;
-  gp_busy_ += t - start;
-  stage("TRANSFORM", shown, -1, "GP", start, t);
-  sample("stage_ms.TRANSFORM", (t - start).to_ms());
-  des::Time last = start;
-  for (int r = 0; r < renderers; ++r) {
-    const des::Time finish = p_.region_finish_time * owned[r];
-    busy[r] = std::max(busy[r], t) + finish;
-    renderer_busy_ += finish;
-    stage("RENDER", shown, -1, unit_name("R", r), first[r], busy[r]);
-    last = std::max(last, busy[r]);
-  }
-  sample("stage_ms.RENDER", (last - start).to_ms());
-  return busy;
-}
-
-// Both frame buffers receive at once: slot s carries region s of the left
-// eye's list to FB0 and region s-1 of the right eye's list to FB1, so 20
-// regions take 11 slots. A renderer sends one region at a time. Deadlines:
-// top regions by the retrace; with the COPY optimisation, lower regions by
-// the moment the beam reaches their first line, otherwise also by the retrace.
-std::vector<SlatsEngine::Transfer> SlatsEngine::copy_schedule(int64_t shown, const std::vector<des::Time>& rendered) {
-  std::vector<Transfer> out;
-  std::vector<des::Time> fb_free(p_.eyes(), des::Time::zero());
-  std::vector<des::Time> port_free = rendered;
-  const des::Time retrace = timing_.retrace(shown);
-  const std::size_t slots = copy_order_[0].size() + static_cast<std::size_t>(p_.eyes()) - 1;
-  for (std::size_t s = 0; s < slots; ++s)
+  for (;;) {
+    const int64_t k = timing_.field_at_or_after(sim_.now());
+    const des::Time retrace = timing_.retrace(k);
+    if (retrace >= end_) co_return;
+    co_await sim_.until(retrace);
+    if (last_started_ < 0) last_started_ = k;  // the field shown at the first retrace had no work
+    give_up_fields(last_started_ + 1, k);
+    FieldWork& w = begin_field(k + 1);
+    const des::Time start = sim_.now();
+    std::vector<uint8_t> on_screen;  // either eye; empty: every triangle
     for (int e = 0; e < p_.eyes(); ++e) {
-      if (s < static_cast<std::size_t>(e) || s - e >= copy_order_[e].size()) continue;
-      const int idx = copy_order_[e][s - e];
-      const FieldRegion& reg = regions_[idx];
-      Transfer tr;
-      tr.region = idx;
-      tr.start = std::max(fb_free[e], port_free[reg.renderer]);
-      tr.end = tr.start + p_.hw.copy_time_per_region;
-      const bool late_allowed = p_.copy_optimisation && reg.row > 0;
-      tr.deadline = late_allowed ? timing_.line_time(shown, reg.row * grid_.region_px) : retrace;
-      fb_free[e] = port_free[reg.renderer] = tr.end;
-      out.push_back(tr);
+      const EyeWork& work = workload_.work(w.sample_token, e, 1);
+      if (work.on_screen.empty()) continue;
+      if (on_screen.empty()) on_screen = work.on_screen;
+      else
+        for (std::size_t t = 0; t < on_screen.size(); ++t) on_screen[t] |= work.on_screen[t];
     }
-  return out;
+    w.on_screen = on_screen.empty() ? workload_.triangles()
+                                    : static_cast<int64_t>(std::count(on_screen.begin(), on_screen.end(), 1));
+    std::vector<int64_t> sizes;
+    const std::vector<des::Time> due = message_times(on_screen, per_message, sizes);
+    for (std::size_t i = 0; i < due.size(); ++i) {
+      co_await sim_.until(start + due[i]);
+      port_queue_.push_back(Message{&w, sizes[i], i + 1 == due.size()});
+      port_work_.trigger();
+      port_work_.reset();
+    }
+    gp_busy_ += sim_.now() - start;
+    stage("TRANSFORM", w.field, -1, "GP", start, sim_.now());
+    sample("stage_ms.TRANSFORM", (sim_.now() - start).to_ms());
+    sample("triangles_on_screen", static_cast<double>(w.on_screen));
+  }
 }
 
-// At retrace k the GP starts the work for field k+1 if it is free; a field
-// it cannot start, or whose copies miss their deadlines, is a missed field.
-void SlatsEngine::field_start(int64_t k) {
-  const des::Time now = sim_.now();
-  const int64_t shown = k + 1;
-  const des::Time next = timing_.retrace(shown);
-  if (next < end_) sim_.at(next, kind_field_, [this, shown] { field_start(shown); });
+// When each message is full, from the field's start: the overhead, then every
+// display-list triangle in order (on screen: the full cost; elsewhere: the
+// reject cost). The last message also ends the field, after the last triangle.
+std::vector<des::Time> SlatsEngine::message_times(const std::vector<uint8_t>& on_screen, int64_t per_message,
+                                                  std::vector<int64_t>& sizes) const {
+  std::vector<des::Time> due;
+  const int64_t n = workload_.triangles();
+  if (on_screen.empty()) {
+    // Every triangle on screen: the times follow from the index alone.
+    for (int64_t done = 0; done < n;) {
+      const int64_t m = std::min(per_message, n - done);
+      done += m;
+      due.push_back(p_.gp_field_overhead + p_.gp_time_per_triangle * done);
+      sizes.push_back(m);
+    }
+  } else {
+    des::Time t = p_.gp_field_overhead;
+    int64_t filling = 0;
+    for (int64_t i = 0; i < n; ++i) {
+      const bool visible = on_screen[static_cast<std::size_t>(i)] != 0;
+      t += visible ? p_.gp_time_per_triangle : p_.gp_time_per_rejected_triangle;
+      if (visible && ++filling == per_message) {
+        due.push_back(t);
+        sizes.push_back(filling);
+        filling = 0;
+      }
+    }
+    // Whatever is left (perhaps nothing) goes with the end of the field.
+    if (filling > 0 || due.empty() || due.back() != t) {
+      due.push_back(t);
+      sizes.push_back(filling);
+    }
+  }
+  if (due.empty()) {
+    due.push_back(p_.gp_field_overhead);
+    sizes.push_back(0);
+  }
+  return due;
+}
 
-  if (gp_free_ > now) {
-    ++missed_fields_;
-    sample("missed_field", static_cast<double>(shown));
-    return;
+SlatsEngine::FieldWork& SlatsEngine::begin_field(int64_t field) {
+  // Fields every frame-buffer port has finished are no longer referred to.
+  const int64_t oldest_in_use = *std::min_element(copy_position_.begin(), copy_position_.end());
+  while (!fields_.empty() && fields_.front()->regions_open == 0 && fields_dropped_ < oldest_in_use) {
+    fields_.pop_front();
+    ++fields_dropped_;
   }
-  const int64_t token = gp_mailbox_;
-  des::Time gp_end;
-  const std::vector<des::Time> rendered = transform_and_render(shown, now, gp_end);
-  gp_free_ = gp_end;
-  const std::vector<Transfer> copies = copy_schedule(shown, rendered);
+  auto w = std::make_unique<FieldWork>(sim_, p_.hw.renderers, p_.eyes());
+  w->field = field;
+  w->sample_token = gp_mailbox_;
+  w->transform_start = sim_.now();
+  w->regions_held = owned_;
+  w->regions_open = static_cast<int>(regions_.size());
+  fields_.push_back(std::move(w));
+  last_started_ = field;
+  field_started_.trigger();
+  field_started_.reset();
+  return *fields_.back();
+}
 
-  std::vector<des::Time> eye_copy_end(p_.eyes(), des::Time::zero());
-  des::Time tops_done = now, copy_start = des::Time::max(), copy_end = now;
-  des::Time slack = des::Time::max();
-  int late = 0;
-  for (const Transfer& tr : copies) {
-    const FieldRegion& reg = regions_[tr.region];
-    stage("COPY", shown, reg.eye, unit_name("FB", reg.eye), tr.start, tr.end);
-    renderer_free_[reg.renderer] = std::max(renderer_free_[reg.renderer], tr.end);
-    eye_copy_end[reg.eye] = std::max(eye_copy_end[reg.eye], tr.end);
-    copy_start = std::min(copy_start, tr.start);
-    copy_end = std::max(copy_end, tr.end);
-    if (reg.row == 0 || !p_.copy_optimisation) tops_done = std::max(tops_done, tr.end);
-    // On time means strictly before the deadline, so a swap requested then
-    // still happens at that retrace.
-    if (tr.end >= tr.deadline) ++late;
-    slack = std::min(slack, tr.deadline - tr.end);
-    copy_busy_ += p_.hw.copy_time_per_region;
-    ring_busy_ += p_.hw.copy_time_per_region;
-  }
-  sample("stage_ms.COPY", (copy_end - copy_start).to_ms());
-  sample("copy_ms_per_frame", (copy_end - copy_start).to_ms());
-  sample("deadline_slack_ms", slack.to_ms());
+// Fields whose retraces came and went while the GP was busy: no region of
+// theirs is ever written, so the display keeps the previous field of the same parity.
+void SlatsEngine::give_up_fields(int64_t first, int64_t last) {
+  const int64_t n = std::max<int64_t>(0, last - first + 1);
+  counts_.missed += n;
+  counts_.never_started += n;
+}
 
-  if (late > 0) {
-    ++missed_fields_;
-    // Regions that did arrive tear the field unless a backup of the last
-    // complete field is shown instead.
-    if (!p_.backup_field && late < static_cast<int>(copies.size())) ++torn_fields_;
-    sample("missed_field", static_cast<double>(shown));
-    return;
+// The GP's ring port sends each message to every renderer in turn, each
+// transfer over whichever ring channel is free.
+des::Process SlatsEngine::port_process() {
+  for (;;) {
+    while (port_queue_.empty()) co_await port_work_;
+    const Message m = port_queue_.front();
+    port_queue_.pop_front();
+    const int64_t words = m.triangles * p_.hw.words_per_command * p_.eyes();
+    for (int r = 0; r < p_.hw.renderers; ++r) {
+      co_await ring_.acquire();
+      const int channel = ring_.claim();
+      const des::Time start = sim_.now();
+      co_await sim_.delay(p_.hw.transfer_time(words));
+      ring_.release(channel);
+      if (words > 0) stage("MESSAGE", m.work->field, -1, unit_name("ring", channel), start, sim_.now());
+      inbox_[r].push_back(m);
+      inbox_arrival_[r]->trigger();
+      inbox_arrival_[r]->reset();
+    }
   }
-  FrameReady ready;
-  ready.frame = shown;
-  ready.swap_field = shown;
-  ready.swap_at = next;
-  const double field_ms = timing_.period_ms();
-  for (int e = 0; e < p_.eyes(); ++e) {
-    ready.eyes.push_back(EyeImage{e, token, now, now, eye_copy_end[e]});
-    sample("render_latency_fields", (next - now).to_ms() / field_ms);
-    sample("render_to_scanout_fields", (next - now).to_ms() / field_ms);
-    sample("transform_to_copy_end_fields", (eye_copy_end[e] - now).to_ms() / field_ms);
+}
+
+// A renderer starts a field once its previous regions are copied out, then
+// renders each command into every region it owns as messages arrive, and
+// finishes its regions after the field's last message.
+des::Process SlatsEngine::renderer_process(int r) {
+  const std::string unit = unit_name("R", r);
+  bool in_field = false;
+  des::Time field_start;
+  for (;;) {
+    while (inbox_[r].empty()) co_await *inbox_arrival_[r];
+    const Message m = inbox_[r].front();
+    inbox_[r].pop_front();
+    FieldWork& w = *m.work;
+    if (!in_field) {
+      co_await *renderer_free_[r];
+      renderer_free_[r]->reset();
+      in_field = true;
+      field_start = sim_.now();
+      w.render_start = std::min(w.render_start, field_start);
+    }
+    des::Time work = p_.hw.render_time_per_command * (m.triangles * owned_[r]);
+    if (m.last) work += p_.region_finish_time * owned_[r];
+    co_await sim_.delay(work);
+    renderer_busy_ += work;
+    if (!m.last) continue;
+    in_field = false;
+    w.render_end = std::max(w.render_end, sim_.now());
+    stage("RENDER", w.field, -1, unit, field_start, sim_.now());
+    w.rendered[r]->trigger();
   }
-  ++fields_shown_;
-  sim_.at(tops_done, kind_ready_, [this, ready] {
-    if (hooks_.frame_ready) hooks_.frame_ready(ready);
-  });
 }
 
 Utilisation SlatsEngine::utilisation(des::Time elapsed) const {
   Utilisation u;
   if (elapsed <= des::Time::zero()) return u;
   const double t = elapsed.to_seconds();
+  des::Time copy = des::Time::zero();
+  for (const auto& port : fb_ports_) copy += port->busy_time();
   u.gp = gp_busy_.to_seconds() / t;
   u.renderer = renderer_busy_.to_seconds() / (t * p_.hw.renderers);
-  u.ring = ring_busy_.to_seconds() / (t * p_.hw.ring_channels);
-  u.copy = copy_busy_.to_seconds() / (t * p_.eyes());
+  u.ring = ring_.unit_busy_time().to_seconds() / (t * ring_.channels());
+  u.copy = copy.to_seconds() / (t * static_cast<double>(fb_ports_.size()));
   return u;
 }
 

@@ -33,6 +33,22 @@ struct ScanoutSpan {
   int64_t image_id = -1;   ///< what the front buffer held; -1 = nothing yet
 };
 
+/// A rectangle of one eye's frame buffer: columns [x_begin, x_end) of the
+/// screen rows row_begin, row_begin + row_step, ... below row_end (a step of 2
+/// picks the rows of one interlaced field).
+struct BufferRegion {
+  int x_begin = 0;
+  int x_end = 0;
+  int row_begin = 0;
+  int row_end = 0;
+  int row_step = 1;
+
+  bool contains_row(int row) const {
+    return row >= row_begin && row < row_end && (row - row_begin) % row_step == 0;
+  }
+  bool operator==(const BufferRegion&) const = default;
+};
+
 /// Receives every span the display lights (the latency recorder, frame capture).
 class ScanoutListener {
  public:
@@ -56,6 +72,11 @@ class Display {
   /// Swaps `image_id` in at the next vertical retrace (a later call before
   /// that retrace replaces it: only the newest pending image is shown).
   void present_at_next_retrace(int eye, int64_t image_id);
+  /// Writes `image_id` into one region of the eye's displayed buffer now, for
+  /// a frame buffer filled region by region while it is scanned out: lines lit
+  /// from now on show it there, split into one span per region. Regions of an
+  /// eye never overlap unless equal; a whole image presented later replaces them.
+  void write_region_now(int eye, const BufferRegion& region, int64_t image_id);
   int64_t front(int eye) const { return front_.at(eye); }
   bool has_pending(int eye) const { return pending_.at(eye) >= 0; }
 
@@ -77,6 +98,14 @@ class Display {
   void scan_line(int64_t field, int line);
   void scan_pixel(int64_t field, int line, int x);
   void emit(int eye, int64_t field, int line, int x_begin, int x_end, des::Time t);
+  // The parts of [x_begin, x_end) of a row that show written regions, the rest the front image.
+  void emit_regions(ScanoutSpan span);
+
+  /// One region written into a displayed buffer and what it shows.
+  struct WrittenRegion {
+    BufferRegion region;
+    int64_t image_id;
+  };
 
   des::Simulator& sim_;
   RasterTiming timing_;
@@ -84,6 +113,7 @@ class Display {
   int pixel_stride_;
   std::vector<int64_t> front_;
   std::vector<int64_t> pending_;
+  std::vector<std::vector<WrittenRegion>> written_;  // per eye; empty unless regions were written
   std::vector<std::function<void(int64_t, des::Time)>> retrace_fns_;
   std::vector<ScanoutListener*> listeners_;
   Persistence persistence_;

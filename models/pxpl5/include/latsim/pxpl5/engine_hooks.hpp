@@ -38,12 +38,27 @@ struct FrameReady {
   std::vector<EyeImage> eyes;
 };
 
+/// Pixels of one field region arriving where the display shows them (Slats):
+/// from now on the lines of that region show the image's data.
+struct RegionWrite {
+  int eye = 0;
+  int64_t field = 0;        ///< the field whose lines (parity) the region holds
+  int field_row = 0;        ///< region row within the field, 0 = top
+  int column = 0;
+  int64_t image_field = 0;  ///< the field the pixels were rendered for (older for a backup)
+  EyeImage image;           ///< how they were computed; copy_end = when this region arrived
+};
+
 /// Callbacks an engine is wired with; any may be left empty.
 struct EngineHooks {
   /// The newest host sample at time t as an opaque token, -1 if none yet.
   std::function<int64_t(des::Time)> newest_sample;
+  /// How much newer sample `newer` was measured than sample `older`, in ms.
+  std::function<double(int64_t older, int64_t newer)> sample_age_ms;
   /// A frame is complete; called at its last COPY end (before its retrace).
   std::function<void(const FrameReady&)> frame_ready;
+  /// A region reached the displayed frame buffer (Slats writes region by region).
+  std::function<void(const RegionWrite&)> region_written;
   /// Every stage interval, once its end is known (at its start or its end).
   std::function<void(const StageInterval&)> stage;
   /// Named samples for the figures (e.g. "render_latency_fields").
@@ -63,6 +78,22 @@ struct Utilisation {
   double renderer = 0.0;  ///< mean over renderers (rendering, not holding pixels)
   double ring = 0.0;      ///< mean over ring channels
   double copy = 0.0;      ///< mean over frame-buffer ports (receiving a region)
+};
+
+/// How a Slats run's fields ended: every field whose deadlines have all passed
+/// is either complete (every region in place by its deadline) or missed.
+struct FieldCounts {
+  int64_t complete = 0;
+  int64_t missed = 0;
+  int64_t torn = 0;            ///< missed fields that show some of their own regions
+  int64_t never_started = 0;   ///< missed because the GP was still busy at the retrace
+  int64_t backup_copies = 0;   ///< regions replaced by the backup of the last complete field
+
+  /// missed / (complete + missed); 0 when no field has ended.
+  double missed_fraction() const {
+    const int64_t ended = complete + missed;
+    return ended > 0 ? static_cast<double>(missed) / static_cast<double>(ended) : 0.0;
+  }
 };
 
 }  // namespace latsim::pxpl5

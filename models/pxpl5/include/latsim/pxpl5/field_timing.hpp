@@ -14,8 +14,9 @@ class FieldTiming {
  public:
   FieldTiming() = default;
   /// Retraces at t0 + k * period; each field has vblank_lines blank lines
-  /// then active_lines lit lines, all of equal length.
-  FieldTiming(des::Time t0, des::RationalSeconds period, int vblank_lines, int active_lines);
+  /// then active_lines lit lines, all of equal length; interlaced fields
+  /// alternate the rows they light.
+  FieldTiming(des::Time t0, des::RationalSeconds period, int vblank_lines, int active_lines, bool interlaced);
 
   des::Time retrace(int64_t field) const { return schedule_.at(field); }
   /// First field whose retrace is strictly after t (a swap requested at t happens there).
@@ -27,11 +28,13 @@ class FieldTiming {
   des::Time period() const { return schedule_.nominal_period(); }
   double period_ms() const { return schedule_.period().to_seconds() * 1e3; }
   int active_lines() const { return active_lines_; }
+  bool interlaced() const { return interlaced_; }
 
  private:
   des::PeriodicSchedule schedule_;
   int vblank_lines_ = 22;
   int active_lines_ = 240;
+  bool interlaced_ = true;
 };
 
 }  // namespace latsim::pxpl5

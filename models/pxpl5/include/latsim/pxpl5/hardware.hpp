@@ -30,7 +30,7 @@ struct HardwareParams {
   int words_per_command = 24;           ///< one Gouraud triangle for one eye: edge, z and colour planes
   int max_message_words = 1024;         ///< largest ring message
   des::Time copy_time_per_region = des::Time::us(780);  ///< renderer -> frame buffer, one region
-  des::Time render_time_per_command = des::Time::us(6); ///< one triangle command into one region
+  des::Time render_time_per_command = des::Time::from_us(4.6); ///< one triangle command into one region
 
   /// Time for `words` to cross one ring channel.
   des::Time transfer_time(int64_t words) const;

@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "latsim/des/process.hpp"
-#include "latsim/des/random.hpp"
 #include "latsim/des/resource.hpp"
 #include "latsim/des/signal.hpp"
 #include "latsim/des/simulator.hpp"
@@ -18,7 +17,14 @@
 
 namespace latsim::pxpl5 {
 
-/// Costs of the RC stages on top of the shared hardware figures.
+/// When the host reads the tracker for a frame's viewing transforms.
+enum class HostRead {
+  send_start,  ///< as SEND starts (the edits and the transforms go together)
+  late,        ///< as EDIT starts, when the slaves first need the transforms
+};
+
+/// Costs of the RC stages on top of the shared hardware figures (derivation
+/// of the defaults: docs/pxpl5.md, "Calibration of RC").
 struct RcParams {
   HardwareParams hw;
   bool stereo = true;
@@ -27,11 +33,13 @@ struct RcParams {
   int send_words = 256;                                       ///< edit commands on the ring per frame
   des::Time edit_time = des::Time::us(200);                   ///< SGPs apply edits to display lists
   des::Time transform_overhead = des::Time::us(100);          ///< per SGP and eye: matrices, bin reset
-  des::Time transform_time_per_triangle = des::Time::from_us(37.5);  ///< one eye, i860 at 40 MHz
+  des::Time transform_time_per_triangle = des::Time::from_us(37.5);  ///< one eye, on screen: i860 at 40 MHz
+  des::Time reject_time_per_triangle = des::Time::from_us(3.75);     ///< one eye, outside the view: transform, clip test
   des::Time binitize_time_per_bin = des::Time::us(5);         ///< one command into one region's bin
   des::Time token_hop_time = des::Time::us(5);                ///< a region token from one GP to the next
   des::Time region_shade_time = des::Time::us(300);           ///< end-of-frame (deferred shading) commands
   int end_of_frame_words = 32;
+  HostRead host_read = HostRead::send_start;
 
   int slaves() const { return graphics_processors - 1; }
   int eyes() const { return stereo ? 2 : 1; }
@@ -42,8 +50,9 @@ struct RcParams {
 /// in stereo (eye sequence n = frame * eyes + eye).
 class RcEngine {
  public:
-  RcEngine(des::Simulator& sim, RcParams params, FieldTiming timing, RegionGrid grid, const Workload& workload,
-           des::RandomStream stream, EngineHooks hooks);
+  /// `workload` must outlive the engine.
+  RcEngine(des::Simulator& sim, RcParams params, FieldTiming timing, RegionGrid grid, WorkloadSource& workload,
+           EngineHooks hooks);
   RcEngine(const RcEngine&) = delete;
   RcEngine& operator=(const RcEngine&) = delete;
 
@@ -58,6 +67,7 @@ class RcEngine {
     explicit FrameState(des::Simulator& sim) : send_done(sim), edit_done(sim) {}
     des::Signal send_done, edit_done;
     int64_t sample_token = -1;
+    int64_t measured_token = -1;  // the newest sample when EDIT starts (what a late read takes)
     des::Time sample_read_at;
     des::Time copy_start;
     int64_t swap_field = 0;
@@ -68,6 +78,7 @@ class RcEngine {
     des::Signal transform_done, render_done, copy_done;
     des::Signal rendered;  // pulsed whenever one more region is rendered
     std::vector<int> render_order;
+    BinCounts bins;  // binned at TRANSFORM start from the frame's sample
     bool render_started = false;
     des::Time transform_start, render_start, render_end, copy_start, copy_end;
   };
@@ -83,6 +94,8 @@ class RcEngine {
   std::vector<des::Signal*> eye_conditions(int64_t render_n, int64_t copy_n, int64_t transform_n);
   void stage(const char* name, int64_t frame, int eye, std::string unit, des::Time start, des::Time end);
   void sample(const std::string& name, double value);
+  int64_t newest_sample(des::Time t) const;
+  des::Time transform_time(const BinCounts& bins, int slave) const;
   void finish_frame(int64_t i);
 
   des::Process send_process();
@@ -95,7 +108,7 @@ class RcEngine {
   RcParams p_;
   FieldTiming timing_;
   RegionGrid grid_;
-  std::vector<BinCounts> bins_;  // per eye; a static scene bins the same every frame
+  WorkloadSource& workload_;
   EngineHooks hooks_;
   des::Time end_;
 

@@ -1,4 +1,5 @@
-// The primitive workload of a frame and how binitizing spreads it over regions.
+// The primitive workload of an image: which triangles are on screen and how
+// binitizing spreads them over the renderer regions.
 #pragma once
 
 #include <cstdint>
@@ -17,6 +18,7 @@ struct Workload {
 /// One eye's bins: commands each graphics processor holds for each region.
 class BinCounts {
  public:
+  BinCounts() = default;
   BinCounts(int processors, int regions);
 
   /// Triangles are dealt round-robin to the processors (their display lists);
@@ -30,17 +32,64 @@ class BinCounts {
   int regions() const { return regions_; }
   int64_t commands(int processor, int region) const { return counts_[index(processor, region)]; }
   int64_t region_commands(int region) const;
+  /// Triangles in a processor's display list (on screen or not).
   int64_t triangles(int processor) const { return triangles_[processor]; }
+  /// Of those, the ones inside the eye's view (the rest are transformed and rejected).
+  int64_t on_screen(int processor) const { return on_screen_[processor]; }
   /// Bin entries a processor writes (sum over regions): its binitize work.
   int64_t bin_entries(int processor) const;
+
+  /// Deals display-list triangle `t` (round-robin) and, when `on_screen`, one
+  /// command into each region of `regions` (no region twice).
+  void add_triangle(int64_t t, bool on_screen, const std::vector<int>& regions);
 
  private:
   std::size_t index(int p, int r) const { return static_cast<std::size_t>(p) * regions_ + r; }
 
-  int processors_;
-  int regions_;
+  int processors_ = 0;
+  int regions_ = 0;
   std::vector<int64_t> counts_;
   std::vector<int64_t> triangles_;
+  std::vector<int64_t> on_screen_;
+};
+
+/// What one eye's image costs: its bins and, in display-list order, which
+/// triangles lie inside the eye's view.
+struct EyeWork {
+  BinCounts bins;
+  std::vector<uint8_t> on_screen;  ///< 1 per display-list triangle inside the view; empty: all are
+  int64_t on_screen_count = 0;
+
+  bool is_on_screen(int64_t t) const { return on_screen.empty() || on_screen[static_cast<std::size_t>(t)] != 0; }
+};
+
+/// Where each image's work comes from: a fixed synthetic load, or the scene as
+/// seen from the pose the image is computed with.
+class WorkloadSource {
+ public:
+  virtual ~WorkloadSource() = default;
+  /// Length of the display list (every triangle the processors transform).
+  virtual int64_t triangles() const = 0;
+  /// The work of `eye`'s image computed from host sample `sample_token` (-1
+  /// before the first sample: the application's starting view), binned for
+  /// `processors` display lists. Valid until the next call.
+  virtual const EyeWork& work(int64_t sample_token, int eye, int processors) = 0;
+};
+
+/// The calibration load: `triangles` on-screen triangles spread over regions by
+/// BinCounts::distribute, the same for every image (each eye its own substream).
+class SyntheticWorkload final : public WorkloadSource {
+ public:
+  SyntheticWorkload(Workload workload, int regions, des::RandomStream stream);
+  int64_t triangles() const override { return w_.triangles; }
+  const EyeWork& work(int64_t sample_token, int eye, int processors) override;
+
+ private:
+  Workload w_;
+  int regions_;
+  des::RandomStream stream_;
+  std::vector<EyeWork> cached_;  // per eye, for cached_processors_
+  int cached_processors_ = 0;
 };
 
 }  // namespace latsim::pxpl5

@@ -1,0 +1,85 @@
+// The view-dependent workload: the triangles inside each eye's view at the
+// pose an image is computed with, binned into the regions they cover.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <tuple>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/vec3.hpp>
+
+#include "latsim/pxpl5/workload.hpp"
+
+namespace latsim::pxpl5 {
+
+/// A display-list triangle: three corners in world metres.
+using WorldTriangle = std::array<glm::dvec3, 3>;
+
+/// Where an eye is and where it looks (head frame: x right, y up, looking down -z).
+struct ViewPose {
+  glm::dvec3 position_m{0.0};
+  glm::dquat orientation{1.0, 0.0, 0.0, 0.0};
+};
+
+/// The screen a view is binned onto: a pinhole with square pixels, tiled by
+/// regions of region_px x region_px from the top left.
+struct ViewScreen {
+  double hfov_deg = 60.0;
+  int width_px = 640;
+  int height_px = 480;
+  int region_px = 128;
+  double near_m = 0.01;  ///< geometry nearer than this is clipped away
+
+  int columns() const { return (width_px + region_px - 1) / region_px; }
+  int rows() const { return (height_px + region_px - 1) / region_px; }
+  int regions() const { return columns() * rows(); }
+};
+
+/// Finds, for one eye pose, the regions each triangle's screen-space bounding
+/// box covers: a triangle all of whose corners lie beyond one plane of the
+/// view frustum is outside the view; otherwise it is clipped against the near
+/// plane, its corners projected, and the box of the projections, cut to the
+/// screen, names the block of regions whose bins it goes into (none when the
+/// box misses the screen). A box ending exactly on a region boundary does not
+/// reach into the next region. No back faces are culled: a graphics processor
+/// of the time binned what its clip test let through.
+class ViewBinner {
+ public:
+  ViewBinner(std::vector<WorldTriangle> triangles, ViewScreen screen);
+
+  int64_t triangles() const { return static_cast<int64_t>(triangles_.size()); }
+  const ViewScreen& screen() const { return screen_; }
+  /// Regions (row * columns + column) that `triangle` covers seen from `pose`; empty when outside the view.
+  void regions_of(const WorldTriangle& triangle, const ViewPose& pose, std::vector<int>& out) const;
+  /// Every triangle binned for `processors` display lists (dealt round-robin).
+  EyeWork bin(const ViewPose& pose, int processors) const;
+
+ private:
+  std::vector<WorldTriangle> triangles_;
+  ViewScreen screen_;
+  double tan_half_h_;
+  double tan_half_v_;
+};
+
+/// The scene as each image sees it: the pose comes from the host sample the
+/// image is computed with, so the load follows the head.
+class ViewWorkload final : public WorkloadSource {
+ public:
+  /// `pose_of(token, eye)` is the eye pose of a host sample (-1: the starting view).
+  ViewWorkload(ViewBinner binner, std::function<ViewPose(int64_t token, int eye)> pose_of);
+  int64_t triangles() const override { return binner_.triangles(); }
+  const EyeWork& work(int64_t sample_token, int eye, int processors) override;
+
+ private:
+  ViewBinner binner_;
+  std::function<ViewPose(int64_t, int)> pose_of_;
+  // RC asks for each eye once per frame and Slats for both eyes once per
+  // field; a few recent results cover every repeat.
+  std::map<std::tuple<int64_t, int, int>, EyeWork> recent_;
+};
+
+}  // namespace latsim::pxpl5
