@@ -1,10 +1,12 @@
 #include "harness.hpp"
 
+#include <algorithm>
 #include <functional>
 #include <stdexcept>
 
 #include "latsim/des/random.hpp"
 #include "latsim/des/simulator.hpp"
+#include "latsim/display/display.hpp"
 
 namespace latsim::pxpl5::testing {
 
@@ -64,15 +66,69 @@ RunRecord run_rc(const RcParams& params, const Workload& workload, des::Time dur
   return rec;
 }
 
+RunRecord run_slats_with(const SlatsParams& params, WorkloadSource& source, des::Time duration, des::Simulator* shared,
+                         const std::function<void(const RegionWrite&)>& on_write = {});
+
 RunRecord run_slats(const SlatsParams& params, int64_t triangles, des::Time duration) {
   SyntheticWorkload source(Workload{triangles, 1.3}, ntsc_grid().regions(), des::RandomStream(1, "pxpl5.bins"));
   return run_slats(params, source, duration);
 }
 
 RunRecord run_slats(const SlatsParams& params, WorkloadSource& source, des::Time duration) {
-  RunRecord rec;
+  return run_slats_with(params, source, duration, nullptr);
+}
+
+namespace {
+
+/// Keeps the spans of one field and eye.
+class FieldSpans final : public display::ScanoutListener {
+ public:
+  FieldSpans(int64_t field, int eye) : field_(field), eye_(eye) {}
+  void on_scanout(const display::ScanoutSpan& s) override {
+    if (s.field == field_ && s.eye == eye_) spans.push_back(LitSpan{s.line, s.x_begin, s.x_end, s.image_id, s.photon_time});
+  }
+  std::vector<LitSpan> spans;
+
+ private:
+  int64_t field_;
+  int eye_;
+};
+
+}  // namespace
+
+std::vector<LitSpan> run_slats_on_display(const SlatsParams& params, WorkloadSource& source, des::Time duration,
+                                          int64_t field, int eye, RunRecord& record) {
   des::Simulator sim;
-  SlatsEngine engine(sim, params, ntsc_timing(), ntsc_grid(), source, recording_hooks(rec, {}));
+  display::RasterParams raster;
+  raster.interlaced = true;
+  display::Display screen(sim, display::RasterTiming(raster), params.eyes(), display::ScanoutFidelity::Line);
+  FieldSpans spans(field, eye);
+  screen.add_listener(&spans);
+  const auto write = [&screen](const RegionWrite& w) {
+    // Field region (row, column) holds field lines 128 row .. 128 row + 127
+    // (240 lines per field), i.e. every other screen row from 2 x line + parity.
+    const int parity = static_cast<int>(w.field % 2);
+    const int first_line = 128 * w.field_row, end_line = std::min(128 * (w.field_row + 1), 240);
+    const display::BufferRegion region{128 * w.column, 128 * (w.column + 1), 2 * first_line + parity,
+                                       2 * end_line + parity, 2};
+    screen.write_region_now(w.eye, region, w.image_field);
+  };
+  screen.start(duration);
+  record = run_slats_with(params, source, duration, &sim, write);
+  return spans.spans;
+}
+
+RunRecord run_slats_with(const SlatsParams& params, WorkloadSource& source, des::Time duration, des::Simulator* shared,
+                         const std::function<void(const RegionWrite&)>& on_write) {
+  RunRecord rec;
+  des::Simulator own;
+  des::Simulator& sim = shared ? *shared : own;
+  EngineHooks hooks = recording_hooks(rec, {});
+  if (on_write) hooks.region_written = [&rec, on_write](const RegionWrite& w) {
+    rec.writes.push_back(w);
+    on_write(w);
+  };
+  SlatsEngine engine(sim, params, ntsc_timing(), ntsc_grid(), source, hooks);
   const des::PeriodicSchedule tracker(des::Time::zero(), kTrackerPeriod);
   const des::KindId kind = sim.kind("tracker.sample");
   std::function<void(int64_t)> deliver = [&](int64_t k) {
@@ -104,6 +160,19 @@ RcParams trivial_rc_params() {
   p.end_of_frame_words = 0;
   p.hw.render_time_per_command = des::Time::zero();
   return p;
+}
+
+const EyeWork& VaryingWorkload::work(int64_t token, int, int processors) {
+  const int64_t n = std::min(list_, on_screen_(token));
+  work_ = EyeWork{};
+  work_.bins = BinCounts(processors, ntsc_grid().regions());
+  work_.on_screen.assign(static_cast<std::size_t>(list_), 0);
+  for (int64_t t = 0; t < list_; ++t) {
+    work_.on_screen[static_cast<std::size_t>(t)] = t < n ? 1 : 0;
+    work_.bins.add_triangle(t, t < n, {0});
+  }
+  work_.on_screen_count = n;
+  return work_;
 }
 
 }  // namespace latsim::pxpl5::testing

@@ -12,7 +12,7 @@ TEST_CASE("RC with trivial TRANSFORM and RENDER is copy-bound: 31.2 ms per stere
   REQUIRE(r.frames.size() > 100);
   // 780 us x 20 regions x 2 eyes, one frame buffer at a time.
   CHECK(r.dist("copy_ms_per_frame").summary().mean == Approx(31.2).margin(1e-6));
-  const auto latency = r.dist("render_latency_fields").summary();
+  const auto latency = r.dist("transform_to_copy_end_fields").summary();
   // Steady state: left eye just over, right eye just under 3 fields.
   CHECK(latency.p50 == Approx(3.0).margin(0.1));
   CHECK(latency.p90 == Approx(3.0).margin(0.1));
@@ -26,7 +26,7 @@ TEST_CASE("mono RC with trivial TRANSFORM and RENDER renders 3 fields behind", "
   p.stereo = false;
   const RunRecord r = run_rc(p, Workload{12, 20.0}, des::Time::s(2));
   CHECK(r.dist("copy_ms_per_frame").summary().mean == Approx(15.6).margin(1e-6));
-  CHECK(r.dist("render_latency_fields").summary().p50 == Approx(3.0).margin(0.1));
+  CHECK(r.dist("transform_to_copy_end_fields").summary().p50 == Approx(3.0).margin(0.1));
   CHECK(r.frames.size() == Approx(2.0 * 60).margin(4));  // one frame per field
 }
 
@@ -39,11 +39,11 @@ TEST_CASE("RC rendering latency rises with the primitive count", "[pxpl5][rc]") 
   double first_copy_end = 0.0, last_copy_end = 0.0;
   for (int64_t triangles : {200, 3000, 6000, 9000, 12000, 24000}) {
     const RunRecord r = run_rc(RcParams{}, Workload{triangles, 1.3}, des::Time::s(3));
-    const double to_scanout = r.dist("render_to_scanout_fields").summary().p50;
+    const double to_scanout = r.dist("transform_to_retrace_fields").summary().p50;
     CAPTURE(triangles, to_scanout);
     CHECK(to_scanout >= previous);
     previous = to_scanout;
-    last_copy_end = r.dist("render_latency_fields").summary().p50;
+    last_copy_end = r.dist("transform_to_copy_end_fields").summary().p50;
     if (triangles == 200) first_copy_end = last_copy_end;
   }
   CHECK(last_copy_end > first_copy_end + 2.0);
@@ -51,7 +51,7 @@ TEST_CASE("RC rendering latency rises with the primitive count", "[pxpl5][rc]") 
 
 TEST_CASE("RC rendering latency rises with regions per primitive", "[pxpl5][rc]") {
   const auto p50 = [](double regions) {
-    return run_rc(RcParams{}, Workload{3000, regions}, des::Time::s(3)).dist("render_to_scanout_fields").summary().p50;
+    return run_rc(RcParams{}, Workload{3000, regions}, des::Time::s(3)).dist("transform_to_retrace_fields").summary().p50;
   };
   const double typical = p50(1.3), spread = p50(5.0), full = p50(20.0);
   CAPTURE(typical, spread, full);
