@@ -43,6 +43,8 @@ EngineHooks recording_hooks(RunRecord& rec, std::function<int64_t(des::Time)> ne
   h.stage = [&rec](const StageInterval& s) { rec.stages.push_back(s); };
   h.sample = [&rec](const std::string& name, double v) { rec.samples[name].add(v); };
   h.region_written = [&rec](const RegionWrite& w) { rec.writes.push_back(w); };
+  // Sample k of the 60 Hz tracker is measured at k / 60 s.
+  h.sample_age_ms = [](int64_t older, int64_t newer) { return static_cast<double>(newer - older) * 1000.0 / 60.0; };
   return h;
 }
 
@@ -52,11 +54,15 @@ const des::RationalSeconds kTrackerPeriod{1, 60};
 }  // namespace
 
 RunRecord run_rc(const RcParams& params, const Workload& workload, des::Time duration, uint64_t seed) {
+  SyntheticWorkload source(workload, ntsc_grid().regions(), des::RandomStream(seed, "pxpl5.bins"));
+  return run_rc(params, source, duration);
+}
+
+RunRecord run_rc(const RcParams& params, WorkloadSource& source, des::Time duration) {
   RunRecord rec;
   des::Simulator sim;
   const des::PeriodicSchedule tracker(des::Time::zero(), kTrackerPeriod);
   auto newest = [tracker](des::Time t) { return tracker.index_at_or_before(t); };
-  SyntheticWorkload source(workload, ntsc_grid().regions(), des::RandomStream(seed, "pxpl5.bins"));
   RcEngine engine(sim, params, ntsc_timing(), ntsc_grid(), source, recording_hooks(rec, newest));
   engine.start(duration);
   sim.run_until(duration);
