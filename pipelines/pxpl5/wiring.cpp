@@ -143,6 +143,7 @@ void Pxpl5Wiring::report(const pxpl5::Utilisation& u, int64_t frames_completed) 
   r.set("utilisation.ring", u.ring);
   r.set("utilisation.copy", u.copy);
   r.set("frames_completed", frames_completed);
+  if (workload_) r.set("display_list_triangles", workload_->triangles());
   r.set("images_without_sample", images_without_sample_);
   for (const char* name : {"transform_to_copy_end_fields", "copy_ms_per_frame"})
     if (!samples_by_name_.count(name)) r.publish(name, des::Distribution{});

@@ -2,7 +2,10 @@
 #include <catch2/catch.hpp>
 
 #include <cstdlib>
+#include <stdexcept>
+#include <vector>
 
+#include "latsim/display/display.hpp"
 #include "latsim/display/raster_timing.hpp"
 #include "run_helpers.hpp"
 
@@ -89,4 +92,54 @@ TEST_CASE("effects not asked for produce no events", "[fidelity]") {
   CHECK(plain["events_per_model"]["tracker"].get<int64_t>() == 60);
   s["tracker"]["rate_hz"] = 120;
   CHECK(run(s)["events_per_model"]["tracker"].get<int64_t>() == 120);
+}
+
+namespace {
+
+/// Keeps every span of eye 0 as (row, x_begin, x_end, image).
+struct SpanLog final : latsim::display::ScanoutListener {
+  struct Span {
+    int row, x_begin, x_end;
+    int64_t image;
+  };
+  std::vector<Span> spans;
+  void on_scanout(const latsim::display::ScanoutSpan& s) override {
+    if (s.eye == 0) spans.push_back({s.row, s.x_begin, s.x_end, s.image_id});
+  }
+};
+
+}  // namespace
+
+TEST_CASE("a region written into the displayed buffer splits the lines that cross it", "[display][regions]") {
+  using latsim::display::BufferRegion;
+  using latsim::display::Display;
+  RasterParams p;
+  p.width_px = 64;
+  p.height_px = 8;
+  p.interlaced = true;
+  latsim::des::Simulator sim;
+  Display d(sim, RasterTiming(p), 1, latsim::display::ScanoutFidelity::Line);
+  SpanLog log;
+  d.add_listener(&log);
+  d.present_now(0, 7);
+  // Field 0 lights rows 0, 2, 4, 6; the region holds columns 16-31 of rows 2 and 4 (step 2).
+  d.write_region_now(0, BufferRegion{16, 32, 2, 5, 2}, 9);
+  CHECK_THROWS_AS(d.write_region_now(0, BufferRegion{20, 40, 4, 5, 1}, 3), std::invalid_argument);
+  d.start(Time::ms(40));
+  sim.run_until(Time::us(16500));  // field 0's four lines are lit 22 to 25 line periods of 26 in
+  std::vector<SpanLog::Span> want{{0, 0, 64, 7}, {2, 0, 16, 7}, {2, 16, 32, 9}, {2, 32, 64, 7},
+                                  {4, 0, 16, 7}, {4, 16, 32, 9}, {4, 32, 64, 7}, {6, 0, 64, 7}};
+  REQUIRE(log.spans.size() == want.size());
+  for (std::size_t i = 0; i < want.size(); ++i) {
+    CAPTURE(i);
+    CHECK(log.spans[i].row == want[i].row);
+    CHECK(log.spans[i].x_begin == want[i].x_begin);
+    CHECK(log.spans[i].x_end == want[i].x_end);
+    CHECK(log.spans[i].image == want[i].image);
+  }
+  // A whole image swapped in replaces every region.
+  d.present_at_next_retrace(0, 5);
+  log.spans.clear();
+  sim.run_until(Time::ms(40));
+  for (const auto& s : log.spans) CHECK(s.image == 5);
 }

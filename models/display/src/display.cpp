@@ -46,7 +46,11 @@ void Display::write_region_now(int eye, const BufferRegion& region, int64_t imag
       rows_meet = o.contains_row(row);
     if (columns_meet && rows_meet) throw std::invalid_argument("frame-buffer regions overlap");
   }
-  written_[static_cast<size_t>(eye)].push_back(WrittenRegion{region, image_id});
+  // Kept in column order, so that the regions a line crosses come left to right.
+  auto& written = written_[static_cast<size_t>(eye)];
+  const auto at = std::upper_bound(written.begin(), written.end(), region.x_begin,
+                                   [](int x, const WrittenRegion& w) { return x < w.region.x_begin; });
+  written.insert(at, WrittenRegion{region, image_id});
 }
 
 void Display::present_at_next_retrace(int eye, int64_t image_id) { pending_.at(eye) = image_id; }
@@ -141,30 +145,31 @@ void Display::emit(int eye, int64_t field, int line, int x_begin, int x_end, des
 }
 
 void Display::emit_regions(ScanoutSpan span) {
-  std::vector<const WrittenRegion*> on_row;  // at most a few dozen regions per eye
-  for (const WrittenRegion& w : written_[static_cast<size_t>(span.eye)])
-    if (w.region.contains_row(span.row) && w.region.x_begin < span.x_end && span.x_begin < w.region.x_end)
-      on_row.push_back(&w);
-  std::sort(on_row.begin(), on_row.end(),
-            [](const WrittenRegion* a, const WrittenRegion* b) { return a->region.x_begin < b->region.x_begin; });
   const int x_end = span.x_end;
   const int64_t front = span.image_id;
-  const auto send = [&](int x0, int x1, int64_t id) {
+  // Neighbouring parts that show the same image go out as one span.
+  ScanoutSpan part = span;
+  part.x_end = part.x_begin;
+  const auto add = [&](int x0, int x1, int64_t id) {
     if (x0 >= x1) return;
-    ScanoutSpan part = span;
-    part.x_begin = x0;
-    part.x_end = x1;
+    if (part.x_end > part.x_begin && part.image_id != id) {
+      for (auto* l : listeners_) l->on_scanout(part);
+      part.x_begin = x0;
+    }
     part.image_id = id;
-    for (auto* l : listeners_) l->on_scanout(part);
+    part.x_end = x1;
   };
   int x = span.x_begin;
-  for (const WrittenRegion* w : on_row) {
-    send(x, std::max(x, w->region.x_begin), front);
-    x = std::max(x, w->region.x_begin);
-    send(x, std::min(x_end, w->region.x_end), w->image_id);
-    x = std::max(x, std::min(x_end, w->region.x_end));
+  for (const WrittenRegion& w : written_[static_cast<size_t>(span.eye)]) {  // in column order
+    if (!w.region.contains_row(span.row) || w.region.x_end <= x || w.region.x_begin >= x_end) continue;
+    add(x, std::max(x, w.region.x_begin), front);
+    x = std::max(x, w.region.x_begin);
+    add(x, std::min(x_end, w.region.x_end), w.image_id);
+    x = std::max(x, std::min(x_end, w.region.x_end));
   }
-  send(x, x_end, front);
+  add(x, x_end, front);
+  if (part.x_end > part.x_begin)
+    for (auto* l : listeners_) l->on_scanout(part);
 }
 
 }  // namespace latsim::display

@@ -74,7 +74,8 @@ class Display {
   void present_at_next_retrace(int eye, int64_t image_id);
   /// Writes `image_id` into one region of the eye's displayed buffer now, for
   /// a frame buffer filled region by region while it is scanned out: lines lit
-  /// from now on show it there, split into one span per region. Regions of an
+  /// from now on show it there (a line crossing regions of different images
+  /// is lit as one span per stretch of one image). Regions of an
   /// eye never overlap unless equal; a whole image presented later replaces them.
   void write_region_now(int eye, const BufferRegion& region, int64_t image_id);
   int64_t front(int eye) const { return front_.at(eye); }
