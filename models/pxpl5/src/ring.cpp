@@ -9,12 +9,18 @@ RingChannels::RingChannels(des::Simulator& sim, int channels)
 
 int RingChannels::claim() {
   // The pool hands out as many units as there are channels, so a holder of a
-  // unit always finds a channel free.
-  for (std::size_t c = 0; c < busy_.size(); ++c)
+  // unit always finds a channel free. Channels are taken in turn from the one
+  // after the last claimed, so the traffic (and the timeline) spreads over
+  // every channel rather than piling on the first.
+  const std::size_t n = busy_.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t c = (next_ + k) % n;
     if (!busy_[c]) {
       busy_[c] = true;
+      next_ = (c + 1) % n;
       return static_cast<int>(c);
     }
+  }
   throw std::logic_error("RingChannels::claim() without a channel acquired");
 }
 

@@ -2,6 +2,7 @@
 // of, knowing which, so every channel can be shown on a timeline.
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include "latsim/des/resource.hpp"
@@ -9,8 +10,8 @@
 namespace latsim::pxpl5 {
 
 /// Independent ring channels: `co_await ring.acquire()` queues first-come
-/// first-served for any free channel, `claim()` then names the lowest free
-/// one, and `release(channel)` hands it on.
+/// first-served for any free channel, `claim()` then names a free one (in
+/// turn, starting after the last claimed), and `release(channel)` hands it on.
 class RingChannels {
  public:
   RingChannels(des::Simulator& sim, int channels);
@@ -27,6 +28,7 @@ class RingChannels {
  private:
   des::Resource pool_;
   std::vector<bool> busy_;
+  std::size_t next_ = 0;  // where claim() starts looking
 };
 
 }  // namespace latsim::pxpl5
