@@ -214,3 +214,28 @@ TEST_CASE("reading the tracker late saves what late_read_saving_ms says", "[pxpl
   CHECK(fig(late, "motion_to_photon_ms")["mean"].get<double>() <
         fig(early, "motion_to_photon_ms")["mean"].get<double>() - 0.8 * saving);
 }
+
+// NTSC's true rate is 59.94 Hz: a field of 1000 / 59.94 = 16.6834 ms. Over a
+// simulated minute (3597 fields) nothing drifts: Slats shows every field one
+// field after its TRANSFORM, and its slack is the hand budget of
+// docs/pxpl5.md with the longer field: 16.6834 - 0.3 (overhead) - 140 x 0.075
+// (GP) - (0.0336 last message to R0 + 14 x 4 x 0.0046 render + 4 x 0.05
+// finish) - 6 x 0.78 (top copy slots) = 0.7122 ms. RC stays COPY-bound: a
+// stereo frame every second field.
+TEST_CASE("Slats and RC at 59.94 Hz for a simulated minute", "[pxpl5][ntsc]") {
+  const double field_ms = 1000.0 / 59.94;
+  const std::vector<std::string> ntsc{"/display/refresh_hz=59.94", "/tracker/rate_hz=59.94", "/duration_s=60",
+                                      "/output/timeline=false"};
+  const Json slats = run_file("pxpl5/slats_140.json", ntsc);
+  CHECK(fig(slats, "missed_fields") == 0);
+  CHECK(fig(slats, "frames_completed").get<int64_t>() >= 3595);
+  CHECK(fig(slats, "transform_to_retrace_fields")["min"].get<double>() == Approx(1.0).epsilon(1e-9));
+  CHECK(fig(slats, "transform_to_retrace_fields")["max"].get<double>() == Approx(1.0).epsilon(1e-9));
+  const double hand_slack_ms = field_ms - 0.3 - 140 * 0.075 - (14 * 48 / 20.0e3 + 14 * 4 * 0.0046 + 4 * 0.05) - 6 * 0.78;
+  CHECK(fig(slats, "deadline_slack_ms")["min"].get<double>() == Approx(hand_slack_ms).margin(1e-4));
+  CHECK(fig(slats, "deadline_slack_ms")["max"].get<double>() == Approx(hand_slack_ms).margin(1e-4));
+  const Json rc = run_file("pxpl5/rc_min_latency.json", ntsc);
+  CHECK(fig(rc, "frame_time_ms")["min"].get<double>() == Approx(2 * field_ms).margin(1e-4));
+  CHECK(fig(rc, "frame_time_ms")["max"].get<double>() == Approx(2 * field_ms).margin(1e-4));
+  CHECK(fig(rc, "frames_completed").get<int64_t>() >= 1797);
+}
