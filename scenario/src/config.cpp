@@ -194,6 +194,23 @@ std::string ConfigNode::string(std::string_view key, std::string def) const {
   return string(key);
 }
 
+std::vector<std::string> ConfigNode::strings(std::string_view key, std::vector<std::string> def) const {
+  if (!has(key)) {
+    record_default(key, def);
+    return def;
+  }
+  const Json& v = require(key);
+  if (!v.is_array()) fail(key, "expected an array of strings, got " + type_name(v));
+  std::vector<std::string> out;
+  for (size_t i = 0; i < v.size(); ++i) {
+    if (!v[i].is_string())
+      throw ScenarioError(join_pointer(join_pointer(pointer_, key), std::to_string(i)),
+                          "expected a string, got " + type_name(v[i]));
+    out.push_back(v[i].get<std::string>());
+  }
+  return out;
+}
+
 std::string ConfigNode::choice(std::string_view key, std::string def,
                                std::initializer_list<std::string_view> allowed) const {
   const std::string v = string(key, std::move(def));

@@ -1,5 +1,6 @@
 #include "latsim/scenario/params.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -165,6 +166,24 @@ std::string Section::choice_name(std::string_view key, const std::string& curren
   std::string list;
   for (const auto& n : names) list += (list.empty() ? "\"" : ", \"") + n + "\"";
   fail(key, "unknown value \"" + v + "\"; expected one of " + list);
+}
+
+void Section::choices(std::string_view key, std::vector<std::string>& v, const std::vector<std::string>& names,
+                      const KeySpec& spec) {
+  if (schema_) {
+    KeySchema& k = declare(key, "choices", spec);
+    k.choices = names;
+    if (!spec.required) k.default_value = v;
+    return;
+  }
+  v = node_->strings(key, v);
+  for (size_t i = 0; i < v.size(); ++i) {
+    if (std::find(names.begin(), names.end(), v[i]) != names.end()) continue;
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "\"" : ", \"") + n + "\"";
+    throw ScenarioError(join_pointer(join_pointer(pointer(), key), std::to_string(i)),
+                        "unknown value \"" + v[i] + "\"; expected one of " + list);
+  }
 }
 
 void Section::rate(std::string_view key, des::RationalSeconds& period, const KeySpec& spec) {

@@ -52,6 +52,8 @@ Json value_json(const KeySchema& k) {
     j = {{"type", "string"}, {"minLength", 1}};
   } else if (k.type == "choice") {
     j = {{"enum", k.choices}};
+  } else if (k.type == "choices") {
+    j = {{"type", "array"}, {"items", {{"enum", k.choices}}}};
   } else if (k.type == "rate") {
     j = {{"anyOf", Json::array({Json{{"type", "number"}, {"exclusiveMinimum", 0}},
                                 Json{{"type", "string"}, {"pattern", "^[0-9]+(/[0-9]+)?$"}}})}};
@@ -132,7 +134,7 @@ std::string default_text(const KeySchema& k) {
 
 std::string range_text(const KeySchema& k) {
   std::string r;
-  if (k.type == "choice") {
+  if (k.type == "choice" || k.type == "choices") {
     for (const auto& c : k.choices) r += (r.empty() ? "" : ", ") + code(c);
     return r;
   }
@@ -148,6 +150,7 @@ std::string type_text(const KeySchema& k) {
   if (k.type == "rate") return "rate (Hz)";
   if (k.type == "number_rows") return "rows of numbers";
   if (k.type == "objects") return "array of objects";
+  if (k.type == "choices") return "array of choices";
   return k.type;
 }
 

@@ -72,6 +72,8 @@ class ConfigNode {
   std::vector<double> numbers(std::string_view key) const;
   std::vector<double> numbers(std::string_view key, std::vector<double> def) const;
   std::vector<std::vector<double>> number_rows(std::string_view key) const;
+  /// An array of strings (absent: `def`).
+  std::vector<std::string> strings(std::string_view key, std::vector<std::string> def) const;
   /// A frequency in Hz, a number (60) or an exact string ("60000/1001"), as its exact period.
   des::RationalSeconds rate_as_period(std::string_view key, std::string def_hz) const;
   des::Time duration_ms(std::string_view key) const;

@@ -94,6 +94,9 @@ class Section {
     for (const auto& [name, value] : options)
       if (name == chosen) v = value;
   }
+  /// A list of names, each one of `names` (absent: `v` as it is).
+  void choices(std::string_view key, std::vector<std::string>& v, const std::vector<std::string>& names,
+               const KeySpec& spec);
   /// A frequency in Hz, a number (60) or an exact fraction ("60000/1001"), kept as its exact period.
   void rate(std::string_view key, des::RationalSeconds& period, const KeySpec& spec);
   /// A duration in spec.unit ("s", "ms" or "us"), not negative unless spec.min says otherwise.

@@ -18,7 +18,7 @@ struct ObjectSchema;
 
 /// One declared key of an object.
 struct KeySchema {
-  /// number, integer, boolean, string, choice, rate, duration, path, numbers,
+  /// number, integer, boolean, string, choice, choices, rate, duration, path, numbers,
   /// number_rows, object, objects.
   std::string name;
   std::string type;
