@@ -65,8 +65,8 @@ TEST_CASE("a walking user gets near objects in fast memories and far ones in slo
   CHECK(model.memory_of(4) == 3);
   CHECK(model.memory_of(1) <= model.memory_of(2));
   CHECK(model.memory_of(2) <= model.memory_of(3));
-  near_renders = model.counters()[0].renders;
-  far_renders = model.counters()[3].renders;
+  near_renders = model.counters()[0].updates;
+  far_renders = model.counters()[3].updates;
   CHECK(near_renders > 100);     // redrawn at (almost) every 60 Hz tick
   CHECK(far_renders <= 16);      // at most every 8th tick
 }
@@ -102,5 +102,5 @@ TEST_CASE("an animated object is redrawn at its own validity period") {
   // 0.1 s validity: memory 2 (15 Hz slots, period 66.7 ms <= 100 ms), redrawn whenever
   // the next slot would come too late, i.e. every 66.7 ms slot: 150 renders in 10 s.
   CHECK(model.memory_of(0) == 2);
-  CHECK(model.counters()[2].renders == 150);
+  CHECK(model.counters()[2].updates == 150);
 }

@@ -41,38 +41,39 @@ renderer::CubeMap MemoryRenderer::render_all(const glm::dvec3& eye_m) const {
   return renderer::render_cube(*caster_, eye_m, face_px_, options);
 }
 
-renderer::CubeMap MemoryRenderer::render_memory(const RegionPriorityModel& model, int memory) const {
-  const RegionMemoryState& st = model.memories().at(static_cast<size_t>(memory));
+renderer::CubeMap MemoryRenderer::render_memory(const RegionPriorityModel& model, const MemoryImage& image) const {
   renderer::RenderOptions options;
   options.background = background_;
   options.thread_count = thread_count_;
   if (!model.params().warping) {
     options.object_mask.assign(scene_.scene.object_count(), 0);
-    for (size_t s = 0; s < scene_.segments.size(); ++s) {
-      if (model.memory_of_segment(s) == memory) options.object_mask[scene_.segments[s].scene_object] = 1;
-    }
-    return renderer::render_cube(*caster_, st.eye_m, face_px_, options);
+    for (uint32_t s : image.contents) options.object_mask[scene_.segments[s].scene_object] = 1;
+    return renderer::render_cube(*caster_, image.eye_m, face_px_, options);
   }
   // Warping moves vertices, so the memory gets its own copy of its segments.
   renderer::Scene warped;
-  for (size_t s = 0; s < scene_.segments.size(); ++s) {
-    if (model.memory_of_segment(s) != memory) continue;
+  for (uint32_t s : image.contents) {
     const renderer::SceneObject& obj = scene_.scene.objects()[scene_.segments[s].scene_object];
     warped.begin_object(obj.name, obj.animated);
     for (uint32_t t = obj.first_triangle; t < obj.first_triangle + obj.triangle_count; ++t) {
       renderer::Triangle tri = scene_.scene.triangles()[t];
-      for (auto& p : tri.position_m) p = glm::vec3(glm::dvec3(p) + model.warp_offset_m(memory, glm::dvec3(p)));
+      for (auto& p : tri.position_m)
+        p = glm::vec3(glm::dvec3(p) + model.warp_offset_m(image.memory, glm::dvec3(p), *image.view));
       warped.add_triangle(tri);
     }
   }
-  if (warped.triangle_count() == 0) return renderer::CubeMap(st.eye_m, face_px_, background_);
+  if (warped.triangle_count() == 0) return renderer::CubeMap(image.eye_m, face_px_, background_);
   const renderer::RayCaster caster(std::move(warped));
-  return renderer::render_cube(caster, st.eye_m, face_px_, options);
+  return renderer::render_cube(caster, image.eye_m, face_px_, options);
 }
 
-std::vector<renderer::CubeMap> MemoryRenderer::render(const RegionPriorityModel& model) const {
+std::vector<renderer::CubeMap> MemoryRenderer::render(const RegionPriorityModel& model,
+                                                      const std::vector<const MemoryImage*>& shown) const {
   std::vector<renderer::CubeMap> cubes;
-  for (int m = 0; m < model.memory_count(); ++m) cubes.push_back(render_memory(model, m));
+  for (const MemoryImage* image : shown) {
+    if (image) cubes.push_back(render_memory(model, *image));
+    else cubes.emplace_back(glm::dvec3(0.0), face_px_, background_);
+  }
   return cubes;
 }
 

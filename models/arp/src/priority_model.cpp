@@ -16,6 +16,7 @@ PriorityModel::PriorityModel(std::vector<PriorityObject> objects, PriorityParams
       // Until the first tick every object waits in the slowest memory; the
       // first tick assigns them properly and draws every memory.
       memory_of_(objects_.size(), params.memory_count - 1),
+      pending_(objects_.size(), -1),
       drawn_(objects_.size()),
       dirty_(static_cast<size_t>(params.memory_count), true),
       counters_(static_cast<size_t>(params.memory_count)) {}
@@ -50,17 +51,26 @@ bool PriorityModel::expires_before_next_slot(size_t object, int memory, des::Tim
 
 PriorityTick PriorityModel::tick(int64_t k, des::Time now, const glm::dvec3& eye_m, const glm::dvec3& eye_velocity_m_s) {
   PriorityTick result;
+  // A memory's first drawing changes what it holds (from nothing).
+  std::vector<bool> changed(static_cast<size_t>(memories_.count()), false);
+  for (int m = 0; m < memories_.count(); ++m) {
+    changed[static_cast<size_t>(m)] = counters_[static_cast<size_t>(m)].updates == 0;
+  }
   for (size_t o = 0; o < objects_.size(); ++o) {
     const PriorityObject& obj = objects_[o];
     const ObjectView view = view_of(obj.bounds, eye_m, obj.velocity_m_s - eye_velocity_m_s, obj.animation_validity_s);
     const int target = memories_.memory_for_validity(validity_periods(view, params_.threshold_rad).min_s());
     const int current = memory_of_[o];
-    if (target == current) continue;
-    // Both memories must be redrawn: one gains the object, the other loses it.
+    pending_[o] = target == current ? -1 : target;
+    if (target == current || !memories_.has_slot(std::max(current, target), k)) continue;
+    // Both memories are redrawn at this slot: one gains the object, the other loses it.
     dirty_[static_cast<size_t>(current)] = true;
     dirty_[static_cast<size_t>(target)] = true;
+    changed[static_cast<size_t>(current)] = true;
+    changed[static_cast<size_t>(target)] = true;
     if (drawn_[o].valid) (target < current ? result.promotions : result.demotions) += 1;
     memory_of_[o] = target;
+    pending_[o] = -1;
   }
   promotions_ += result.promotions;
   demotions_ += result.demotions;
@@ -80,10 +90,11 @@ PriorityTick PriorityModel::tick(int64_t k, des::Time now, const glm::dvec3& eye
     }
     dirty_[static_cast<size_t>(m)] = false;
     MemoryCounters& c = counters_[static_cast<size_t>(m)];
-    ++c.renders;
-    c.objects_rendered += static_cast<int64_t>(members.size());
-    c.last_render = now;
+    ++c.updates;
+    c.objects += static_cast<int64_t>(members.size());
+    c.last_update = now;
     result.updated_memories.push_back(m);
+    if (changed[static_cast<size_t>(m)]) result.changed_memories.push_back(m);
     result.objects_rendered += static_cast<int64_t>(members.size());
   }
   return result;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -23,6 +24,9 @@ RegionPriorityModel::RegionPriorityModel(const SegmentedScene& scene, const rend
   if (!(params.warp_falloff_m >= 0.0)) throw std::invalid_argument("region priority: warp falloff must be >= 0");
   // Validates the angle once, so ticks cannot fail on it.
   translational_validity_distance_m(1.0, params.threshold_rad);
+  for (const Segment& seg : scene_.segments) any_animated_ = any_animated_ || seg.animated;
+  view_.eyes_m.assign(memories_.size(), glm::dvec3(0.0));
+  view_.drawn.assign(memories_.size(), 0);
 }
 
 void RegionPriorityModel::assign_segments() {
@@ -43,7 +47,7 @@ std::vector<std::vector<uint32_t>> RegionPriorityModel::segments_per_memory() co
   return lists;
 }
 
-void RegionPriorityModel::draw(int memory, des::Time now, const glm::dvec3& eye_m, int64_t segments) {
+void RegionPriorityModel::draw(int memory, des::Time now, const glm::dvec3& eye_m) {
   RegionMemoryState& st = memories_[static_cast<size_t>(memory)];
   st.drawn = true;
   st.drawn_at = now;
@@ -52,8 +56,9 @@ void RegionPriorityModel::draw(int memory, des::Time now, const glm::dvec3& eye_
   const double nearest = map_.nearest_distance_m(memory, eye_m);
   st.threshold_m = std::isfinite(nearest) ? translational_validity_distance_m(nearest, params_.threshold_rad)
                                           : std::numeric_limits<double>::infinity();
-  ++st.renders;
-  st.segments_rendered += segments;
+  ++st.updates;
+  view_.eyes_m[static_cast<size_t>(memory)] = eye_m;
+  view_.drawn[static_cast<size_t>(memory)] = 1;
 }
 
 RegionTick RegionPriorityModel::tick(des::Time now, const glm::dvec3& eye_m) {
@@ -64,23 +69,29 @@ RegionTick RegionPriorityModel::tick(des::Time now, const glm::dvec3& eye_m) {
     map_.set_home(home_tracker_.clamped_region(eye_m));
     assign_segments();
     started_ = true;
+    // Every memory's first image changes what it holds (from nothing).
+    for (int m = 0; m < count; ++m) result.changed.push_back(m);
   }
-  bool animated_in_fastest = false;
-  for (const Segment& seg : scene_.segments) animated_in_fastest = animated_in_fastest || seg.animated;
   for (int m = 0; m < count; ++m) {
     const RegionMemoryState& st = memories_[static_cast<size_t>(m)];
     update[static_cast<size_t>(m)] =
-        !st.drawn || glm::length(eye_m - st.eye_m) > st.threshold_m || (m == 0 && animated_in_fastest);
+        !st.drawn || glm::length(eye_m - st.eye_m) > st.threshold_m || (m == 0 && any_animated_);
   }
   renderer::RegionIndex target;
   if (update[static_cast<size_t>(count - 1)] && home_tracker_.wants_swap(map_.home(), eye_m, target)) {
     const std::vector<int> before = memory_of_segment_;
-    for (int m : map_.set_home(target)) update[static_cast<size_t>(m)] = true;
+    std::vector<bool> changed(static_cast<size_t>(count), false);
+    for (int m : map_.set_home(target)) changed[static_cast<size_t>(m)] = true;
     assign_segments();
     for (size_t s = 0; s < before.size(); ++s) {
       if (before[s] == memory_of_segment_[s]) continue;
-      update[static_cast<size_t>(before[s])] = true;
-      update[static_cast<size_t>(memory_of_segment_[s])] = true;
+      changed[static_cast<size_t>(before[s])] = true;
+      changed[static_cast<size_t>(memory_of_segment_[s])] = true;
+    }
+    for (int m = 0; m < count; ++m) {
+      if (!changed[static_cast<size_t>(m)]) continue;
+      update[static_cast<size_t>(m)] = true;
+      result.changed.push_back(m);
     }
     ++swaps_;
     result.swapped = true;
@@ -90,16 +101,19 @@ RegionTick RegionPriorityModel::tick(des::Time now, const glm::dvec3& eye_m) {
       if (update[static_cast<size_t>(m + 1)]) update[static_cast<size_t>(m)] = true;
     }
   }
-  const auto lists = segments_per_memory();
-  // Slowest first, so a faster memory warps towards its slower neighbour's new drawing.
+  // Slowest first, so a faster memory warps towards its slower neighbour's new viewpoint.
   for (int m = count - 1; m >= 0; --m) {
     if (!update[static_cast<size_t>(m)]) continue;
-    const auto segments = static_cast<int64_t>(lists[static_cast<size_t>(m)].size());
-    draw(m, now, eye_m, segments);
+    draw(m, now, eye_m);
     result.updated.push_back(m);
-    result.segments_rendered += segments;
   }
+  view_.home = map_.home();
   return result;
+}
+
+int RegionPriorityModel::memory_of_region(int linear_region, renderer::RegionIndex home) const {
+  const renderer::RegionIndex r = map_.grid().from_linear(linear_region);
+  return map_.memory_of_ring(std::max(std::abs(r.ix - home.ix), std::abs(r.iz - home.iz)));
 }
 
 double RegionPriorityModel::warp_weight(double distance_m) const {
@@ -108,7 +122,7 @@ double RegionPriorityModel::warp_weight(double distance_m) const {
   return 0.5 * (1.0 + std::cos(std::numbers::pi * distance_m / params_.warp_falloff_m));
 }
 
-glm::dvec3 RegionPriorityModel::warp_offset_m(int memory, const glm::dvec3& vertex_m) const {
+glm::dvec3 RegionPriorityModel::warp_offset_m(int memory, const glm::dvec3& vertex_m, const RegionView& view) const {
   if (!params_.warping || memory >= map_.memory_count() - 1) return glm::dvec3(0.0);
   const renderer::RegionGrid& grid = map_.grid();
   const renderer::RegionIndex centre = grid.region_of(vertex_m);
@@ -119,7 +133,7 @@ glm::dvec3 RegionPriorityModel::warp_offset_m(int memory, const glm::dvec3& vert
     for (int ix = centre.ix - reach; ix <= centre.ix + reach; ++ix) {
       if (!grid.contains({ix, iz})) continue;
       const int id = grid.linear_index({ix, iz});
-      const int m = map_.memory_of_region(id);
+      const int m = memory_of_region(id, view.home);
       if (m <= memory) continue;
       const double d = map_.distance_to_region_m(id, vertex_m);
       // Equal distances (a corner) go to the next slower memory, the one this memory borders.
@@ -131,32 +145,15 @@ glm::dvec3 RegionPriorityModel::warp_offset_m(int memory, const glm::dvec3& vert
   }
   const double w = slower < 0 ? 0.0 : warp_weight(best_distance);
   if (w == 0.0) return glm::dvec3(0.0);
-  const RegionMemoryState& self = memories_[static_cast<size_t>(memory)];
-  const RegionMemoryState& other = memories_[static_cast<size_t>(slower)];
-  if (!self.drawn || !other.drawn) return glm::dvec3(0.0);
-  // Drawn from self.eye_m, v + (self.eye - other.eye) + other's own offset appears
-  // exactly where the slower memory shows v.
-  return w * ((self.eye_m - other.eye_m) + warp_offset_m(slower, vertex_m));
+  if (!view.drawn[static_cast<size_t>(memory)] || !view.drawn[static_cast<size_t>(slower)]) return glm::dvec3(0.0);
+  // Drawn from eye(memory), v + (eye(memory) - eye(slower)) + slower's own offset
+  // appears exactly where the slower memory shows v.
+  return w * ((view.eyes_m[static_cast<size_t>(memory)] - view.eyes_m[static_cast<size_t>(slower)]) +
+              warp_offset_m(slower, vertex_m, view));
 }
 
-glm::dvec3 RegionPriorityModel::drawn_direction(int memory, const glm::dvec3& vertex_m) const {
-  const RegionMemoryState& st = memories_.at(static_cast<size_t>(memory));
-  return vertex_m + warp_offset_m(memory, vertex_m) - st.eye_m;
-}
-
-void RegionPriorityModel::tear_gaps_px(const glm::dquat& head, const ScreenProjection& screen,
-                                       std::vector<double>& gaps) const {
-  for (const SharedVertex& v : scene_.shared_vertices) {
-    const int ma = memory_of_segment_[v.segment_a];
-    const int mb = memory_of_segment_[v.segment_b];
-    if (ma == mb) continue;
-    if (!memories_[static_cast<size_t>(ma)].drawn || !memories_[static_cast<size_t>(mb)].drawn) continue;
-    glm::dvec2 pa;
-    glm::dvec2 pb;
-    if (!screen.project(head, drawn_direction(ma, v.position_m), pa)) continue;
-    if (!screen.project(head, drawn_direction(mb, v.position_m), pb)) continue;
-    gaps.push_back(glm::length(pa - pb));
-  }
+glm::dvec3 RegionPriorityModel::drawn_direction(int memory, const glm::dvec3& vertex_m, const RegionView& view) const {
+  return vertex_m + warp_offset_m(memory, vertex_m, view) - view.eyes_m.at(static_cast<size_t>(memory));
 }
 
 }  // namespace latsim::arp

@@ -139,6 +139,28 @@ std::vector<int> linear_regions(const RegionGrid& grid, const Aabb& box) {
   return ids;
 }
 
+// The triangles of an object inside each region it reaches into (clipped at boundaries).
+std::map<int, std::vector<Triangle>> cut_object(const Scene& scene, uint32_t id, const RegionGrid& grid) {
+  const auto& obj = scene.objects()[id];
+  std::map<int, std::vector<Triangle>> pieces;
+  for (uint32_t t = obj.first_triangle; t < obj.first_triangle + obj.triangle_count; ++t) {
+    const Triangle& tri = scene.triangles()[t];
+    const auto regions = grid.regions_of(triangle_bounds(tri));
+    if (regions.size() == 1) {
+      pieces[grid.linear_index(regions[0])].push_back(tri);
+      continue;
+    }
+    for (RegionIndex r : regions) clip_to_region(tri, r, grid, pieces[grid.linear_index(r)]);
+  }
+  std::erase_if(pieces, [](const auto& piece) { return piece.second.empty(); });
+  return pieces;
+}
+
+bool stays_whole(const Scene& scene, uint32_t id, const RegionGrid& grid) {
+  const auto& obj = scene.objects()[id];
+  return obj.animated || grid.regions_of(obj.bounds).size() <= 1;
+}
+
 void copy_object(const Scene& in, uint32_t id, const RegionGrid& grid, SegmentedScene& out) {
   const auto& obj = in.objects()[id];
   Segment seg;
@@ -159,22 +181,11 @@ SegmentedScene segment_scene(const Scene& scene, const RegionGrid& grid) {
   out.segmented = true;
   for (uint32_t id = 0; id < scene.object_count(); ++id) {
     const auto& obj = scene.objects()[id];
-    if (obj.animated || grid.regions_of(obj.bounds).size() <= 1) {
+    if (stays_whole(scene, id, grid)) {
       copy_object(scene, id, grid, out);
       continue;
     }
-    std::map<int, std::vector<Triangle>> pieces;
-    for (uint32_t t = obj.first_triangle; t < obj.first_triangle + obj.triangle_count; ++t) {
-      const Triangle& tri = scene.triangles()[t];
-      const auto regions = grid.regions_of(triangle_bounds(tri));
-      if (regions.size() == 1) {
-        pieces[grid.linear_index(regions[0])].push_back(tri);
-        continue;
-      }
-      for (RegionIndex r : regions) clip_to_region(tri, r, grid, pieces[grid.linear_index(r)]);
-    }
-    for (const auto& [region, triangles] : pieces) {
-      if (triangles.empty()) continue;
+    for (const auto& [region, triangles] : cut_object(scene, id, grid)) {
       const RegionIndex r = grid.from_linear(region);
       Segment seg;
       seg.source_object = id;
@@ -190,7 +201,11 @@ SegmentedScene segment_scene(const Scene& scene, const RegionGrid& grid) {
 
 SegmentedScene whole_objects(const Scene& scene, const RegionGrid& grid) {
   SegmentedScene out;
-  for (uint32_t id = 0; id < scene.object_count(); ++id) copy_object(scene, id, grid, out);
+  for (uint32_t id = 0; id < scene.object_count(); ++id) {
+    copy_object(scene, id, grid, out);
+    if (!stays_whole(scene, id, grid))
+      out.segments.back().object_segments = static_cast<int64_t>(cut_object(scene, id, grid).size());
+  }
   find_shared_vertices(out);
   return out;
 }

@@ -9,6 +9,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "latsim/arp/display_memories.hpp"
 #include "latsim/arp/region_priority_model.hpp"
 #include "latsim/renderer/camera.hpp"
 #include "latsim/renderer/cube_map.hpp"
@@ -22,19 +23,20 @@ namespace latsim::arp {
 renderer::Frame view_through_cubes(std::span<const renderer::CubeMap* const> cubes, const renderer::Camera& camera,
                                    const glm::dquat& orientation, const glm::vec3& background);
 
-/// Renders the cube memories of a region priority model as they stand:
-/// memory m holds its segments, warped when the model warps, drawn from the
-/// user position of its last update.
+/// Renders the cube memories of region priority rendering as they are shown:
+/// memory m holds the segments of its shown image, warped (when the model
+/// warps) against the image's own view, seen from the image's position.
 class MemoryRenderer {
  public:
   MemoryRenderer(const SegmentedScene& scene, int face_px, glm::vec3 background, int thread_count);
-  /// One cube per memory of the model's current state.
-  std::vector<renderer::CubeMap> render(const RegionPriorityModel& model) const;
+  /// One cube per memory; a memory that shows nothing yet is empty.
+  std::vector<renderer::CubeMap> render(const RegionPriorityModel& model,
+                                        const std::vector<const MemoryImage*>& shown) const;
   /// A single cube of the whole scene from one point (plain address recalculation).
   renderer::CubeMap render_all(const glm::dvec3& eye_m) const;
 
  private:
-  renderer::CubeMap render_memory(const RegionPriorityModel& model, int memory) const;
+  renderer::CubeMap render_memory(const RegionPriorityModel& model, const MemoryImage& image) const;
 
   const SegmentedScene& scene_;
   int face_px_;

@@ -28,19 +28,20 @@ struct PriorityParams {
   int memory_count = 4;
 };
 
-/// What one tick did.
+/// What one tick decided.
 struct PriorityTick {
-  std::vector<int> updated_memories;
+  std::vector<int> updated_memories;  ///< ascending
+  std::vector<int> changed_memories;  ///< updated because objects moved in or out (ascending)
   int promotions = 0;
   int demotions = 0;
   int64_t objects_rendered = 0;
 };
 
-/// Counters of one display memory.
+/// Counters of one display memory's decided updates (the renderer may still skip some).
 struct MemoryCounters {
-  int64_t renders = 0;
-  int64_t objects_rendered = 0;
-  des::Time last_render;
+  int64_t updates = 0;
+  int64_t objects = 0;
+  des::Time last_update;
 };
 
 /// The assignment of objects to harmonic memories and the on-demand updates.
@@ -49,13 +50,18 @@ class PriorityModel {
   PriorityModel(std::vector<PriorityObject> objects, PriorityParams params);
 
   /// One tick k of the fastest rate at time `now`: estimates every object's
-  /// validity from the eye position and velocity, promotes and demotes
-  /// objects, then redraws each memory that has a slot at k and either
-  /// changed contents or holds an image that would expire before its next slot.
+  /// validity from the eye position and velocity; an object whose memory
+  /// should change moves at the next slot of the slower of its two memories
+  /// (a slot of the faster one too), where both are redrawn, so it is never
+  /// missing from both or drawn by both; then redraws each memory that has a
+  /// slot at k and either changed contents or holds an image that would
+  /// expire before its next slot.
   PriorityTick tick(int64_t k, des::Time now, const glm::dvec3& eye_m, const glm::dvec3& eye_velocity_m_s);
 
   const HarmonicMemories& memories() const { return memories_; }
   int memory_of(size_t object) const { return memory_of_.at(object); }
+  /// The memory an object waits to move to at the slower memory's next slot (-1: none).
+  int pending_move(size_t object) const { return pending_.at(object); }
   const std::vector<int>& assignment() const { return memory_of_; }
   std::vector<std::vector<uint32_t>> objects_per_memory() const;
   const std::vector<MemoryCounters>& counters() const { return counters_; }
@@ -79,6 +85,7 @@ class PriorityModel {
   PriorityParams params_;
   HarmonicMemories memories_;
   std::vector<int> memory_of_;
+  std::vector<int> pending_;
   std::vector<Drawn> drawn_;
   std::vector<bool> dirty_;
   std::vector<MemoryCounters> counters_;

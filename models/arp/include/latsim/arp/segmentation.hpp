@@ -19,6 +19,11 @@ struct Segment {
   uint32_t scene_object = 0;    ///< object of SegmentedScene::scene holding its triangles
   std::vector<int> regions;     ///< linear indices of the regions it reaches into (one when cut)
   bool animated = false;
+  /// Object segments it stands for, the unit in which renders are counted: 1
+  /// for a cut segment; for a whole object, the parts segmentation would cut
+  /// it into (one per region it has triangles in), so that the same
+  /// geometry counts the same with and without segmentation.
+  int64_t object_segments = 1;
 };
 
 /// A vertex position used by two segments whose regions differ, so the two
@@ -45,7 +50,7 @@ struct SegmentedScene {
 SegmentedScene segment_scene(const renderer::Scene& scene, const renderer::RegionGrid& grid);
 
 /// The scene without cutting: one segment per object, reaching into every
-/// region its bounds overlap.
+/// region its bounds overlap, counting the object segments it would be cut into.
 SegmentedScene whole_objects(const renderer::Scene& scene, const renderer::RegionGrid& grid);
 
 }  // namespace latsim::arp
