@@ -1,22 +1,25 @@
 // Priority rendering on address recalculation: every object's validity period
 // is estimated at each tick of the maximum update rate from the newest
 // tracker sample, objects move between display memories updated at harmonic
-// rates, and a memory is redrawn only when one of its images would expire.
+// rates, a memory is redrawn only when one of its images would expire, and
+// the redraws share the renderers, fastest memory first.
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "latsim/arp/priority_model.hpp"
+#include "arp/memory_display.hpp"
+#include "arp/render_keys.hpp"
+#include "latsim/arp/priority_system.hpp"
 #include "latsim/des/periodic.hpp"
 #include "latsim/pipelines/latency_recorder.hpp"
-#include "latsim/pipelines/timeline.hpp"
 #include "latsim/renderer/scene_spec.hpp"
 
 namespace latsim::pipelines {
 namespace {
 
-/// Drives a PriorityModel from the host's samples and shows its composite image.
+/// Drives a PrioritySystem from the host's samples and shows its composite image.
 class PriorityPipeline final : public Pipeline {
  public:
   /// An object whose own animation limits how long its image stays valid.
@@ -29,8 +32,8 @@ class PriorityPipeline final : public Pipeline {
     arp::PriorityParams model;
     int face_px = 256;
     double threshold_angle_deg = 0.0;
-    des::Time render_fixed = des::Time::ms(1);
-    des::Time render_per_object = des::Time::us(20);
+    arp::MemoryRenderCost cost{.per_pixel_ns = 2.0};
+    int renderers = 1;
     std::vector<Animated> animated;
   };
 
@@ -38,19 +41,20 @@ class PriorityPipeline final : public Pipeline {
 
   void start(RunContext& ctx) override {
     ctx_ = &ctx;
-    const renderer::Scene scene = renderer::make_scene(ctx.scene->geometry);
+    scene_ = renderer::make_scene(ctx.scene->geometry);
     std::vector<arp::PriorityObject> objects;
-    for (const auto& obj : scene.objects()) objects.push_back({obj.bounds, 0.0, glm::dvec3(0.0)});
+    for (const auto& obj : scene_.objects()) objects.push_back({obj.bounds, 0.0, glm::dvec3(0.0)});
     for (const Animated& a : p_.animated) {
       try {
-        objects.at(scene.find_object(a.object)).animation_validity_s = a.validity_s;
+        objects.at(scene_.find_object(a.object)).animation_validity_s = a.validity_s;
       } catch (const renderer::SceneError&) {
         throw scenario::ScenarioError(a.pointer, "the scene has no object \"" + a.object + "\"");
       }
     }
     object_count_ = static_cast<int64_t>(objects.size());
-    model_.emplace(std::move(objects), p_.model);
-    kind_done_ = ctx.sim.kind("arp.priority_render");
+    system_.emplace(ctx.sim, ctx.sim.kind("arp.priority_render"), scene_, std::move(objects),
+                    arp::PrioritySystemParams{p_.model, p_.cost, p_.renderers, p_.face_px});
+    system_->memories().on_present([this](const std::vector<const arp::MemoryImage*>& batch) { present(batch); });
     ticks_.emplace(ctx.sim, des::PeriodicSchedule(des::Time::zero(), p_.model.base_period),
                    ctx.sim.kind("arp.priority_tick"), [this](int64_t k) { tick(k); });
     ticks_->start(0, ctx.duration);
@@ -59,24 +63,39 @@ class PriorityPipeline final : public Pipeline {
   void finish(RunContext& ctx) override {
     const double duration_s = ctx.duration.to_seconds();
     LatencyRecorder& r = ctx.recorder;
+    const arp::PriorityModel& model = system_->model();
+    const arp::DisplayMemories& memories = system_->memories();
     int64_t rendered = 0;
-    const auto lists = model_->objects_per_memory();
-    for (int m = 0; m < model_->memories().count(); ++m) {
-      const arp::MemoryCounters& c = model_->counters()[static_cast<size_t>(m)];
+    int64_t skipped = 0;
+    const auto lists = model.objects_per_memory();
+    for (int m = 0; m < model.memories().count(); ++m) {
+      const arp::MemoryRenderCounts& c = memories.counts(m);
+      const double renders = static_cast<double>(c.renders);
       const std::string at = "memories." + std::to_string(m) + ".";
       r.set(at + "memory", int64_t{m});
-      r.set(at + "nominal_rate_hz", model_->memories().rate_hz(m));
-      r.set(at + "update_rate_hz", static_cast<double>(c.renders) / duration_s);
-      r.set(at + "segments", c.renders > 0 ? static_cast<double>(c.objects_rendered) / c.renders : 0.0);
+      r.set(at + "nominal_rate_hz", model.memories().rate_hz(m));
+      r.set(at + "update_rate_hz", renders / duration_s);
+      r.set(at + "segments", c.renders > 0 ? static_cast<double>(c.object_segments) / renders : 0.0);
+      r.set(at + "pixels", c.renders > 0 ? c.texels / renders : 0.0);
       r.set(at + "objects_at_end", static_cast<int64_t>(lists[static_cast<size_t>(m)].size()));
       r.set(at + "renders", c.renders);
-      rendered += c.objects_rendered;
+      r.set(at + "renders_skipped", memories.queue().skipped(m));
+      rendered += c.object_segments;
+      skipped += memories.queue().skipped(m);
     }
+    const double utilisation = memories.queue().utilisation(ctx.duration);
     r.set("render_load", static_cast<double>(rendered) / duration_s);
     // What redrawing every object at the maximum rate would cost, for comparison.
-    r.set("render_load_all_at_max_rate", static_cast<double>(object_count_) / model_->memories().period_s(0));
-    r.set("promotions", model_->promotions());
-    r.set("demotions", model_->demotions());
+    r.set("render_load_all_at_max_rate", static_cast<double>(object_count_) / model.memories().period_s(0));
+    r.set("promotions", model.promotions());
+    r.set("demotions", model.demotions());
+    r.set("renders_skipped", skipped);
+    r.set("renderer_utilisation", utilisation);
+    r.publish("render_queue_ms", memories.queue().queue_ms());
+    if (skipped > 0 || utilisation > 0.95) {
+      r.warn("priority: the renderers cannot keep up: " + std::to_string(skipped) +
+             " renders skipped, renderer utilisation " + std::to_string(utilisation));
+    }
   }
 
  private:
@@ -91,27 +110,26 @@ class PriorityPipeline final : public Pipeline {
       }
       last_ = sample;
     }
-    const des::Time now = ctx_->sim.now();
-    const arp::PriorityTick t = model_->tick(k, now, sample->pose.position_m, velocity_m_s_);
-    if (t.updated_memories.empty()) return;
-    ctx_->recorder.add("objects_rendered_per_tick", static_cast<double>(t.objects_rendered));
-    const des::Time end = now + p_.render_fixed + p_.render_per_object * t.objects_rendered;
-    const tracker::TrackerSample s = *sample;
-    ctx_->sim.at(end, kind_done_, [this, s, now, k] { present(s, now, k); });
+    samples_.add(*sample);
+    const arp::PriorityTick& t = system_->tick(k, ctx_->sim.now(), sample->pose.position_m, velocity_m_s_, sample->index);
+    if (!t.updated_memories.empty())
+      ctx_->recorder.add("objects_rendered_per_tick", static_cast<double>(t.objects_rendered));
   }
 
-  void present(const tracker::TrackerSample& s, des::Time start, int64_t k) {
-    ctx_->present_display_memory(k, s, start, "priority");
+  void present(const std::vector<const arp::MemoryImage*>& batch) {
+    show_memory_images(*ctx_, batch, samples_);
+    samples_.forget_unreachable(system_->memories());
   }
 
   Params p_;
   RunContext* ctx_ = nullptr;
-  std::optional<arp::PriorityModel> model_;
+  renderer::Scene scene_;
+  std::optional<arp::PrioritySystem> system_;
   std::optional<des::Periodic> ticks_;
   int64_t object_count_ = 0;
-  des::KindId kind_done_ = 0;
   std::optional<tracker::TrackerSample> last_;
   glm::dvec3 velocity_m_s_{0.0};
+  SampleBook samples_;
 };
 
 constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
@@ -126,8 +144,7 @@ void bind(scenario::Section& s, PriorityPipeline::Params& p, const params::Share
            {.unit = "deg", .min = 1e-9, .max = 90.0, .doc = "error an image may reach before it is redrawn",
             .default_doc = "90 / face_px (one texel)"});
   p.model.threshold_rad = p.threshold_angle_deg * kDegToRad;
-  s.duration("render_fixed_ms", p.render_fixed, {.unit = "ms", .doc = "fixed time per render"});
-  s.duration("render_per_object_us", p.render_per_object, {.unit = "us", .doc = "time per object rendered"});
+  bind_render_costs(s, p.cost, p.renderers, "render_per_object_us", "object drawn");
   s.objects("animated", p.animated,
             [](scenario::Section& a, PriorityPipeline::Animated& v) {
               a.doc("An object whose own animation limits how long its image stays valid.");
@@ -146,8 +163,9 @@ PipelineEntry priority_pipeline() {
   return pipeline_entry<PriorityPipeline>(
       "priority",
       "Priority rendering on address recalculation: each object's validity period is estimated at every tick of "
-      "the maximum update rate, objects move between display memories updated at harmonic rates, and a memory is "
-      "redrawn only when one of its images would expire (see docs/arp.md). Needs a /scene.");
+      "the maximum update rate, objects move between display memories updated at harmonic rates (at the slower "
+      "memory's slot), and a memory is redrawn only when one of its images would expire, by renderers shared "
+      "fastest memory first (see docs/arp.md). Needs a /scene.");
 }
 
 }  // namespace latsim::pipelines

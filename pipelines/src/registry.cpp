@@ -68,13 +68,17 @@ ImageRecord RunContext::image_record(int64_t frame, int eye, const tracker::Trac
 
 void RunContext::present_display_memory(int64_t frame, const tracker::TrackerSample& s, des::Time start,
                                         const std::string& unit) {
-  const des::Time now = sim.now();
+  present_display_memory(frame, s, start, sim.now(), unit);
+}
+
+void RunContext::present_display_memory(int64_t frame, const tracker::TrackerSample& s, des::Time start, des::Time end,
+                                        const std::string& unit) {
   for (int eye = 0; eye < display.eyes(); ++eye) {
-    ImageRecord rec = image_record(frame, eye, s, start, now);
+    ImageRecord rec = image_record(frame, eye, s, start, end);
     rec.orientation_at_scanout = true;
     display.present_at_next_retrace(eye, recorder.register_image(rec));
   }
-  if (timeline) timeline->add("RENDER", frame, -1, unit, start, now);
+  if (timeline) timeline->add("RENDER", frame, -1, unit, start, end);
 }
 
 }  // namespace latsim::pipelines

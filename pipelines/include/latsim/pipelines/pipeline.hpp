@@ -106,6 +106,10 @@ struct RunContext {
   /// at scanout), swaps it in at the next retrace, and logs a RENDER interval.
   void present_display_memory(int64_t frame, const tracker::TrackerSample& s, des::Time start,
                               const std::string& unit);
+  /// The same for a render that ended at `end`, before it is presented now
+  /// (it waited for the images it must be shown with).
+  void present_display_memory(int64_t frame, const tracker::TrackerSample& s, des::Time start, des::Time end,
+                              const std::string& unit);
 };
 
 /// A display strategy: schedules its events in start(), reports in finish().
