@@ -63,6 +63,7 @@ void bind(Section& s, display::DisplayParams& p) {
             {"line", display::ScanoutFidelity::Line},
             {"pixel", display::ScanoutFidelity::Pixel}},
            {.doc = "fidelity: one event per field, per line (sees mid-field swaps) or per pixel"});
+  clock(s, "", p.clock, "display (its first retrace)");
   s.integer("pixel_stride", p.pixel_stride, {.unit = "px", .min = 1.0, .max = 16384.0, .doc = "pixel fidelity: pixels per event"});
   s.optional_object("persistence", p.persistence, [&r](Section& o, display::PersistenceParams& v) { persistence(o, v, r); },
                     {.doc = "how long a written pixel stays lit (absent: lit at its scanout instant, as a CRT); "

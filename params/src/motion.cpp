@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -98,13 +99,25 @@ void serial(Section& s, tracker::SerialLinkParams& p) {
   s.integer("record_bytes", p.record_bytes, {.min = 1.0, .max = 1e6, .doc = "bytes per record"});
   s.integer("bits_per_byte", p.bits_per_byte, {.min = 1.0, .max = 64.0, .doc = "bits on the line per byte: start + 8 data + stop"});
   s.number("baud", p.baud, {.unit = "bit/s", .min = 0.0, .above_min = true, .doc = "line rate"});
+  // A UART of the time buffered less than a record (an 8250 one character, a
+  // 16550 a 16-byte FIFO), so records that cannot be sent at once wait in a
+  // driver's buffer: a BSD tty queue holds 256 bytes (TTYHOG) before it gives
+  // up on input. Beyond it the oldest waiting record is dropped: the newest
+  // pose is the one worth sending.
+  p.buffer_records = std::max<int64_t>(1, 256 / p.record_bytes);
+  s.integer("buffer_records", p.buffer_records,
+            {.min = 1.0, .max = 1e6,
+             .doc = "records that may wait for the line behind the one being sent; a newer record arriving at a full "
+                    "buffer drops the oldest waiting one",
+             .default_doc = "⌊256 / record_bytes⌋ (at least 1): a BSD tty queue of 256 bytes (TTYHOG); a 16550 UART's "
+                            "16-byte FIFO holds less than one record"});
   s.modes("host", "poll",
           {{"poll", "the kernel looks every poll_interval_ms; the newest complete record wins",
             [&p](Section& m) {
               p.host_mode = tracker::SerialLinkParams::Poll;
               m.duration("poll_interval_ms", p.poll_interval,
                          {.unit = "ms", .min = 0.0, .above_min = true, .doc = "the Unix hosts of the time polled every 30 ms"});
-              m.duration("poll_phase_ms", p.poll_phase, {.unit = "ms", .doc = "time of the first poll"});
+              clock(m, "poll_", p.poll_clock, "kernel's poll timer");
             }},
            {"interrupt", "an interrupt per received character: no poll wait",
             [&p](Section& m) {
@@ -139,7 +152,7 @@ void bind(Section& s, tracker::MotionParams& p) {
 void bind(Section& s, tracker::TrackerParams& p) {
   s.doc("Samples of the head pose at an exact rate, each ready after an internal delay.");
   s.rate("rate_hz", p.period, {.unit = "Hz", .doc = "sampling rate (exact rational)"});
-  s.duration("phase_ms", p.phase, {.unit = "ms", .doc = "time of sample 0"});
+  clock(s, "", p.clock, "tracker");
   s.duration("internal_delay_ms", p.internal_delay, {.unit = "ms", .doc = "measurement to record ready"});
   s.duration("jitter_ms", p.jitter,
              {.unit = "ms", .doc = "per-sample timing jitter: ±bound (uniform) or standard deviation (normal)"});

@@ -19,6 +19,18 @@ void colour(Section& s, std::string_view key, glm::vec3& v, KeySpec spec) {
   v = glm::vec3(static_cast<float>(rgb[0]), static_cast<float>(rgb[1]), static_cast<float>(rgb[2]));
 }
 
+void clock(Section& s, std::string_view prefix, des::ClockSettings& c, std::string_view what) {
+  const std::string phase_key = std::string(prefix) + "phase_ms";
+  const std::string rate_key = std::string(prefix) + "rate_error_ppm";
+  const std::string phase_doc = "time of the " + std::string(what) + "'s first tick";
+  const std::string rate_doc = "the " + std::string(what) +
+                               "'s frequency error (crystals: tens of ppm); positive runs fast";
+  s.duration(phase_key, c.phase,
+             {.unit = "ms", .doc = phase_doc,
+              .default_doc = "drawn per replication, uniform over one period, from the clock's own stream"});
+  s.number(rate_key, c.rate_error_ppm, {.unit = "ppm", .min = -1e5, .max = 1e5, .doc = rate_doc});
+}
+
 namespace {
 
 void bind_host(Section& s, HostParams& p) {

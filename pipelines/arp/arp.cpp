@@ -24,6 +24,7 @@ class ArpPipeline final : public Pipeline {
   struct Params {
     des::RationalSeconds render_period{1, 60};
     des::Time render_time = des::Time::ms(5);
+    des::ClockSettings loop;  ///< the rendering loop's own clock
     FrameOptions frames;
   };
 
@@ -32,8 +33,10 @@ class ArpPipeline final : public Pipeline {
   void start(RunContext& ctx) override {
     ctx_ = &ctx;
     if (ctx.scene) object_count_ = renderer::make_scene(ctx.scene->geometry).object_count();
+    ctx.recorder.expects_images();
     const des::KindId kind_render = ctx.sim.kind("arp.render");
-    ticks_.emplace(ctx.sim, des::PeriodicSchedule(des::Time::zero(), p_.render_period), kind_render,
+    const des::Clock& loop = ctx.clock("loop", "/pipeline/loop_phase_ms", p_.render_period, p_.loop);
+    ticks_.emplace(ctx.sim, loop.schedule(), kind_render,
                    [this, kind_render](int64_t k) { ctx_->sim.start(render(k), kind_render); });
     ticks_->start(0, ctx.duration);
     if ((ctx.frames != nullptr || !p_.frames.times_s.empty()) && ctx.scene && ctx.files.enabled())
@@ -65,6 +68,8 @@ class ArpPipeline final : public Pipeline {
       co_await ctx_->sim.until(retry);
     }
     const des::Time start = ctx_->sim.now();
+    // The new display memory is meant to be in use by the next tick.
+    ctx_->recorder.image_due(slot_end);
     co_await ctx_->sim.delay(p_.render_time);
     ++renders_;
     // Display memories are double-buffered: the new cube is used from the next field on.
@@ -109,6 +114,7 @@ void bind(scenario::Section& s, ArpPipeline::Params& p, const params::SharedPara
           p.render_time > des::Time::zero() &&
               p.render_time <= des::PeriodicSchedule(des::Time::zero(), p.render_period).nominal_period(),
           "must be positive and at most one rendering period");
+  params::clock(s, "loop_", p.loop, "rendering loop");
   bind(s, p.frames);
 }
 

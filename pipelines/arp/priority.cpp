@@ -35,6 +35,7 @@ class PriorityPipeline final : public Pipeline {
     arp::MemoryRenderCost cost{.per_pixel_ns = 2.0};
     int renderers = 1;
     std::vector<Animated> animated;
+    des::ClockSettings loop;  ///< the tick loop's own clock
   };
 
   explicit PriorityPipeline(const Params& p) : p_(p) {}
@@ -55,8 +56,9 @@ class PriorityPipeline final : public Pipeline {
     system_.emplace(ctx.sim, ctx.sim.kind("arp.priority_render"), scene_, std::move(objects),
                     arp::PrioritySystemParams{p_.model, p_.cost, p_.renderers, p_.face_px});
     system_->memories().on_present([this](const std::vector<const arp::MemoryImage*>& batch) { present(batch); });
-    ticks_.emplace(ctx.sim, des::PeriodicSchedule(des::Time::zero(), p_.model.base_period),
-                   ctx.sim.kind("arp.priority_tick"), [this](int64_t k) { tick(k); });
+    ctx.recorder.expects_images();
+    const des::Clock& loop = ctx.clock("loop", "/pipeline/loop_phase_ms", p_.model.base_period, p_.loop);
+    ticks_.emplace(ctx.sim, loop.schedule(), ctx.sim.kind("arp.priority_tick"), [this](int64_t k) { tick(k); });
     ticks_->start(0, ctx.duration);
   }
 
@@ -112,8 +114,11 @@ class PriorityPipeline final : public Pipeline {
     }
     samples_.add(*sample);
     const arp::PriorityTick& t = system_->tick(k, ctx_->sim.now(), sample->pose.position_m, velocity_m_s_, sample->index);
-    if (!t.updated_memories.empty())
+    if (!t.updated_memories.empty()) {
       ctx_->recorder.add("objects_rendered_per_tick", static_cast<double>(t.objects_rendered));
+      // The updated display memories are meant to be in use by the next tick.
+      ctx_->recorder.image_due(ticks_->schedule().at(k + 1));
+    }
   }
 
   void present(const std::vector<const arp::MemoryImage*>& batch) {
@@ -145,6 +150,7 @@ void bind(scenario::Section& s, PriorityPipeline::Params& p, const params::Share
             .default_doc = "90 / face_px (one texel)"});
   p.model.threshold_rad = p.threshold_angle_deg * kDegToRad;
   bind_render_costs(s, p.cost, p.renderers, "render_per_object_us", "object drawn");
+  params::clock(s, "loop_", p.loop, "tick loop");
   s.objects("animated", p.animated,
             [](scenario::Section& a, PriorityPipeline::Animated& v) {
               a.doc("An object whose own animation limits how long its image stays valid.");

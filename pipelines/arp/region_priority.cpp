@@ -35,6 +35,7 @@ class RegionPriorityPipeline final : public Pipeline {
     arp::MemoryRenderCost cost{.per_pixel_ns = 2.0};
     int renderers = 1;
     std::vector<std::string> compare;
+    des::ClockSettings loop;  ///< the tick loop's own clock
     FrameOptions frames;
   };
 
@@ -61,8 +62,9 @@ class RegionPriorityPipeline final : public Pipeline {
 
     const auto& raster = ctx.display.timing().params();
     screen_.emplace(ctx.display_params.hfov_deg, raster.width_px, raster.height_px);
-    ticks_.emplace(ctx.sim, des::PeriodicSchedule(des::Time::zero(), p_.period), ctx.sim.kind("arp.region_tick"),
-                   [this](int64_t k) { tick(k); });
+    ctx.recorder.expects_images();
+    const des::Clock& loop = ctx.clock("loop", "/pipeline/loop_phase_ms", p_.period, p_.loop);
+    ticks_.emplace(ctx.sim, loop.schedule(), ctx.sim.kind("arp.region_tick"), [this](int64_t k) { tick(k); });
     ticks_->start(0, ctx.duration);
     ctx.display.on_retrace([this](int64_t field, des::Time) { retrace(field); });
     if ((ctx.frames != nullptr || !p_.frames.times_s.empty()) && ctx.files.enabled())
@@ -110,11 +112,17 @@ class RegionPriorityPipeline final : public Pipeline {
     return nullptr;
   }
 
-  void tick(int64_t) {
+  void tick(int64_t k) {
     const auto sample = ctx_->host.newest_at(ctx_->sim.now());
     if (!sample) return;
     samples_.add(*sample);
-    for (auto& run : runs_) run->system().tick(ctx_->sim.now(), sample->pose.position_m, sample->index);
+    bool updated = false;
+    for (size_t i = 0; i < runs_.size(); ++i) {
+      const arp::RegionTick& t = runs_[i]->system().tick(ctx_->sim.now(), sample->pose.position_m, sample->index);
+      if (i == 0) updated = !t.updated.empty();
+    }
+    // The updated display memories are meant to be in use by the next tick.
+    if (updated) ctx_->recorder.image_due(ticks_->schedule().at(k + 1));
   }
 
   void present(const std::vector<const arp::MemoryImage*>& batch) {
@@ -168,6 +176,7 @@ class RegionPriorityPipeline final : public Pipeline {
 void bind(scenario::Section& s, RegionPriorityPipeline::Params& p, const params::SharedParams& shared) {
   arp::RegionPriorityParams& m = p.model;
   s.rate("max_update_rate_hz", p.period, {.unit = "Hz", .doc = "rate of the fastest display memory (and of the ticks)"});
+  params::clock(s, "loop_", p.loop, "tick loop");
   bind(s, p.frames);
   s.number("region_size_m", p.region_size_m, {.unit = "m", .min = 0.0, .above_min = true, .doc = "edge of a square floor region"});
   s.flag("segmentation", p.segmentation, {.doc = "cut objects at region boundaries; false: whole objects"});

@@ -12,22 +12,41 @@
 
 namespace latsim::pipelines {
 
-/// Motion-to-photon latency over every phase the system takes.
+/// What the analytic calculation needs to know of a run.
+struct AnalyticInputs {
+  display::RasterParams raster;          ///< with the nominal field period
+  des::RationalSeconds tracker_period;   ///< nominal
+  des::Time tracker_delay;               ///< internal delay
+  des::Time tracker_jitter;
+  const tracker::Transport* transport = nullptr;
+  des::Time render_time;
+  /// The phases the run used (display, tracker, poll timer).
+  des::Time display_phase, tracker_phase, poll_phase;
+  /// Whether the tracker's (poll timer's) phase relative to the display is
+  /// integrated over: true when either clock of the pair is drawn or drifts.
+  bool integrate_tracker = false;
+  bool integrate_poll = false;
+};
+
+/// Motion-to-photon latency per displayed line over every phase the system takes.
 struct AnalyticLatency {
-  std::string link;        ///< "direct", "serial poll" or "serial interrupt"
+  std::string link;         ///< "direct", "serial poll" or "serial interrupt"
+  std::string method;       ///< how the phases were covered
   double hyperperiod_s = 0.0;
-  int64_t frames = 0;
-  bool complete = true;    ///< false: the enumeration stopped at its frame limit
+  int64_t frames = 0;       ///< frames enumerated (per phase point when integrating)
+  int64_t phase_grid = 0;   ///< points per integrated clock period (0: fixed phases)
+  bool complete = true;     ///< false: the enumeration stopped at its frame limit
   double min_ms = 0.0, mean_ms = 0.0, max_ms = 0.0;
 };
 
-/// Min / mean / max motion-to-photon latency per displayed line, enumerated
-/// over one hyperperiod of (frame interval, tracker period, poll interval) —
-/// the exact set of phases the system ever takes. Returns nothing when the
-/// configuration is not tractable (jitter, random render time, render-ahead,
-/// no vsync, records queueing on the serial line, interrupt handler costs).
-std::optional<AnalyticLatency> analytic_double_buffer(const display::RasterTiming& timing,
-                                                     const tracker::TrackerParams& tracker,
-                                                     const tracker::Transport& transport, des::Time render_time);
+/// Min / mean / max motion-to-photon latency per displayed line. With fixed
+/// phases: enumerated over one repeat cycle of (frame interval, tracker
+/// period, poll interval), counted by field index so that the cycle holds
+/// exactly its frames. With integrated phases: averaged over a grid of
+/// relative phases (midpoints of equal steps of each period), each frame of
+/// the steady state being alike once the phases are uniform. Returns nothing
+/// when the configuration is not tractable (jitter, render-ahead, no vsync,
+/// records queueing on the serial line, interrupt handler costs).
+std::optional<AnalyticLatency> analytic_double_buffer(const AnalyticInputs& in);
 
 }  // namespace latsim::pipelines

@@ -9,6 +9,7 @@
 #include "latsim/des/process.hpp"
 #include "latsim/pipelines/latency_recorder.hpp"
 #include "latsim/pipelines/render_cost.hpp"
+#include "latsim/pipelines/run_clocks.hpp"
 #include "latsim/pipelines/timeline.hpp"
 
 namespace latsim::pipelines {
@@ -31,22 +32,23 @@ class DoubleBufferPipeline final : public Pipeline {
     ctx_ = &ctx;
     stream_ = std::make_unique<des::RandomStream>(ctx.stream("renderer"));
     const des::KindId kind_frame = ctx.sim.kind("renderer.frame");
+    ctx.recorder.expects_images();
     if (p_.vsync) ctx.display.on_retrace([this](int64_t, des::Time now) { retrace(now); });
     ctx.sim.start(renderer(), kind_frame);
   }
 
   void finish(RunContext& ctx) override {
     ctx.recorder.set("frames_rendered", frames_done_);
-    ctx.recorder.set("missed_refreshes", missed_refreshes_);
     ctx.recorder.set("nominal_frame_time_ms", p_.cost.nominal_frame_time().to_ms());
     if (!p_.vsync || p_.queued_frames != 0 || p_.cost.varies()) return;
-    const auto a = analytic_double_buffer(ctx.display.timing(), ctx.tracker, ctx.transport, p_.cost.nominal_frame_time());
+    const auto a = analytic_double_buffer(analytic_inputs(ctx));
     if (!a) return;
     LatencyRecorder& r = ctx.recorder;
-    r.set("analytic.method", std::string("phase enumeration over one hyperperiod (no events)"));
+    r.set("analytic.method", a->method);
     r.set("analytic.link", a->link);
     r.set("analytic.hyperperiod_s", a->hyperperiod_s);
     r.set("analytic.frames", a->frames);
+    r.set("analytic.phase_grid", a->phase_grid);
     r.set("analytic.complete", a->complete);
     r.set("analytic.motion_to_photon_ms.min", a->min_ms);
     r.set("analytic.motion_to_photon_ms.mean", a->mean_ms);
@@ -54,6 +56,29 @@ class DoubleBufferPipeline final : public Pipeline {
   }
 
  private:
+  // The run's clocks as the analytic calculation sees them: nominal periods,
+  // the phases used, and which relative phases vary from run to run.
+  AnalyticInputs analytic_inputs(const RunContext& ctx) const {
+    const des::Clock* display = ctx.clocks.find("display");
+    const des::Clock* tracker = ctx.clocks.find("tracker");
+    const des::Clock* poll = ctx.clocks.find("poll");
+    auto varies = [](const des::Clock* c) { return c && (c->drawn || c->rate_error_ppm != 0.0); };
+    AnalyticInputs in;
+    in.raster = ctx.display_params.raster;
+    in.raster.field_period = display ? display->nominal : in.raster.field_period;
+    in.tracker_period = ctx.tracker.period;
+    in.tracker_delay = ctx.tracker.internal_delay;
+    in.tracker_jitter = ctx.tracker.jitter;
+    in.transport = &ctx.transport;
+    in.render_time = p_.cost.nominal_frame_time();
+    in.display_phase = display ? display->phase : des::Time::zero();
+    in.tracker_phase = ctx.tracker.clock.phase.value_or(des::Time::zero());
+    in.poll_phase = poll ? poll->phase : des::Time::zero();
+    in.integrate_tracker = varies(tracker) || varies(display);
+    in.integrate_poll = poll && (varies(poll) || varies(display));
+    return in;
+  }
+
   struct Done {
     std::vector<int64_t> ids;
     int64_t frame;
@@ -71,6 +96,8 @@ class DoubleBufferPipeline final : public Pipeline {
         else co_await ctx_->sim.delay(des::Time::ms(1));
       }
       const des::Time start = ctx_->sim.now();
+      // With vsync every render aims at the next refresh.
+      if (p_.vsync) ctx_->recorder.image_due(start + des::Time::ps(1));
       co_await ctx_->sim.delay(p_.cost.frame_time(*stream_));
       Done done = complete(*sample, start);
       if (!p_.vsync) {
@@ -98,14 +125,11 @@ class DoubleBufferPipeline final : public Pipeline {
 
   // Called at the retrace before scanout: the swap takes effect for this field.
   void retrace(des::Time now) {
-    if (queue_.empty()) {
-      if (shown_any_) ++missed_refreshes_;
-    } else {
+    if (!queue_.empty()) {
       const Done d = std::move(queue_.front());
       queue_.pop_front();
       for (int eye = 0; eye < ctx_->display.eyes(); ++eye) ctx_->display.present_now(eye, d.ids[eye]);
       if (ctx_->timeline) ctx_->timeline->add("QUEUED", d.frame, -1, "swapchain", d.render_end, now);
-      shown_any_ = true;
     }
     retrace_.resume();
   }
@@ -115,10 +139,8 @@ class DoubleBufferPipeline final : public Pipeline {
   std::unique_ptr<des::RandomStream> stream_;
   des::Handoff retrace_;
   std::deque<Done> queue_;
-  bool shown_any_ = false;
   int64_t frame_ = 0;
   int64_t frames_done_ = 0;
-  int64_t missed_refreshes_ = 0;
 };
 
 void bind(scenario::Section& s, DoubleBufferPipeline::Params& p, const params::SharedParams& shared) {
@@ -143,7 +165,9 @@ PipelineEntry double_buffer_pipeline() {
       "Conventional double buffering: render with the newest pose, swap at the next retrace after completion "
       "(optionally rendering ahead, or swapping at once without vsync). Where the configuration is tractable (no "
       "jitter, constant render time, vsync, no render-ahead, no queueing on the serial line) `figures.analytic` "
-      "gives the min / mean / max motion-to-photon latency by phase enumeration, beside the simulated distribution.");
+      "gives the min / mean / max motion-to-photon latency beside the simulated distribution: enumerated over one "
+      "repeat cycle when every clock phase is fixed, otherwise integrated over the phases that vary between "
+      "replications (see docs/figures.md).");
 }
 
 }  // namespace latsim::pipelines

@@ -61,6 +61,7 @@ FlowHooks FrameStagesPipeline::warp_hooks() {
 
 void FrameStagesPipeline::start(RunContext& ctx) {
   ctx_ = &ctx;
+  ctx.recorder.expects_images();
   for (const ProcessorSpec& p : spec_.processors) processors_.push_back(std::make_unique<des::Resource>(ctx.sim, 1, p.name));
   retraces_ = std::make_unique<Progress>(ctx.sim);
   poses_ = std::make_unique<PoseSampler>(ctx.host);
@@ -96,7 +97,6 @@ void FrameStagesPipeline::finish(RunContext& ctx) {
   r.set("frames_rendered", frames_completed_);
   r.set("application_frame_rate_hz", static_cast<double>(frames_completed_) / ctx.duration.to_seconds());
   if (swap_chain_) {
-    r.set("missed_refreshes", swap_chain_->frames_missed());
     r.set("frames_missed", swap_chain_->frames_missed());
     return;
   }

@@ -25,6 +25,9 @@ void SwapChain::on_frame_complete(const JobRecord& frame) {
 
 void SwapChain::on_retrace(int64_t) {
   if (!vsync_) return;
+  // Once a frame is on screen the application means to show a new one at
+  // every refresh: the recorder counts the refreshes that show none.
+  if (on_screen_) ctx_.recorder.image_due(ctx_.sim.now());
   if (queue_.empty()) {
     if (on_screen_) ++frames_missed_;
     return;

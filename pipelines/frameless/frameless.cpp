@@ -67,6 +67,7 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
     };
     std::optional<Fallback> fallback;
     int64_t budget_px_s = 1;  ///< whole pixels per second (an exact rational period)
+    des::ClockSettings loop;  ///< the computation's own clock (phase over one full image)
   };
 
   explicit FramelessPipeline(const Params& p)
@@ -78,14 +79,21 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
         trigger_deg_(p.fallback ? p.fallback->trigger_deg : 20.0),
         trigger_m_(p.fallback ? p.fallback->trigger_m : 0.5),
         block_px_(p.fallback ? p.fallback->block_px : 4),
-        sample_pixels_(p.sample_pixels) {}
+        sample_pixels_(p.sample_pixels),
+        loop_(p.loop) {}
 
   void start(RunContext& ctx) override {
     ctx_ = &ctx;
     size_to_display(ctx);
     const des::KindId kind_chunk = ctx.sim.kind("frameless.chunk");
     const des::KindId kind_image = ctx.sim.kind("frameless.image");
-    schedule_ = des::PeriodicSchedule(ctx.sim.now(), des::RationalSeconds{1, budget_px_s_});
+    // The computation runs from its own oscillator: its phase is drawn over
+    // one full image (what double buffering shows), its rate error applies
+    // to every pixel.
+    const des::Clock& loop =
+        ctx.clock("loop", "/pipeline/loop_phase_ms", des::RationalSeconds{pixels_, budget_px_s_}, loop_);
+    schedule_ = des::PeriodicSchedule(ctx.sim.now() + loop.phase,
+                                      des::period_with_rate_error({1, budget_px_s_}, loop.rate_error_ppm));
     pick_sampled_pixels(ctx.stream("frameless.samples"));
     ctx.display.add_listener(this);
     ctx.display.on_retrace([this](int64_t field, des::Time t) { retrace(field, t); });
@@ -118,8 +126,8 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
     r.set("frameless.fallbacks", fallbacks_);
     r.set("frameless.sampled_pixels", int64_t{sampled_count_});
     r.set("frameless.chunk_pixels", chunk_px_);
-    // Frameless shows no whole images; its "frame rate" is full update cycles per second.
-    if (!double_buffer_) r.set("frame_rate_hz", 1e3 / cycle_ms);
+    // Frameless shows no whole images (no frame_rate_hz): it completes update cycles.
+    r.set("frameless.cycle_rate_hz", 1e3 / cycle_ms);
   }
 
   void on_scanout(const display::ScanoutSpan& span) override {
@@ -130,15 +138,13 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
     for (auto it = std::lower_bound(xs.begin(), xs.end(), span.x_begin); it != xs.end() && *it < span.x_end; ++it) {
       const des::Time photon = ctx_->display.timing().pixel_time(span.field, span.line, *it);
       if (image != nullptr) {
-        ctx_->recorder.add("pixel_age_ms", (photon - image->sample.measured_at).to_ms());
+        ctx_->recorder.pixel_age(image->sample, photon);
         continue;
       }
       const PixelState& st = visible_[pixel_id(span.eye, *it, span.row)];
       if (st.slot < 0) continue;
       const tracker::TrackerSample& s = sample_of(st.slot);
-      const double age_ms = (photon - s.measured_at).to_ms();
-      ctx_->recorder.add("pixel_age_ms", age_ms);
-      ctx_->recorder.add("motion_to_photon_ms", age_ms);
+      ctx_->recorder.pixel_lit(s, photon);
       registration(span.eye, *it, span.row, st, s, photon);
     }
   }
@@ -166,7 +172,6 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
     sampled_count_ = static_cast<int32_t>(std::min<int64_t>(sample_pixels_, pixels_));
     const double hfov_deg = ctx.display_params.hfov_deg;
     camera_.emplace(hfov_deg, width_, height_);
-    rad_per_px_ = 2.0 * std::tan(hfov_deg * kPi / 360.0) / width_;
   }
 
   size_t pixel_id(int eye, int x, int row) const {
@@ -347,6 +352,8 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
   /// Image after image, each from the newest pose when it starts (none yet:
   /// it renders nothing), presented when its pixels are spent.
   des::Process images() {
+    // Image 0 begins with the first pixel of the budget, at the clock's phase.
+    if (schedule_.at(0) > ctx_->sim.now()) co_await ctx_->sim.until(schedule_.at(0));
     for (int64_t image = 0;; ++image) {
       const std::optional<tracker::TrackerSample> sample = ctx_->host.newest_at(ctx_->sim.now());
       const des::Time end = schedule_.at((image + 1) * pixels_);
@@ -366,15 +373,11 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
 
   void registration(int eye, int x, int row, const PixelState& st, const tracker::TrackerSample& s, des::Time photon) {
     const tracker::Pose drawn = ctx_->eye_pose(s, eye);
-    const tracker::Pose truth = eye_pose_of(ctx_->motion.pose_at(photon), eye, ctx_->ipd_m, ctx_->stereo);
-    // The pixel shows the surface point its source ray met, taken at a fixed depth.
+    // The pixel shows the surface point its source ray met, taken at a fixed
+    // depth, drawn along the pixel's own direction.
     const int sx = st.source % width_, sy = st.source / width_;
     const glm::dvec3 point = drawn.position_m + depth_m_ * (drawn.orientation * camera_->head_direction(sx + 0.5, sy + 0.5));
-    const glm::dvec3 seen = truth.orientation * camera_->head_direction(x + 0.5, row + 0.5);
-    const glm::dvec3 should = glm::normalize(point - truth.position_m);
-    const double angle = std::atan2(glm::length(glm::cross(seen, should)), glm::dot(seen, should));
-    ctx_->recorder.add("registration_error_arcmin", angle * 180.0 / kPi * 60.0);
-    ctx_->recorder.add("registration_error_px", angle / rad_per_px_);
+    ctx_->recorder.registration(eye, point, camera_->head_direction(x + 0.5, row + 0.5), photon);
   }
 
   RunContext* ctx_ = nullptr;
@@ -386,10 +389,10 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
   double trigger_deg_ = 20.0, trigger_m_ = 0.5;
   int block_px_ = 4;
   int64_t sample_pixels_ = 1024;
+  des::ClockSettings loop_;
   int width_ = 0, height_ = 0, eyes_ = 1;
   int32_t pixels_ = 0;
   int32_t sampled_count_ = 0;
-  double rad_per_px_ = 0.0;
   std::optional<renderer::Camera> camera_;
   des::PeriodicSchedule schedule_;
   std::vector<std::vector<int>> sampled_;  ///< per (eye, row): sampled columns, sorted
@@ -446,6 +449,7 @@ void bind(scenario::Section& s, FramelessPipeline::Params& p, const params::Shar
             {.unit = "px", .min = 1.0, .max = 1073741824.0, .doc = "pixels computed per event (exact either way)"});
   s.integer("sample_pixels", p.sample_pixels,
             {.unit = "px", .min = 0.0, .max = 1073741824.0, .doc = "pixels where ages and registration are sampled"});
+  params::clock(s, "loop_", p.loop, "pixel computation (the first pixel's start)");
   s.number("registration_depth_m", p.registration_depth_m,
            {.unit = "m", .min = 0.0, .above_min = true, .doc = "depth at which a pixel's surface point is taken"});
   const bool double_buffer = p.double_buffer;

@@ -30,6 +30,11 @@ class Pxpl5SlatsPipeline final : public Pipeline {
       engine_->host_sample(wiring_->remember(s));
     });
     engine_->start(ctx.sim.now() + ctx.duration);
+    // Once the processor holds viewing transforms, every field is due a new
+    // image by the next retrace (the engine starts it at this one).
+    ctx.display.on_retrace([this, &ctx](int64_t, des::Time now) {
+      if (wiring_->transforms_sent()) ctx.recorder.image_due(now + des::Time::ps(1));
+    });
   }
 
   void finish(RunContext& ctx) override {

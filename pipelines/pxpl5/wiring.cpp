@@ -20,7 +20,7 @@ constexpr std::size_t kImagesKept = 256;
 
 }  // namespace
 
-Pxpl5Wiring::Pxpl5Wiring(RunContext& ctx) : ctx_(&ctx) {}
+Pxpl5Wiring::Pxpl5Wiring(RunContext& ctx) : ctx_(&ctx) { ctx.recorder.expects_images(); }
 
 pxpl5::FieldTiming Pxpl5Wiring::field_timing() const {
   const display::RasterTiming& t = ctx_->display.timing();
@@ -84,10 +84,10 @@ pxpl5::EngineHooks Pxpl5Wiring::hooks() {
   };
   h.frame_ready = [this](const pxpl5::FrameReady& f) { present(f); };
   h.region_written = [this](const pxpl5::RegionWrite& w) { region_written(w); };
-  if (ctx_->timeline != nullptr)
-    h.stage = [this](const pxpl5::StageInterval& s) {
-      ctx_->timeline->add(s.stage, s.frame, s.eye, s.unit, s.start, s.end);
-    };
+  h.stage = [this](const pxpl5::StageInterval& s) {
+    if (s.stage == "SEND") transforms_sent_ = true;
+    if (ctx_->timeline != nullptr) ctx_->timeline->add(s.stage, s.frame, s.eye, s.unit, s.start, s.end);
+  };
   h.sample = [this](const std::string& name, double v) { samples_by_name_[name].add(v); };
   return h;
 }

@@ -56,6 +56,8 @@ class Pxpl5Wiring {
   pxpl5::EngineHooks hooks();
   /// Remembers a sample the host delivered and returns its token.
   int64_t remember(const tracker::TrackerSample& sample);
+  /// Whether the host has sent the processors viewing transforms yet.
+  bool transforms_sent() const { return transforms_sent_; }
   /// Reports the collected distributions and utilisation to the recorder.
   void report(const pxpl5::Utilisation& utilisation, int64_t frames_completed) const;
 
@@ -72,6 +74,7 @@ class Pxpl5Wiring {
   std::map<std::pair<int64_t, int>, int64_t> image_ids_;  // (frame, eye) -> recorder id, recent ones only
   std::unique_ptr<pxpl5::WorkloadSource> workload_;
   int64_t images_without_sample_ = 0;
+  bool transforms_sent_ = false;
 };
 
 }  // namespace latsim::pipelines

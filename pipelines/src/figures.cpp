@@ -1,6 +1,7 @@
 #include "latsim/pipelines/figures.hpp"
 
 #include <cctype>
+#include <stdexcept>
 
 namespace latsim::pipelines {
 
@@ -30,7 +31,17 @@ Json& at_name(Json& root, const std::string& name) {
 
 }  // namespace
 
-void FigureTable::set(const std::string& name, FigureValue value) { values_.insert_or_assign(name, std::move(value)); }
+void FigureTable::set(const std::string& name, FigureValue value) {
+  if (values_.count(name) != 0 || published_.count(name) != 0)
+    throw std::logic_error("figure \"" + name + "\" is set twice; a figure has one value");
+  values_.emplace(name, std::move(value));
+}
+
+void FigureTable::publish(const std::string& name, const des::Distribution& d) {
+  if (values_.count(name) != 0 || published_.count(name) != 0)
+    throw std::logic_error("figure \"" + name + "\" is published twice; a figure has one value");
+  published_.emplace(name, d);
+}
 
 Json FigureTable::distribution_json(const des::Distribution& d) {
   const auto s = d.summary();

@@ -30,6 +30,12 @@ struct ShownSpan {
   des::Time measured_at;
   ImageRecord::Warp warp = ImageRecord::Warp::none;
   tracker::Pose source_pose;  ///< warped: the pose the application rendered from
+  /// Address recalculation: the orientation is the newest when the span was
+  /// written, looked up when the field has been scanned (samples measured
+  /// during a field do not exist yet when field-level scanout hands over its lines).
+  bool orientation_at_scanout = false;
+  int eye = 0;
+  des::Time written_at;
 };
 
 /// Everything one field of the captured eye showed, kept until the field ends.
@@ -115,19 +121,16 @@ struct FrameCapture::Impl {
                            std::span<ShownPixel>(c.pixels).subspan(offset, static_cast<size_t>(span.x_end - span.x_begin)));
       return;
     }
-    ShownSpan s{span.x_begin, span.x_end, false, {}, {}, ImageRecord::Warp::none, {}};
+    ShownSpan s{span.x_begin, span.x_end, false, {}, {}, ImageRecord::Warp::none, {}, false, 0, {}};
     if (const ImageRecord* img = in.recorder.image(span.image_id)) {
       s.lit = true;
       s.eye_pose = img->eye_pose;
       s.measured_at = img->sample.measured_at;
       s.warp = img->warp;
       s.source_pose = img->source_pose;
-      if (img->orientation_at_scanout) {
-        // Address recalculation: the orientation is looked up as the pixel is fetched.
-        if (const auto newest = in.host.newest_at(span.written_at)) {
-          s.eye_pose.orientation = eye_pose_of(newest->pose, span.eye, in.ipd_m, in.stereo).orientation;
-        }
-      }
+      s.orientation_at_scanout = img->orientation_at_scanout;
+      s.eye = span.eye;
+      s.written_at = span.written_at;
     }
     c.lines[static_cast<size_t>(span.line)].push_back(s);
   }
@@ -268,7 +271,17 @@ struct FrameCapture::Impl {
     c.undefined_px = draw_warped_spans(*caster, *camera, warped, displayed, unwarped, options(), background);
   }
 
+  // Address recalculation looks the orientation up as each pixel is fetched.
+  void resolve_orientations(Collection& c) const {
+    for (auto& line : c.lines)
+      for (ShownSpan& s : line)
+        if (s.lit && s.orientation_at_scanout)
+          if (const auto newest = in.host.newest_at(s.written_at))
+            s.eye_pose.orientation = eye_pose_of(newest->pose, s.eye, in.ipd_m, in.stereo).orientation;
+  }
+
   void process(Collection& c) {
+    resolve_orientations(c);
     ensure_renderer();
     cast_truth(c.field, c.pixel_mode);
     if (c.pixel_mode) cast_displayed_pixels(c);

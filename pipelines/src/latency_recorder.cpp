@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "latsim/pipelines/timeline.hpp"
+
 namespace latsim::pipelines {
 
 namespace {
@@ -13,6 +15,10 @@ constexpr double kPi = 3.14159265358979323846;
 double angle_between_dirs(const glm::dvec3& a, const glm::dvec3& b) {
   return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
 }
+
+// Column order of fields.csv (see field_ledger_columns()).
+enum FieldColumn { kField, kEye, kImage, kFrame, kSample, kMeasured, kOrientationAtScanout, kOrientationMeasured,
+                   kFirstLine, kFirstX, kLastLine, kLastX, kRetrace, kScanoutStart, kFieldColumns };
 
 }  // namespace
 
@@ -42,9 +48,24 @@ LatencyRecorder::LatencyRecorder(const des::Simulator& sim, const tracker::Motio
   rad_per_px_ = 2.0 * tan_half_h_ / w;
 }
 
+const std::vector<std::string>& LatencyRecorder::field_ledger_columns() {
+  static const std::vector<std::string> cols{"field",     "eye",         "image",
+                                             "frame",     "sample",      "measured_ps",
+                                             "orientation_at_scanout",   "orientation_measured_ps",
+                                             "first_line", "first_x",    "last_line",
+                                             "last_x",    "retrace_ps",  "scanout_start_ps"};
+  return cols;
+}
+
+const std::vector<std::string>& LatencyRecorder::tracker_ledger_columns() {
+  static const std::vector<std::string> cols{"sample", "measured_ps", "ready_ps", "start_ps", "end_ps", "visible_ps"};
+  return cols;
+}
+
 int64_t LatencyRecorder::register_image(const ImageRecord& record) {
   const int64_t id = next_id_++;
   images_.emplace(id, Held{record, false});
+  ++images_registered_;
   return id;
 }
 
@@ -53,112 +74,131 @@ const ImageRecord* LatencyRecorder::image(int64_t id) const {
   return it == images_.end() ? nullptr : &it->second.record;
 }
 
-des::Distribution& LatencyRecorder::distribution_ref(const std::string& name) {
-  auto it = dists_.find(name);
-  if (it == dists_.end()) it = dists_.emplace(name, des::Distribution(0.005, keep_samples_)).first;
-  return it->second;
+void LatencyRecorder::image_due(des::Time due_by) {
+  deadlines_ = true;
+  due_.push_back(due_by);
 }
 
-void LatencyRecorder::add(const std::string& name, double value) {
-  distribution_ref(name).add(value);
-  if (sample_log_on_) sample_log_.push_back({sim_.now().to_ms(), name, value});
-}
-
-void LatencyRecorder::add_to(des::Distribution* d, const char* name, double value) {
+void LatencyRecorder::record(des::Distribution*& d, const char* name, double value) {
+  if (!d) d = &dists_.try_emplace(name, 0.005, keep_samples_).first->second;
   d->add(value);
   if (sample_log_on_) sample_log_.push_back({sim_.now().to_ms(), name, value});
-}
-
-void LatencyRecorder::count(const std::string& name, int64_t n) { counters_[name] += n; }
-
-const des::Distribution* LatencyRecorder::distribution(const std::string& name) const {
-  auto it = dists_.find(name);
-  return it == dists_.end() ? nullptr : &it->second;
-}
-
-int64_t LatencyRecorder::counter(const std::string& name) const {
-  auto it = counters_.find(name);
-  return it == counters_.end() ? 0 : it->second;
 }
 
 void LatencyRecorder::prune(int64_t below_id) {
   while (!images_.empty() && images_.begin()->first < below_id) images_.erase(images_.begin());
 }
 
-void LatencyRecorder::on_field_start(int eye, int64_t field, des::Time) {
-  if (eye == 0) count("fields");
-  (void)field;
+void LatencyRecorder::on_field_start(int eye, int64_t field, des::Time retrace) {
+  if (eye != 0) return;
+  // Every sample measured before this retrace has been simulated: spans of
+  // the last field that wait for the newest orientation can be completed.
+  flush_pending();
+  close_field();
+  counters_["fields"] += 1;
+  open_field_ = field;
+  open_retrace_ = retrace;
+  new_in_open_field_ = false;
+}
+
+// Decides whether the field just scanned missed a refresh deadline.
+void LatencyRecorder::close_field() {
+  if (open_field_ == INT64_MIN) return;
+  if (new_in_open_field_) {
+    if (!due_.empty()) due_.pop_front();
+  } else if (!due_.empty() && due_.front() <= open_retrace_) {
+    ++missed_;
+  }
 }
 
 void LatencyRecorder::on_scanout(const display::ScanoutSpan& span) {
   auto it = images_.find(span.image_id);
   if (it == images_.end()) {
-    count("unlit_spans");
+    counters_["unlit_spans"] += 1;
     return;
   }
   Held& held = it->second;
-  const ImageRecord& img = held.record;
-  const des::Time photon = span.photon_time;
+  const ImageRecord& img = held.record;  // prune() below keeps the image shown now
   if (!held.shown) {
     held.shown = true;
     first_shown(img, span);
     // Images older than one shown now (same eye) will not be shown again.
     prune(span.image_id - 64);
-    it = images_.find(span.image_id);
   }
+  if (ledger_on_) ledger_span(span.image_id, img, span);
+  // At field fidelity every line is handled at the retrace, before the
+  // samples measured during the field exist; an address recalculation image
+  // takes its orientation from the newest sample when each line is fetched
+  // (written), so such lines wait for the next retrace: the same rule at
+  // every fidelity.
+  if (img.orientation_at_scanout && span.written_at > sim_.now()) {
+    pending_.push_back(Pending{img, span});
+    return;
+  }
+  record_span(img, span);
+}
 
+void LatencyRecorder::flush_pending() {
+  for (const Pending& p : pending_) record_span(p.record, p.span);
+  pending_.clear();
+}
+
+void LatencyRecorder::record_span(const ImageRecord& img, const display::ScanoutSpan& span) {
+  const des::Time photon = span.photon_time;
   tracker::Pose drawn = img.eye_pose;
-  int64_t sample_index = img.sample.index;
-  des::Time origin = img.sample.measured_at;
+  int64_t orientation_index = img.sample.index;
+  des::Time orientation_measured = img.sample.measured_at;
   if (img.orientation_at_scanout) {
-    // The address recalculation pipeline looks up the newest orientation as the
-    // pixel is fetched; at field fidelity the newest one at the retrace.
-    const auto newest = host_.newest_at(std::min(photon, sim_.now()));
-    if (newest) {
-      const tracker::Pose head = newest->pose;
-      drawn.orientation = eye_pose_of(head, span.eye, ipd_m_, stereo_).orientation;
-      sample_index = newest->index;
-      if (!rotation_) rotation_ = &distribution_ref("rotation_latency_ms");
-      if (!translation_) translation_ = &distribution_ref("translation_latency_ms");
-      add_to(rotation_, "rotation_latency_ms", (photon - newest->measured_at).to_ms());
-      add_to(translation_, "translation_latency_ms", (photon - img.sample.measured_at).to_ms());
-      origin = newest->measured_at;
+    // Address recalculation looks up the newest orientation as the pixel is fetched.
+    if (const auto newest = host_.newest_at(span.written_at)) {
+      drawn.orientation = eye_pose_of(newest->pose, span.eye, ipd_m_, stereo_).orientation;
+      orientation_index = newest->index;
+      orientation_measured = newest->measured_at;
     }
   } else if (img.warp == ImageRecord::Warp::rotation) [[unlikely]] {
-    // Re-projected to a newer orientation; the position is the rendered one.
-    if (!rotation_) rotation_ = &distribution_ref("rotation_latency_ms");
-    if (!translation_) translation_ = &distribution_ref("translation_latency_ms");
-    add_to(rotation_, "rotation_latency_ms", (photon - img.orientation_measured_at).to_ms());
-    add_to(translation_, "translation_latency_ms", (photon - origin).to_ms());
+    // Time warp re-projected the image to a newer orientation (eye_pose has
+    // it); the position is the rendered one.
+    orientation_measured = img.orientation_measured_at;
   }
-  if (!mtp_) {
-    mtp_ = &distribution_ref("motion_to_photon_ms");
-    display_ms_ = &distribution_ref("display_ms");
-  }
-  add_to(mtp_, "motion_to_photon_ms", (photon - origin).to_ms());
+  const des::Time position_measured = img.sample.measured_at;
+  const des::Time origin = std::min(orientation_measured, position_measured);
+  record(mtp_, "motion_to_photon_ms", (photon - origin).to_ms());
+  record(rotation_, "rotation_latency_ms", (photon - orientation_measured).to_ms());
+  record(translation_, "translation_latency_ms", (photon - position_measured).to_ms());
   if (span.field != scan_field_) {
     scan_field_ = span.field;
     scan_start_ = timing_.scanout_start(span.field);
   }
-  add_to(display_ms_, "display_ms", (photon - scan_start_).to_ms());
-  // Age of the shown image's input when the field starts to light up, once
-  // per field and eye: the "update interval" view of latency.
-  if (span.line == 0 && span.x_begin == 0) add("image_age_ms", (scan_start_ - origin).to_ms());
-  if (!probes_.points_m.empty()) record_probes(span, drawn, sample_index, span.image_id);
+  record(display_ms_, "display_ms", (photon - scan_start_).to_ms());
+  // The age of the shown image's pose as the field starts to light up.
+  if (span.line == 0 && span.x_begin == 0) record(image_age_, "image_age_ms", (photon - origin).to_ms());
+  if (!probes_.points_m.empty()) record_probes(span, drawn, orientation_index, span.image_id);
 }
 
 void LatencyRecorder::first_shown(const ImageRecord& img, const display::ScanoutSpan& span) {
-  // The image's scanout starts with the first span that shows it: line 0 of
-  // the field for an image swapped in at a retrace, the line being scanned
-  // for one shown at once (tearing) or written just ahead of the beam (a strip).
-  const des::Time scan_start = span.written_at;
-  const double render_latency_ms = (scan_start - img.render_start).to_ms();
-  add("render_latency_ms", render_latency_ms);
-  add("render_latency_fields", render_latency_ms / timing_.field_period_ms());
-  add("tracker_to_render_ms", (img.render_start - img.sample.measured_at).to_ms());
-  if (!img.continues_image) count("images_shown");
+  // Rendering latency ends where the result starts to be scanned out: when
+  // the first span that shows it is written (line 0 of the field for an image
+  // swapped in at a retrace, the line being scanned for one shown at once
+  // (tearing) or written just ahead of the beam (a strip)).
+  const double render_latency_ms = (span.written_at - img.render_start).to_ms();
+  des::Distribution* none = nullptr;
+  record(none, "render_latency_ms", render_latency_ms);
+  none = nullptr;
+  record(none, "render_latency_fields", render_latency_ms / timing_.field_period_ms());
+  none = nullptr;
+  record(none, "tracker_to_render_ms", (img.render_start - img.sample.measured_at).to_ms());
+  // A later strip of a refresh's image has its own latency but is not
+  // another image in the frame rate.
+  if (!img.continues_image) counters_["images_shown"] += 1;
+  if (span.eye == 0) {
+    if (!img.continues_image) ++first_shown_eye0_;
+    if (span.field == open_field_) new_in_open_field_ = true;
+    if (timeline_ && img.render_start > img.host_received)
+      timeline_->add("HOST", img.frame, -1, "host application", img.host_received, img.render_start);
+  }
   if (!ledger_on_) return;
   const des::Time swap = timing_.field_start(span.field);
+  const des::Time scan_start = timing_.scanout_start(span.field);
   const des::Time scan_end = timing_.line_time(span.field, timing_.lines_per_field() - 1);
   ledger_.push_back(nlohmann::json{{"frame", img.frame},
                                    {"eye", img.eye},
@@ -170,7 +210,73 @@ void LatencyRecorder::first_shown(const ImageRecord& img, const display::Scanout
                                    {"render_end_ps", img.render_end.ticks()},
                                    {"swap_ps", swap.ticks()},
                                    {"scanout_start_ps", scan_start.ticks()},
-                                   {"scanout_end_ps", scan_end.ticks()}});
+                                   {"scanout_end_ps", scan_end.ticks()},
+                                   {"image", span.image_id}});
+}
+
+// One row per run of consecutive spans of a field and eye that show one image.
+void LatencyRecorder::ledger_span(int64_t image_id, const ImageRecord& img, const display::ScanoutSpan& span) {
+  for (auto it = field_rows_.rbegin(); it != field_rows_.rend() && (*it)[kField] == span.field; ++it) {
+    if ((*it)[kEye] != span.eye) continue;
+    if ((*it)[kImage] == image_id) {
+      (*it)[kLastLine] = span.line;
+      (*it)[kLastX] = span.x_begin;
+      return;
+    }
+    break;
+  }
+  std::vector<int64_t> row(kFieldColumns);
+  row[kField] = span.field;
+  row[kEye] = span.eye;
+  row[kImage] = image_id;
+  row[kFrame] = img.frame;
+  row[kSample] = img.sample.index;
+  row[kMeasured] = img.sample.measured_at.ticks();
+  row[kOrientationAtScanout] = img.orientation_at_scanout ? 1 : 0;
+  // The orientation's sample when the image fixes it (-1: looked up per span).
+  row[kOrientationMeasured] = img.orientation_at_scanout               ? -1
+                              : img.warp == ImageRecord::Warp::rotation ? img.orientation_measured_at.ticks()
+                                                                        : img.sample.measured_at.ticks();
+  row[kFirstLine] = row[kLastLine] = span.line;
+  row[kFirstX] = row[kLastX] = span.x_begin;
+  row[kRetrace] = timing_.field_start(span.field).ticks();
+  row[kScanoutStart] = timing_.scanout_start(span.field).ticks();
+  field_rows_.push_back(std::move(row));
+}
+
+void LatencyRecorder::pixel_lit(const tracker::TrackerSample& s, des::Time photon) {
+  const double age_ms = (photon - s.measured_at).to_ms();
+  record(mtp_, "motion_to_photon_ms", age_ms);
+  record(rotation_, "rotation_latency_ms", age_ms);
+  record(translation_, "translation_latency_ms", age_ms);
+  record(pixel_age_, "pixel_age_ms", age_ms);
+}
+
+void LatencyRecorder::pixel_age(const tracker::TrackerSample& s, des::Time photon) {
+  record(pixel_age_, "pixel_age_ms", (photon - s.measured_at).to_ms());
+}
+
+void LatencyRecorder::registration(int eye, const glm::dvec3& point_m, const glm::dvec3& drawn_head_dir,
+                                   des::Time photon) {
+  const tracker::Pose truth = eye_pose_of(motion_.pose_at(photon), eye, ipd_m_, stereo_);
+  const glm::dvec3 seen = truth.orientation * drawn_head_dir;
+  const glm::dvec3 should = glm::normalize(point_m - truth.position_m);
+  const double angle = angle_between_dirs(seen, should);
+  record(reg_arcmin_, "registration_error_arcmin", angle * 180.0 / kPi * 60.0);
+  record(reg_px_, "registration_error_px", angle / rad_per_px_);
+}
+
+void LatencyRecorder::record_carried(const tracker::TrackerSample& s, const tracker::Carriage& c, bool line) {
+  ++records_offered_;
+  des::Distribution* none = nullptr;
+  record(none, "tracker_to_host_ms", (c.visible - s.measured_at).to_ms());
+  if (line) {
+    none = nullptr;
+    record(none, "line_wait_ms", (c.start - s.ready_at).to_ms());
+  }
+  if (ledger_on_)
+    tracker_rows_.push_back({s.index, s.measured_at.ticks(), s.ready_at.ticks(), c.start.ticks(), c.end.ticks(),
+                             c.visible.ticks()});
 }
 
 void LatencyRecorder::record_probes(const display::ScanoutSpan& span, const tracker::Pose& drawn,
@@ -200,23 +306,14 @@ void LatencyRecorder::record_probes(const display::ScanoutSpan& span, const trac
   }
   const auto [first, last] = std::equal_range(cache.hits.begin(), cache.hits.end(), ProbeHit{span.line, 0.0, 0});
   for (auto h = first; h != last; ++h) {
-    const ProbeHit& hit = *h;
-    const int xi = static_cast<int>(hit.x_px);
+    const int xi = static_cast<int>(h->x_px);
     if (xi < span.x_begin || xi >= span.x_end) continue;
+    const glm::dvec3 p = probes_.points_m[h->probe];
+    const glm::dvec3 drawn_head_dir = glm::conjugate(drawn.orientation) * glm::normalize(p - drawn.position_m);
+    // Judged at the middle of the pixel's lit interval on a display with persistence.
     des::Time t = timing_.pixel_time(span.field, span.line, xi);
     if (persistence_) t = persistence_->lit(span.field, t).middle();
-    const tracker::Pose truth = eye_pose_of(motion_.pose_at(t), span.eye, ipd_m_, stereo_);
-    const glm::dvec3 p = probes_.points_m[hit.probe];
-    const glm::dvec3 drawn_head_dir = glm::conjugate(drawn.orientation) * glm::normalize(p - drawn.position_m);
-    const glm::dvec3 seen = truth.orientation * drawn_head_dir;
-    const glm::dvec3 should = glm::normalize(p - truth.position_m);
-    const double angle = angle_between_dirs(seen, should);
-    if (!reg_arcmin_) {
-      reg_arcmin_ = &distribution_ref("registration_error_arcmin");
-      reg_px_ = &distribution_ref("registration_error_px");
-    }
-    add_to(reg_arcmin_, "registration_error_arcmin", angle * 180.0 / kPi * 60.0);
-    add_to(reg_px_, "registration_error_px", angle / rad_per_px_);
+    registration(span.eye, p, drawn_head_dir, t);
   }
 }
 

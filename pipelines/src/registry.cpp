@@ -2,6 +2,7 @@
 
 #include "latsim/pipelines/latency_recorder.hpp"
 #include "latsim/pipelines/pipeline.hpp"
+#include "latsim/pipelines/run_clocks.hpp"
 #include "latsim/pipelines/timeline.hpp"
 
 namespace latsim::pipelines {
@@ -47,6 +48,11 @@ std::vector<std::string> PipelineRegistry::names() const {
   std::vector<std::string> out;
   for (const auto& [name, e] : entries_) out.push_back(name);
   return out;
+}
+
+const des::Clock& RunContext::clock(const std::string& name, const std::string& phase_pointer,
+                                    des::RationalSeconds nominal, des::ClockSettings settings) const {
+  return clocks.resolve(name, phase_pointer, nominal, settings);
 }
 
 tracker::Pose RunContext::eye_pose(const tracker::TrackerSample& s, int eye) const {

@@ -11,6 +11,7 @@
 #include "latsim/params/shared.hpp"
 #include "latsim/pipelines/frame_capture.hpp"
 #include "latsim/pipelines/latency_recorder.hpp"
+#include "latsim/pipelines/run_clocks.hpp"
 #include "latsim/pipelines/smear_recorder.hpp"
 #include "latsim/pipelines/timeline.hpp"
 #include "latsim/pipelines/tracker_host.hpp"
@@ -82,12 +83,29 @@ struct Run {
   std::unique_ptr<FrameCapture> frames;  // only when the scenario asks for frames
   std::unique_ptr<SmearRecorder> smear;  // only on a display with persistence
   RunFiles files;
+  std::unique_ptr<RunClocks> clocks;
   Timeline timeline;
   std::unique_ptr<Pipeline> pipeline;
   std::unique_ptr<RunContext> ctx;
   uint64_t seed = 1;
   des::Time duration;
 };
+
+// Every clock of the shared models gets the phase the scenario fixes or one
+// drawn for this replication; the display's raster takes the actual period
+// (the tracker and the link apply their rate errors themselves).
+void resolve_clocks(Run& run, uint64_t replication) {
+  params::SharedParams& p = run.shared;
+  run.clocks = std::make_unique<RunClocks>(run.seed, replication);
+  run.clocks->resolve("tracker", "/tracker/phase_ms", p.tracker.period, p.tracker.clock);
+  tracker::SerialLinkParams& serial = p.transport.serial;
+  if (p.transport.type == tracker::TransportParams::Type::Serial && serial.host_mode == tracker::SerialLinkParams::Poll)
+    run.clocks->resolve("poll", "/transport/poll_phase_ms", tracker::exact_period(serial.poll_interval),
+                        serial.poll_clock);
+  const des::Clock& display = run.clocks->resolve("display", "/display/phase_ms", p.display.raster.field_period,
+                                                  p.display.clock);
+  p.display.raster.field_period = display.period;
+}
 
 ProbeSet probes_of(const Run& run) {
   const double hfov_deg = run.shared.display.hfov_deg;
@@ -104,17 +122,21 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
   const PipelineFactory make_pipeline = bind_scenario(root, run.shared, registry);
   doc.check_unknown_keys(&scenario_schema(), &run.input_warnings);
 
+  run.duration = des::Time::from_seconds(run.shared.duration_s);
+  run.seed = options.seed ? *options.seed : static_cast<uint64_t>(run.shared.seed);
+  resolve_clocks(run, options.replication);
   const params::SharedParams& p = run.shared;
-  run.duration = des::Time::from_seconds(p.duration_s);
-  run.seed = options.seed ? *options.seed : static_cast<uint64_t>(p.seed);
   run.motion = tracker::make_motion(p.motion);
   run.tracker = std::make_unique<tracker::Tracker>(p.tracker, *run.motion,
                                                    des::RandomStream(run.seed, "tracker", options.replication));
   run.transport = tracker::make_transport(p.transport);
-  run.host = std::make_unique<TrackerHost>(run.sim, *run.tracker, *run.transport);
+  Timeline* timeline = p.output.timeline ? &run.timeline : nullptr;
+  run.timeline.set_max_entries(static_cast<size_t>(p.output.timeline_max_entries));
+  run.host = std::make_unique<TrackerHost>(run.sim, *run.tracker, *run.transport, timeline);
   const bool stereo = p.host.stereo;
-  run.display = std::make_unique<display::Display>(run.sim, display::RasterTiming(p.display.raster), stereo ? 2 : 1,
-                                                   p.display.fidelity, p.display.pixel_stride);
+  run.display = std::make_unique<display::Display>(run.sim,
+                                                   display::RasterTiming(p.display.raster, *p.display.clock.phase),
+                                                   stereo ? 2 : 1, p.display.fidelity, p.display.pixel_stride);
   run.recorder = std::make_unique<LatencyRecorder>(run.sim, *run.motion, *run.host, run.display->timing(),
                                                    probes_of(run), p.host.ipd_m, stereo, p.output.keep_samples);
   for (const auto& w : run.input_warnings) run.recorder->warn(w);
@@ -137,28 +159,47 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
     run.display->add_listener(run.frames.get());
   }
   LatencyRecorder* rec = run.recorder.get();
-  run.host->on_measured([rec](const tracker::TrackerSample& s, des::Time delivered) {
-    rec->add("tracker_to_host_ms", (delivered - s.measured_at).to_ms());
+  rec->set_timeline(timeline);
+  const bool line = run.transport->occupancy() > des::Time::zero();
+  run.host->on_carried([rec, line](const tracker::TrackerSample& s, const tracker::Carriage& c) {
+    rec->record_carried(s, c, line);
   });
 
   run.pipeline = make_pipeline();
   run.ctx = std::unique_ptr<RunContext>(new RunContext{
       run.sim, run.seed, options.replication, run.duration, *run.motion, p.tracker, *run.transport, *run.host,
-      *run.display, p.display, p.scene ? &*p.scene : nullptr, *run.recorder, run.files, p.host.ipd_m, stereo,
-      p.output.timeline ? &run.timeline : nullptr, run.frames.get()});
-  run.timeline.set_max_entries(static_cast<size_t>(p.output.timeline_max_entries));
+      *run.display, p.display, p.scene ? &*p.scene : nullptr, *run.recorder, run.files, *run.clocks, p.host.ipd_m, stereo,
+      timeline, run.frames.get()});
   run.pipeline->start(*run.ctx);
+  // The phases used, drawn or fixed, make the resolved scenario reproduce this run.
+  for (const auto& [pointer, ms] : run.clocks->phases_ms()) doc.resolve(pointer, ms);
+}
+
+RunTotals totals_of(const Run& run) {
+  RunTotals t;
+  t.duration = run.duration;
+  t.fields = run.display->fields_shown();
+  t.tracker_samples = run.host->samples_measured();
+  t.tracker_period = run.tracker->nominal_time(1) - run.tracker->nominal_time(0);
+  t.records_dropped = run.host->records_dropped();
+  t.records_waiting = run.host->records_waiting();
+  t.line_occupancy = run.transport->occupancy();
+  t.buffer_records = run.transport->buffer_records();
+  if (const auto* serial = dynamic_cast<const tracker::SerialLink*>(run.transport.get())) {
+    const tracker::SerialLinkParams& sp = serial->params();
+    if (sp.host_mode == tracker::SerialLinkParams::Interrupt) t.handler_time = serial->handler_time();
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "%lld-byte records at %g baud", static_cast<long long>(sp.record_bytes), sp.baud);
+    t.link_description = buf;
+  }
+  return t;
 }
 
 Json figures_of(Run& run) {
   LatencyRecorder& rec = *run.recorder;
-  const int64_t shown = rec.counter("images_shown");
-  rec.set("frame_rate_hz", static_cast<double>(shown) / run.display->eyes() / run.duration.to_seconds());
-  rec.set("fields", run.display->fields_shown());
-  rec.set("missed_refreshes", int64_t{0});
-  rec.set("tracker_samples", run.host->samples_measured());
   run.pipeline->finish(*run.ctx);
   if (run.frames) run.frames->finish();
+  rec.finish(totals_of(run));
   return rec.figures();
 }
 
@@ -166,11 +207,22 @@ std::string csv_of_ledger(const std::vector<Json>& ledger) {
   std::ostringstream out;
   const char* cols[] = {"frame",        "eye",      "field",         "sample",          "measured_ps",
                         "host_received_ps", "render_start_ps", "render_end_ps", "swap_ps", "scanout_start_ps",
-                        "scanout_end_ps"};
+                        "scanout_end_ps", "image"};
   for (size_t i = 0; i < std::size(cols); ++i) out << (i ? "," : "") << cols[i];
   out << '\n';
   for (const auto& row : ledger) {
     for (size_t i = 0; i < std::size(cols); ++i) out << (i ? "," : "") << row[cols[i]].get<int64_t>();
+    out << '\n';
+  }
+  return out.str();
+}
+
+std::string csv_of_rows(const std::vector<std::string>& columns, const std::vector<std::vector<int64_t>>& rows) {
+  std::ostringstream out;
+  for (size_t i = 0; i < columns.size(); ++i) out << (i ? "," : "") << columns[i];
+  out << '\n';
+  for (const auto& row : rows) {
+    for (size_t i = 0; i < row.size(); ++i) out << (i ? "," : "") << row[i];
     out << '\n';
   }
   return out.str();
@@ -254,7 +306,12 @@ Json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& optio
       files.write_text("timeline.csv", run.timeline.csv());
       files.write_text("timeline.json", run.timeline.trace_json());
     }
-    if (options.write_ledger) files.write_text("frames.csv", csv_of_ledger(run.recorder->ledger()));
+    if (options.write_ledger) {
+      const LatencyRecorder& r = *run.recorder;
+      files.write_text("frames.csv", csv_of_ledger(r.ledger()));
+      files.write_text("fields.csv", csv_of_rows(LatencyRecorder::field_ledger_columns(), r.field_ledger()));
+      files.write_text("tracker.csv", csv_of_rows(LatencyRecorder::tracker_ledger_columns(), r.tracker_ledger()));
+    }
     if (options.write_samples) files.write_text("samples.csv", csv_of_samples(run.recorder->sample_log()));
     files.write_text("figures.json", deterministic.dump(2) + "\n");
     // Written last: a run directory is complete exactly when summary.json exists.

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "latsim/pipelines/timeline.hpp"
+
 namespace latsim::pipelines {
 
 namespace {
@@ -10,8 +12,9 @@ constexpr des::Priority kSamplePriority = -10;
 constexpr size_t kPruneAbove = 4096;
 }  // namespace
 
-TrackerHost::TrackerHost(des::Simulator& sim, tracker::Tracker& tracker, tracker::Transport& transport)
-    : sim_(sim), tracker_(tracker), transport_(transport) {
+TrackerHost::TrackerHost(des::Simulator& sim, tracker::Tracker& tracker, tracker::Transport& transport,
+                         Timeline* timeline)
+    : sim_(sim), tracker_(tracker), transport_(transport), timeline_(timeline) {
   kind_sample_ = sim_.kind("tracker.sample");
 }
 
@@ -24,8 +27,8 @@ void TrackerHost::start(des::Time end) {
   }
 }
 
-void TrackerHost::on_measured(std::function<void(const tracker::TrackerSample&, des::Time)> fn) {
-  measured_fns_.push_back(std::move(fn));
+void TrackerHost::on_carried(std::function<void(const tracker::TrackerSample&, const tracker::Carriage&)> fn) {
+  carried_fns_.push_back(std::move(fn));
 }
 
 void TrackerHost::on_delivery(std::function<void(const tracker::TrackerSample&, des::Time)> fn) {
@@ -35,17 +38,71 @@ void TrackerHost::on_delivery(std::function<void(const tracker::TrackerSample&, 
 
 void TrackerHost::measure(tracker::TrackerSample s) {
   ++measured_;
-  const des::Time delivered = transport_.deliver(s.ready_at);
-  delivered_.push_back(Delivered{delivered, s});
-  for (auto& fn : measured_fns_) fn(s, delivered);
-  // Delivery events exist only when a pipeline listens for arrivals.
-  if (!delivery_fns_.empty())
-    sim_.at(delivered, kind_deliver_, [this, s, delivered] {
-      for (auto& fn : delivery_fns_) fn(s, delivered);
-    });
+  if (timeline_ && s.ready_at > s.measured_at) timeline_->add("TRACKER", s.index, -1, "tracker", s.measured_at, s.ready_at);
+  offer(s);
   if (delivered_.size() > kPruneAbove) prune();
   tracker::TrackerSample next = tracker_.sample(s.index + 1);
   if (next.measured_at < end_) sim_.at(next.measured_at, kind_sample_, [this, next] { measure(next); }, kSamplePriority);
+}
+
+// Everything that decides a record's fate up to its ready time is known when
+// it is measured (records are ready in index order), so the link is brought
+// up to that instant and the record is sent, or waits, or pushes out the
+// oldest waiting record.
+void TrackerHost::offer(const tracker::TrackerSample& s) {
+  advance(s.ready_at);
+  if (waiting_.empty() && link_free_at_ <= s.ready_at) {
+    send(s, s.ready_at);
+    return;
+  }
+  waiting_.push_back(s);
+  if (static_cast<int64_t>(waiting_.size()) > transport_.buffer_records()) {
+    const tracker::TrackerSample& old = waiting_.front();
+    if (timeline_) timeline_->add("DROPPED", old.index, -1, "serial buffer", old.ready_at, s.ready_at);
+    waiting_.pop_front();
+    ++dropped_;
+  }
+  if (!line_event_pending_) {
+    if (kind_line_ == 0) kind_line_ = sim_.kind("transport.line");
+    line_event_pending_ = true;
+    sim_.at(link_free_at_, kind_line_, [this] { line_free(); });
+  }
+}
+
+// Starts every waiting record whose turn on the link comes at or before t.
+void TrackerHost::advance(des::Time t) {
+  while (!waiting_.empty() && link_free_at_ <= t) {
+    const tracker::TrackerSample next = waiting_.front();
+    waiting_.pop_front();
+    send(next, std::max(link_free_at_, next.ready_at));
+  }
+}
+
+void TrackerHost::line_free() {
+  line_event_pending_ = false;
+  advance(sim_.now());
+  if (waiting_.empty()) return;
+  line_event_pending_ = true;
+  sim_.at(link_free_at_, kind_line_, [this] { line_free(); });
+}
+
+void TrackerHost::send(const tracker::TrackerSample& s, des::Time start) {
+  const tracker::Carriage c = transport_.carry(start);
+  link_free_at_ = start + transport_.occupancy();
+  delivered_.push_back(Delivered{c.visible, s});
+  for (auto& fn : carried_fns_) fn(s, c);
+  if (timeline_ && transport_.occupancy() > des::Time::zero()) {
+    if (c.start > s.ready_at) timeline_->add("QUEUED", s.index, -1, "serial buffer", s.ready_at, c.start);
+    timeline_->add("SEND", s.index, -1, "serial line", c.start, c.end);
+    if (c.visible > c.end) timeline_->add("HOST WAIT", s.index, -1, "host kernel", c.end, c.visible);
+  }
+  // Delivery events exist only when a pipeline listens for arrivals.
+  if (!delivery_fns_.empty()) {
+    const des::Time at = c.visible;
+    sim_.at(at, kind_deliver_, [this, s, at] {
+      for (auto& fn : delivery_fns_) fn(s, at);
+    });
+  }
 }
 
 void TrackerHost::prune() {

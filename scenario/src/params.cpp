@@ -218,6 +218,21 @@ void Section::duration(std::string_view key, des::Time& v, const KeySpec& spec) 
   }
 }
 
+void Section::duration(std::string_view key, std::optional<des::Time>& v, const KeySpec& spec) {
+  if (schema_) {
+    KeySpec bounded = spec;
+    if (!bounded.min) bounded.min = 0.0;
+    declare(key, "duration", bounded);
+    return;
+  }
+  if (!has(key)) return;
+  des::Time t;
+  KeySpec required = spec;
+  required.required = true;
+  duration(key, t, required);
+  v = t;
+}
+
 void Section::numbers(std::string_view key, std::vector<double>& v, const KeySpec& spec) {
   if (schema_) {
     KeySchema& k = declare(key, "numbers", spec);

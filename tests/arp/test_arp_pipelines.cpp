@@ -8,6 +8,7 @@
 #include "latsim/des/simulator.hpp"
 #include "latsim/display/display.hpp"
 #include "latsim/pipelines/latency_recorder.hpp"
+#include "latsim/pipelines/run_clocks.hpp"
 #include "latsim/pipelines/run_files.hpp"
 #include "latsim/pipelines/tracker_host.hpp"
 #include "latsim/scenario/params.hpp"
@@ -46,7 +47,7 @@ struct Harness {
     const auto pipeline = pipelines::builtin_pipelines().find(type)->bind(section, shared)();
     pipelines::RunContext ctx{sim,     1,        0,       duration, *motion,         tracker_params,
                               link,    host,     display, shared.display, shared.scene ? &*shared.scene : nullptr,
-                              recorder, files,   0.064,   false,    nullptr,         nullptr};
+                              recorder, files,   clocks,  0.064,   false,    nullptr,         nullptr};
     pipeline->start(ctx);
     host.start(duration);
     display.start(duration);
@@ -58,6 +59,7 @@ struct Harness {
   scenario::ScenarioDocument doc;
   tracker::TrackerParams tracker_params;
   pipelines::RunFiles files;
+  pipelines::RunClocks clocks{1, 0};
   des::Simulator sim;
   std::unique_ptr<tracker::MotionSource> motion;
   tracker::DirectLink link;
@@ -86,7 +88,9 @@ struct Latencies {
 };
 
 Latencies run_arp(double rate_hz, std::unique_ptr<tracker::MotionSource> motion) {
-  Harness h({{"pipeline", {{"type", "arp"}, {"render_rate_hz", rate_hz}, {"render_time_ms", 4.0}}}}, std::move(motion));
+  // Both loops start at t = 0, so the first display memory is shown at the same refresh.
+  Harness h({{"pipeline", {{"type", "arp"}, {"render_rate_hz", rate_hz}, {"render_time_ms", 4.0}, {"loop_phase_ms", 0.0}}}},
+            std::move(motion));
   h.run(des::Time::s(2));
   return {h.recorder.distribution("rotation_latency_ms")->summary(),
           h.recorder.distribution("translation_latency_ms")->summary()};

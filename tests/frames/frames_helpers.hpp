@@ -22,8 +22,9 @@ inline nlohmann::json small_scenario() {
   return {{"duration_s", 0.5},
           {"seed", 3},
           {"motion", {{"type", "still"}}},
-          {"tracker", {{"rate_hz", 1000}}},
-          {"display", {{"refresh_hz", 60}, {"width_px", 64}, {"height_px", 48}, {"hfov_deg", 60}}},
+          // Fixed clock phases: pinned images must not move with drawn ones.
+          {"tracker", {{"rate_hz", 1000}, {"phase_ms", 0}}},
+          {"display", {{"refresh_hz", 60}, {"width_px", 64}, {"height_px", 48}, {"hfov_deg", 60}, {"phase_ms", 0}}},
           {"pipeline", {{"type", "double_buffer"}, {"render", {{"fixed_ms", 0}}}}}};
 }
 

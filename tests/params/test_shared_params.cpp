@@ -97,7 +97,8 @@ TEST_CASE("tracker parameters parse with exact rates and noise", "[config]") {
   CHECK(ntsc.internal_delay == Time::ms(5));
   CHECK(ntsc.jitter == Time::us(500));
   CHECK(ntsc.jitter_shape == TrackerParams::Normal);
-  CHECK(ntsc.phase == Time::ms(2));
+  CHECK(ntsc.clock.phase == Time::ms(2));
+  CHECK_FALSE(plain.clock.phase.has_value());  // drawn per replication by a run
   CHECK(ntsc.noise_enabled);
   CHECK(ntsc.noise_covariance(0, 0) == Approx(1e-6));
   CHECK(ntsc.noise_covariance(4, 4) == Approx(std::pow(0.1 * std::acos(-1.0) / 180.0, 2)));

@@ -8,13 +8,14 @@
 
 namespace latsim::testing {
 
-/// A 60 Hz progressive mono HMD, tracker aligned with the refresh, instant rendering.
+/// A 60 Hz progressive mono HMD, tracker aligned with the refresh (both
+/// phases fixed at zero, not drawn), instant rendering.
 inline nlohmann::json base_scenario() {
   return {{"duration_s", 2},
           {"seed", 7},
           {"motion", {{"type", "constant"}, {"axis", {0, 1, 0}}, {"rate_deg_s", 30}}},
-          {"tracker", {{"rate_hz", 60}}},
-          {"display", {{"refresh_hz", 60}, {"width_px", 640}, {"height_px", 480}, {"hfov_deg", 60}}},
+          {"tracker", {{"rate_hz", 60}, {"phase_ms", 0}}},
+          {"display", {{"refresh_hz", 60}, {"width_px", 640}, {"height_px", 480}, {"hfov_deg", 60}, {"phase_ms", 0}}},
           {"pipeline", {{"type", "double_buffer"}, {"render", {{"fixed_ms", 0}}}}}};
 }
 

@@ -188,7 +188,9 @@ TEST_CASE("the analytic phase enumeration agrees with the simulation", "[double_
       {"aligned direct", 60, 60, Json{{"type", "direct"}}, 0.0},
       {"59.94 Hz display, 60 Hz tracker", 60, "60000/1001", Json{{"type", "direct"}}, 5.0},
       {"serial poll 30 ms", 60, 60,
-       Json{{"type", "serial"}, {"record_bytes", 24}, {"baud", 38400}, {"host", "poll"}, {"poll_interval_ms", 30}}, 20.0},
+       Json{{"type", "serial"}, {"record_bytes", 24}, {"baud", 38400}, {"host", "poll"}, {"poll_interval_ms", 30},
+            {"poll_phase_ms", 7}},
+       20.0},
       {"serial interrupt, 59.94 Hz tracker", "60000/1001", 60,
        Json{{"type", "serial"}, {"record_bytes", 24}, {"baud", 38400}, {"host", "interrupt"}}, 12.0},
   };
@@ -196,7 +198,8 @@ TEST_CASE("the analytic phase enumeration agrees with the simulation", "[double_
     SECTION(c.name) {
       Json s = base_scenario();
       s["duration_s"] = 20;
-      s["tracker"] = {{"rate_hz", c.tracker_rate}, {"internal_delay_ms", 1.5}};
+      // Fixed phases: the enumeration covers exactly the phases this run takes.
+      s["tracker"] = {{"rate_hz", c.tracker_rate}, {"internal_delay_ms", 1.5}, {"phase_ms", 0.25}};
       s["display"]["refresh_hz"] = c.refresh;
       s["display"]["height_px"] = 32;
       s["transport"] = c.transport;

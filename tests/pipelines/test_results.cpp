@@ -37,13 +37,14 @@ TEST_CASE("named figures nest by their dotted names; numeric parts are array ele
   t.set("complete", true);
   t.list("frames");
   t.object("stage_ms");
-  t.set("strategy", std::string("double_buffer"));  // a later value replaces an earlier one
+  // A figure has one value: a second one is a programming error, not an update.
+  CHECK_THROWS_AS(t.set("strategy", std::string("double_buffer")), std::logic_error);
   const Json f = t.to_json({}, {{"fields", 12}});
   CHECK(f["utilisation"]["gp"] == 0.25);
   REQUIRE(f["memories"].is_array());
   CHECK(f["memories"][0]["renders"] == 3);
   CHECK(f["memories"][1]["renders"] == 7);
-  CHECK(f["strategy"] == "double_buffer");
+  CHECK(f["strategy"] == "frameless");
   CHECK(f["complete"] == true);
   CHECK(f["frames"] == Json::array());
   CHECK(f["stage_ms"] == Json::object());
@@ -56,15 +57,18 @@ TEST_CASE("every distribution has one format, whoever kept it", "[results]") {
   for (double v : {10.0, 30.0}) kept.add(v);
   pipelines::FigureTable t;
   t.publish("stage_ms.SEND", kept);
-  t.publish("render_latency_fields", kept);  // replaces the recorder's own of that name
+  t.publish("transform_to_copy_end_fields", kept);
+  CHECK_THROWS_AS(t.publish("stage_ms.SEND", own), std::logic_error);
   const Json f = t.to_json({{"render_latency_fields", own}, {"display_ms", own}}, {});
-  for (const Json* d : {&f["display_ms"], &f["stage_ms"]["SEND"], &f["render_latency_fields"]}) {
+  for (const Json* d : {&f["display_ms"], &f["stage_ms"]["SEND"], &f["render_latency_fields"],
+                        &f["transform_to_copy_end_fields"]}) {
     for (const char* key : {"count", "mean", "stddev", "min", "p50", "p90", "p99", "p999", "max", "histogram"})
       CHECK(d->contains(key));
   }
   CHECK(f["display_ms"]["mean"] == 2.5);                // (1 + 2 + 3 + 4) / 4
   CHECK(f["stage_ms"]["SEND"]["mean"] == 20.0);         // (10 + 30) / 2
-  CHECK(f["render_latency_fields"]["count"] == 2);
+  CHECK(f["render_latency_fields"]["count"] == 4);
+  CHECK(f["transform_to_copy_end_fields"]["count"] == 2);
 }
 
 TEST_CASE("run files are written atomically into the run directory, or not at all", "[results]") {

@@ -35,7 +35,7 @@ TEST_CASE("tracker sample times are exact at 59.94 Hz after hours", "[tracker]")
 
 TEST_CASE("phase and internal delay shift measurement and readiness", "[tracker]") {
   TrackerParams p = ntsc_params();
-  p.phase = Time::ms(3);
+  p.clock.phase = Time::ms(3);
   p.internal_delay = Time::us(7500);
   const ConstantAngularVelocity spin(Pose{}, {0, 1, 0}, 90.0);
   Tracker tracker(p, spin, RandomStream(1, "tracker"));
@@ -61,7 +61,7 @@ TEST_CASE("samples must be drawn in increasing index order", "[tracker]") {
 TEST_CASE("uniform jitter stays within bounds and keeps times increasing", "[tracker]") {
   TrackerParams p = ntsc_params();
   p.jitter = Time::ms(2);
-  p.phase = Time::ms(5);
+  p.clock.phase = Time::ms(5);
   const StillMotion still(Pose{});
   Tracker tracker(p, still, RandomStream(7, "tracker"));
   double sum_ms = 0.0;
@@ -87,7 +87,7 @@ TEST_CASE("normal jitter has the configured spread", "[tracker]") {
   TrackerParams p = ntsc_params();
   p.jitter = Time::ms(1);  // small against the period: clamping practically never acts
   p.jitter_shape = TrackerParams::Normal;
-  p.phase = Time::ms(10);
+  p.clock.phase = Time::ms(10);
   const StillMotion still(Pose{});
   Tracker tracker(p, still, RandomStream(7, "tracker"));
   double sum = 0.0;

@@ -77,7 +77,7 @@ TEST_CASE("per-character interrupt cost delays the record, with backlog when slo
 TEST_CASE("polling delivers at the first poll at or after completion", "[transport]") {
   SerialLinkParams p = serial(SerialLinkParams::Poll);
   p.poll_interval = Time::ms(30);
-  p.poll_phase = Time::ms(7);
+  p.poll_clock.phase = Time::ms(7);
   SerialLink link(p);
   const Time tx = link.transmit_time();
   // Ready at 0: complete at 16.67 ms, next poll at 37 ms.

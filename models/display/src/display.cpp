@@ -85,10 +85,13 @@ void Display::retrace(int64_t field) {
   switch (fidelity_) {
     case ScanoutFidelity::Field:
       // The whole field is computed now from the content at the retrace:
-      // cheap, but a swap during scanout (tearing) is not seen.
-      for (int j = 0; j < timing_.lines_per_field(); ++j)
-        for (int eye = 0; eye < eyes(); ++eye)
-          emit(eye, field, j, 0, timing_.params().width_px, timing_.line_time(field, j));
+      // cheap, but a swap during scanout (tearing) is not seen. Lines lit
+      // after the end of the run are left out, as the other levels leave them.
+      for (int j = 0; j < timing_.lines_per_field(); ++j) {
+        const des::Time t = timing_.line_time(field, j);
+        if (t > end_) break;
+        for (int eye = 0; eye < eyes(); ++eye) emit(eye, field, j, 0, timing_.params().width_px, t);
+      }
       break;
     case ScanoutFidelity::Line:
       sim_.at(timing_.line_time(field, 0), kind_line_, [this, field] { scan_line(field, 0); });

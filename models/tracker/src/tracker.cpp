@@ -40,13 +40,14 @@ NoiseCovariance noise_factor(const NoiseCovariance& covariance) {
 Tracker::Tracker(TrackerParams params, const MotionSource& motion, des::RandomStream stream)
     : params_(params),
       motion_(motion),
-      schedule_(params.phase, params.period),
+      schedule_(params.clock.phase.value_or(des::Time::zero()),
+                des::period_with_rate_error(params.period, params.clock.rate_error_ppm)),
       jitter_stream_(stream.substream("jitter")),
       noise_stream_(stream.substream("noise")),
       noise_factor_(params.noise_enabled ? noise_factor(params.noise_covariance) : NoiseCovariance::Zero()) {
   if (params.internal_delay < des::Time::zero()) throw std::invalid_argument("tracker internal delay is negative");
   if (params.jitter < des::Time::zero()) throw std::invalid_argument("tracker jitter is negative");
-  if (params.phase < des::Time::zero()) throw std::invalid_argument("tracker phase is negative");
+  if (params.clock.phase.value_or(des::Time::zero()) < des::Time::zero()) throw std::invalid_argument("tracker phase is negative");
 }
 
 des::Time Tracker::jitter_offset() {

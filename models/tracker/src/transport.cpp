@@ -16,27 +16,32 @@ void check_order(std::optional<des::Time>& last, des::Time ready_at) {
   last = ready_at;
 }
 
+}  // namespace
+
 des::RationalSeconds exact_period(des::Time interval) {
   const int64_t g = std::gcd(interval.ticks(), des::Time::kTicksPerSecond);
   return des::RationalSeconds{interval.ticks() / g, des::Time::kTicksPerSecond / g};
 }
 
-}  // namespace
-
-des::Time DirectLink::deliver(des::Time ready_at) {
+des::Time Transport::deliver(des::Time ready_at) {
   check_order(last_ready_at_, ready_at);
-  return ready_at;
+  const des::Time start = free_at_ ? std::max(ready_at, *free_at_) : ready_at;
+  free_at_ = start + occupancy();
+  return carry(start).visible;
 }
 
 SerialLink::SerialLink(SerialLinkParams params) : params_(params) {
   if (params.record_bytes < 1) throw std::invalid_argument("serial record must be at least one byte");
   if (params.bits_per_byte < 1) throw std::invalid_argument("serial bits per byte must be at least one");
   if (!(params.baud > 0.0) || !std::isfinite(params.baud)) throw std::invalid_argument("baud rate must be positive");
+  if (params.buffer_records < 1) throw std::invalid_argument("a serial line buffers at least one record");
   if (params.per_char_interrupt_cost < des::Time::zero())
     throw std::invalid_argument("per-character interrupt cost is negative");
   if (params.host_mode == SerialLinkParams::Poll) {
     if (params.poll_interval <= des::Time::zero()) throw std::invalid_argument("poll interval must be positive");
-    polls_ = des::PeriodicSchedule(params.poll_phase, exact_period(params.poll_interval));
+    polls_ = des::PeriodicSchedule(params.poll_clock.phase.value_or(des::Time::zero()),
+                                   des::period_with_rate_error(exact_period(params.poll_interval),
+                                                               params.poll_clock.rate_error_ppm));
   }
   character_time_ = arrival_of_character(des::Time::zero(), 1);
   transmit_time_ = arrival_of_character(des::Time::zero(), params.record_bytes);
@@ -48,15 +53,14 @@ des::Time SerialLink::arrival_of_character(des::Time record_start, int64_t i) co
   return record_start + des::Time::from_seconds(bits / params_.baud);
 }
 
-des::Time SerialLink::deliver(des::Time ready_at) {
-  check_order(last_ready_at_, ready_at);
-  const des::Time start = line_free_at_ ? std::max(ready_at, *line_free_at_) : ready_at;
+Carriage SerialLink::carry(des::Time start) {
+  if (last_start_ && start < *last_start_)
+    throw std::logic_error("serial records must be carried in order of start (" + start.str() + " after " +
+                           last_start_->str() + ")");
+  last_start_ = start;
   const des::Time end = arrival_of_character(start, params_.record_bytes);
-  line_free_at_ = end;
-
-  if (params_.host_mode == SerialLinkParams::Poll) return polls_.at(polls_.index_at_or_after(end));
-
-  if (params_.per_char_interrupt_cost == des::Time::zero()) return end;
+  if (params_.host_mode == SerialLinkParams::Poll) return Carriage{start, end, polls_.at(polls_.index_at_or_after(end))};
+  if (params_.per_char_interrupt_cost == des::Time::zero()) return Carriage{start, end, end};
   // Each character's handler starts when the character is in and the
   // previous handler has returned; a cost above the character time makes
   // handlers back up, and the backlog carries over to the next record.
@@ -64,7 +68,7 @@ des::Time SerialLink::deliver(des::Time ready_at) {
   for (int64_t i = 1; i <= params_.record_bytes; ++i)
     handler_done = std::max(arrival_of_character(start, i), handler_done) + params_.per_char_interrupt_cost;
   handler_free_at_ = handler_done;
-  return handler_done;
+  return Carriage{start, end, handler_done};
 }
 
 }  // namespace latsim::tracker

@@ -8,6 +8,7 @@
 
 #include <glm/glm.hpp>
 
+#include "latsim/des/clock.hpp"
 #include "latsim/display/params.hpp"
 #include "latsim/renderer/scene_spec.hpp"
 #include "latsim/scenario/params.hpp"
@@ -80,6 +81,10 @@ void bind(scenario::Section& s, tracker::TrackerParams& p);
 void bind(scenario::Section& s, tracker::TransportParams& p);
 void bind(scenario::Section& s, display::DisplayParams& p);
 void bind(scenario::Section& s, SceneParams& p);
+
+/// A clock's `<prefix>phase_ms` (absent: drawn per replication, uniformly
+/// over one period, from the clock's own stream) and `<prefix>rate_error_ppm`.
+void clock(scenario::Section& s, std::string_view prefix, des::ClockSettings& c, std::string_view what);
 
 /// Three numbers [x, y, z].
 void vec3(scenario::Section& s, std::string_view key, glm::dvec3& v, scenario::KeySpec spec);

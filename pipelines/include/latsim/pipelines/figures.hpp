@@ -21,18 +21,19 @@ using FigureValue = std::variant<int64_t, double, bool, std::string>;
 /// ("memories.0.renders") an array element.
 class FigureTable {
  public:
+  /// Sets a figure once; a second value for the same name is a logic error.
   void set(const std::string& name, FigureValue value);
   bool has(const std::string& name) const { return values_.count(name) != 0; }
   /// Makes sure an (empty) list or object exists at `name`.
   void list(const std::string& name) { containers_[name] = true; }
   void object(const std::string& name) { containers_[name] = false; }
   /// A distribution kept outside the recorder, serialised like the recorder's.
-  void publish(const std::string& name, const des::Distribution& d) { published_.insert_or_assign(name, d); }
+  void publish(const std::string& name, const des::Distribution& d);
   void warn(std::string text) { warnings_.push_back(std::move(text)); }
   const std::vector<std::string>& warnings() const { return warnings_; }
 
   /// The figures object: distributions, then counters under "counts", then
-  /// published distributions and named values (each may replace an earlier one).
+  /// published distributions and named values.
   nlohmann::json to_json(const std::map<std::string, des::Distribution>& distributions,
                          const std::map<std::string, int64_t>& counters) const;
   /// {count, mean, stddev, min, p50, p90, p99, p999, max, histogram}.

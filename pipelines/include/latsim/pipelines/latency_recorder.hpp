@@ -1,8 +1,8 @@
-// Turns what the display lights into latency and registration-error samples.
+// Turns what the display lights into the figures of docs/figures.md.
 #pragma once
 
-#include <deque>
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <string>
 #include <vector>
@@ -15,8 +15,11 @@
 #include "latsim/display/display.hpp"
 #include "latsim/pipelines/figures.hpp"
 #include "latsim/pipelines/pipeline.hpp"
+#include "latsim/tracker/transport.hpp"
 
 namespace latsim::pipelines {
+
+class Timeline;
 
 /// Where a probe point is drawn versus where it belongs, per lit field.
 struct ProbeSet {
@@ -24,19 +27,60 @@ struct ProbeSet {
   double hfov_deg = 90.0;            ///< display field of view (for pixels and visibility)
 };
 
-/// Receives every scanout span, looks up the image shown, and records named
-/// distributions: motion_to_photon_ms, display_ms, render_latency_ms, image
-/// ages, and registration error at probe points. Pipelines add their own
-/// named samples through add(), counts through count(), other figures through
-/// set() and doubtful input through warn(); figures() is the run's figures.
+/// What the run knows at its end about its shared models.
+struct RunTotals {
+  des::Time duration;
+  int64_t fields = 0;            ///< retraces the display made
+  int64_t tracker_samples = 0;   ///< samples measured
+  des::Time tracker_period;      ///< actual sampling period (for overload messages)
+  /// The link: records offered, dropped, still waiting; its occupancy, buffer and handler time per record.
+  int64_t records_dropped = 0;
+  int64_t records_waiting = 0;
+  des::Time line_occupancy;      ///< zero: a link without a line (direct)
+  int64_t buffer_records = 0;
+  des::Time handler_time;        ///< interrupt handlers per record (zero: none modelled)
+  std::string link_description;  ///< e.g. "40-byte records at 19200 baud"
+};
+
+/// The one place where the figures of the glossary (docs/figures.md) are
+/// computed, for every pipeline. It receives every scanout span, looks up the
+/// image shown and records motion-to-photon, rotation and translation
+/// latency, display delay, image age and registration error at probe points;
+/// per image, render latency; per record, the link's delays; at the end,
+/// frame rate, missed refreshes and the link's load. Pipelines that light
+/// pixels without whole images report them through pixel_lit(). Pipeline
+/// figures go through add(), count(), set() and publish(), which refuse a
+/// glossary name and a name already taken: no figure is ever overwritten.
 class LatencyRecorder : public display::ScanoutListener {
  public:
   LatencyRecorder(const des::Simulator& sim, const tracker::MotionSource& motion, const HostFeed& host,
                   const display::RasterTiming& timing, ProbeSet probes, double ipd_m, bool stereo, bool keep_samples);
 
+  /// Where the host application stage (sample visible to render start) is logged.
+  void set_timeline(Timeline* timeline) { timeline_ = timeline; }
+
   /// Registers an image and returns the id to present to the display.
   int64_t register_image(const ImageRecord& record);
   const ImageRecord* image(int64_t id) const;
+  /// The pipeline shows whole images (it has a frame rate, and a run that
+  /// shows none is warned about).
+  void expects_images() { expects_images_ = true; }
+  /// A render began that the pipeline means to show by the first refresh at
+  /// or after `due_by`; every refresh from then on that shows no new image
+  /// counts as missed until one is shown. A pipeline that never calls this
+  /// sets itself no refresh deadline and reports no missed_refreshes.
+  void image_due(des::Time due_by);
+
+  /// A pixel lit at `photon` with a colour computed wholly from sample `s`
+  /// (frameless rendering): motion-to-photon, rotation, translation and pixel age.
+  void pixel_lit(const tracker::TrackerSample& s, des::Time photon);
+  /// Age of a sampled pixel of a whole image computed from `s`.
+  void pixel_age(const tracker::TrackerSample& s, des::Time photon);
+  /// Registration error of world point `point_m`, drawn along head-frame
+  /// direction `drawn_head_dir` of eye `eye`, lit at `photon`.
+  void registration(int eye, const glm::dvec3& point_m, const glm::dvec3& drawn_head_dir, des::Time photon);
+  /// A record given to the link (`line`: a serial line, whose wait is reported).
+  void record_carried(const tracker::TrackerSample& s, const tracker::Carriage& c, bool line);
 
   /// Adds one sample to the named distribution (created on first use).
   void add(const std::string& name, double value);
@@ -51,15 +95,19 @@ class LatencyRecorder : public display::ScanoutListener {
   const std::map<std::string, int64_t>& counters() const { return counters_; }
 
   /// A named figure ("frames_rendered", "utilisation.gp", "memories.0.renders").
-  void set(const std::string& name, FigureValue value) { table_.set(name, std::move(value)); }
+  void set(const std::string& name, FigureValue value);
   /// An empty list or object at `name` unless something is set there.
-  void list(const std::string& name) { table_.list(name); }
-  void object(const std::string& name) { table_.object(name); }
+  void list(const std::string& name);
+  void object(const std::string& name);
   /// A distribution a model kept itself, reported under `name` like the recorder's own.
-  void publish(const std::string& name, const des::Distribution& d) { table_.publish(name, d); }
+  void publish(const std::string& name, const des::Distribution& d);
   /// Legal but doubtful: reported on stderr and in summary.json's "warnings".
   void warn(std::string text) { table_.warn(std::move(text)); }
   const std::vector<std::string>& warnings() const { return table_.warnings(); }
+
+  /// Completes the figures that need the whole run (pending spans, frame
+  /// rate, missed refreshes, the link's load) and warns about overload.
+  void finish(const RunTotals& totals);
   /// Every figure in the one serialisation of figures.json.
   nlohmann::json figures() const { return table_.to_json(dists_, counters_); }
 
@@ -70,9 +118,15 @@ class LatencyRecorder : public display::ScanoutListener {
   /// its pixel's lit interval (nullptr: at its scanout instant).
   void set_persistence(const display::Persistence* persistence) { persistence_ = persistence; }
 
-  /// One row per displayed image: every stage timestamp (the ledger).
+  /// The ledger: frames.csv (one row per image first shown), fields.csv (one
+  /// row per run of spans of a field showing one image) and tracker.csv (one
+  /// row per sample carried).
   void enable_ledger(bool on) { ledger_on_ = on; }
   const std::vector<nlohmann::json>& ledger() const { return ledger_; }
+  const std::vector<std::vector<int64_t>>& field_ledger() const { return field_rows_; }
+  const std::vector<std::vector<int64_t>>& tracker_ledger() const { return tracker_rows_; }
+  static const std::vector<std::string>& field_ledger_columns();
+  static const std::vector<std::string>& tracker_ledger_columns();
   /// Raw (time, name, value) samples for samples.csv, when enabled.
   void enable_sample_log(bool on) { sample_log_on_ = on; }
   struct LoggedSample { double t_ms; std::string name; double value; };
@@ -81,10 +135,22 @@ class LatencyRecorder : public display::ScanoutListener {
  private:
   struct ProbeHit { int line; double x_px; size_t probe; bool operator<(const ProbeHit& o) const { return line < o.line; } };
   struct ProbeCache { int64_t image_id = -2; int64_t field = -1; int64_t sample_index = -1; std::vector<ProbeHit> hits; };
+  struct Held { ImageRecord record; bool shown = false; };
+  /// A span whose orientation must come from a sample not simulated yet.
+  struct Pending { ImageRecord record; display::ScanoutSpan span; };
+
+  void record_span(const ImageRecord& img, const display::ScanoutSpan& span);
   void record_probes(const display::ScanoutSpan& span, const tracker::Pose& drawn, int64_t sample_index,
                      int64_t image_id);
   void first_shown(const ImageRecord& img, const display::ScanoutSpan& span);
+  void ledger_span(int64_t image_id, const ImageRecord& img, const display::ScanoutSpan& span);
+  void flush_pending();
+  void close_field();
   void prune(int64_t below_id);
+  /// Glossary figures only through here; pipelines through add().
+  void record(des::Distribution*& d, const char* name, double value);
+  void refuse(const std::string& name, const char* how) const;
+  void link_figures(const RunTotals& totals);
 
   const des::Simulator& sim_;
   const tracker::MotionSource& motion_;
@@ -95,8 +161,9 @@ class LatencyRecorder : public display::ScanoutListener {
   bool stereo_;
   bool keep_samples_;
   const display::Persistence* persistence_ = nullptr;
-  struct Held { ImageRecord record; bool shown = false; };
+  Timeline* timeline_ = nullptr;
   std::map<int64_t, Held> images_;
+  std::vector<Pending> pending_;
   ProbeCache probe_cache_[2];
   double rad_per_px_ = 0.0;
   int64_t scan_field_ = INT64_MIN;  // field whose scanout start is cached
@@ -108,12 +175,28 @@ class LatencyRecorder : public display::ScanoutListener {
   des::Distribution* display_ms_ = nullptr;
   des::Distribution* rotation_ = nullptr;
   des::Distribution* translation_ = nullptr;
+  des::Distribution* image_age_ = nullptr;
+  des::Distribution* pixel_age_ = nullptr;
   des::Distribution* reg_arcmin_ = nullptr;
   des::Distribution* reg_px_ = nullptr;
-  void add_to(des::Distribution* d, const char* name, double value);
   std::map<std::string, int64_t> counters_;
+  // Refresh deadlines: due times of renders not yet shown, oldest first, and
+  // the field (one eye) being scanned now.
+  std::deque<des::Time> due_;
+  bool deadlines_ = false;
+  bool expects_images_ = false;
+  int64_t open_field_ = INT64_MIN;
+  des::Time open_retrace_;
+  bool new_in_open_field_ = false;
+  int64_t missed_ = 0;
+  int64_t first_shown_eye0_ = 0;
+  int64_t images_registered_ = 0;
+  int64_t records_offered_ = 0;
+  // Ledger.
   bool ledger_on_ = false;
   std::vector<nlohmann::json> ledger_;
+  std::vector<std::vector<int64_t>> field_rows_;
+  std::vector<std::vector<int64_t>> tracker_rows_;
   bool sample_log_on_ = false;
   std::vector<LoggedSample> sample_log_;
   FigureTable table_;

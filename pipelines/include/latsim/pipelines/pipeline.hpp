@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "latsim/des/clock.hpp"
 #include "latsim/des/random.hpp"
 #include "latsim/des/simulator.hpp"
 #include "latsim/display/display.hpp"
@@ -31,6 +32,7 @@ class LatencyRecorder;
 class Timeline;
 class FrameCapture;
 class RunFiles;
+class RunClocks;
 
 /// One image a pipeline puts in a front buffer: the pose it was computed from
 /// and when each stage ran. Registered with the recorder before presenting.
@@ -89,12 +91,18 @@ struct RunContext {
   const params::SceneParams* scene;            ///< /scene, when the scenario has one
   LatencyRecorder& recorder;                   ///< every figure and warning goes here
   RunFiles& files;                             ///< every result file goes here
+  RunClocks& clocks;                           ///< every clock of the run, with its phase
   double ipd_m = 0.064;
   bool stereo = false;
   Timeline* timeline = nullptr;                ///< stage timeline, when the pipeline keeps one
   FrameCapture* frames = nullptr;              ///< frame capture, only when the scenario asks for frames
 
   des::RandomStream stream(std::string_view name) const { return des::RandomStream(seed, name, replication); }
+  /// A clock of the pipeline's own (its host application loop): phase fixed
+  /// by the scenario or drawn from stream "clock.<name>", recorded at
+  /// `phase_pointer` in the resolved scenario; rate error applied.
+  const des::Clock& clock(const std::string& name, const std::string& phase_pointer, des::RationalSeconds nominal,
+                          des::ClockSettings settings) const;
   /// The eye pose of a tracker sample (mono: the head pose).
   tracker::Pose eye_pose(const tracker::TrackerSample& s, int eye) const;
   /// An image of `eye` rendered from sample `s` between `start` and `end`,

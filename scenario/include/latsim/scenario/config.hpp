@@ -119,6 +119,9 @@ class ScenarioDocument {
   void check_unknown_keys(const ObjectSchema* schema = nullptr, std::vector<std::string>* warnings = nullptr) const;
   /// The scenario as run: input plus every default applied.
   const nlohmann::json& resolved() const { return log_->resolved; }
+  /// Records a value the run chose where the scenario left it open (a clock
+  /// phase drawn for this replication), so the resolved scenario reproduces the run.
+  void resolve(const std::string& pointer, nlohmann::json value) const;
 
  private:
   nlohmann::json doc_;

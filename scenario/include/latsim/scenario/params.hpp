@@ -101,6 +101,8 @@ class Section {
   void rate(std::string_view key, des::RationalSeconds& period, const KeySpec& spec);
   /// A duration in spec.unit ("s", "ms" or "us"), not negative unless spec.min says otherwise.
   void duration(std::string_view key, des::Time& v, const KeySpec& spec);
+  /// No default: absent stays absent (spec.default_doc says what happens then).
+  void duration(std::string_view key, std::optional<des::Time>& v, const KeySpec& spec);
   void numbers(std::string_view key, std::vector<double>& v, const KeySpec& spec);
   /// Rows of numbers (points, a matrix); spec.count is the length of each row.
   void number_rows(std::string_view key, std::vector<std::vector<double>>& v, const KeySpec& spec);

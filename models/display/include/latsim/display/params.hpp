@@ -3,6 +3,7 @@
 
 #include <optional>
 
+#include "latsim/des/clock.hpp"
 #include "latsim/display/display.hpp"
 #include "latsim/display/persistence.hpp"
 #include "latsim/display/raster_timing.hpp"
@@ -18,6 +19,8 @@ struct DisplayParams {
   int pixel_stride = 1;
   /// How long a written pixel is lit; none: at its scanout instant only.
   std::optional<PersistenceParams> persistence;
+  /// The display's oscillator: retrace phase and refresh rate error.
+  des::ClockSettings clock;
 };
 
 }  // namespace latsim::display

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 
+#include "latsim/des/clock.hpp"
 #include "latsim/des/random.hpp"
 #include "latsim/des/time.hpp"
 #include "latsim/tracker/motion_source.hpp"
@@ -20,7 +21,7 @@ using NoiseCovariance = Eigen::Matrix<double, 6, 6>;
 struct TrackerParams {
   enum JitterShape { Uniform, Normal };
 
-  /// Exact sampling period (e.g. RationalSeconds::period_of_hz(60000, 1001)).
+  /// Exact nominal sampling period (e.g. RationalSeconds::period_of_hz(60000, 1001)).
   des::RationalSeconds period{1, 60};
   /// From measuring the pose to the record starting to leave the tracker.
   des::Time internal_delay;
@@ -29,8 +30,9 @@ struct TrackerParams {
   JitterShape jitter_shape = Uniform;
   NoiseCovariance noise_covariance = NoiseCovariance::Zero();
   bool noise_enabled = false;
-  /// Nominal time of sample 0.
-  des::Time phase;
+  /// The tracker's oscillator: time of sample 0 (none: 0; a run draws one)
+  /// and rate error (the actual period is `period` corrected by it).
+  des::ClockSettings clock;
 };
 
 /// One tracker report.
@@ -52,7 +54,8 @@ struct TrackerSample {
 NoiseCovariance noise_factor(const NoiseCovariance& covariance);
 
 /// Produces samples k = 0, 1, 2, ... of a motion source. Sample k is nominally
-/// measured at phase + k * period (exact, from the index); jitter adds a
+/// measured at phase + k * period (exact, from the index; the period with
+/// the clock's rate error applied); jitter adds a
 /// random offset and noise perturbs the pose. Jitter and noise draw from two
 /// substreams ("jitter", "noise") of the tracker's stream, so switching one on
 /// does not change the other's numbers; with neither configured nothing is

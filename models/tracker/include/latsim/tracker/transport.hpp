@@ -6,32 +6,55 @@
 #include <optional>
 #include <string>
 
+#include "latsim/des/clock.hpp"
 #include "latsim/des/time.hpp"
 #include "latsim/tracker/tracker.hpp"
 
 namespace latsim::tracker {
 
-/// A link from the tracker to the host application: given when a record
-/// starts leaving the tracker, says when the application can see it. Links
-/// keep state (a busy line, a busy interrupt handler), so records must be
-/// passed in order of non-decreasing ready time.
+/// A whole number of picoseconds as an exact rational number of seconds.
+des::RationalSeconds exact_period(des::Time interval);
+
+/// When one record crossed a link: it started to leave the tracker, its last
+/// character arrived at the host, and the host application could see it.
+struct Carriage {
+  des::Time start;
+  des::Time end;
+  des::Time visible;
+};
+
+/// A link from the tracker to the host application. A record occupies the
+/// link for occupancy() from its start; records that find the link busy wait
+/// in a buffer of buffer_records() (the caller keeps that queue: see
+/// pipelines::TrackerHost). Links keep state (a busy interrupt handler), so
+/// records must be carried in order of start.
 class Transport {
  public:
   virtual ~Transport() = default;
-  /// When the host application can see the record; throws std::logic_error
-  /// if ready_at is earlier than the previous call's.
-  virtual des::Time deliver(des::Time ready_at) = 0;
+  /// The record that starts leaving at `start`, the link being free then.
+  virtual Carriage carry(des::Time start) = 0;
+  /// How long one record holds the link (zero: records never wait).
+  virtual des::Time occupancy() const { return des::Time::zero(); }
+  /// Records that may wait behind the one on the link; a newer one arriving
+  /// at a full buffer pushes the oldest waiting record out (drop-oldest).
+  virtual int64_t buffer_records() const { return 1; }
   virtual std::string name() const = 0;
+
+  /// With an unbounded buffer: when the host application can see a record
+  /// ready at `ready_at`. Throws std::logic_error if ready_at is earlier than
+  /// the previous call's.
+  des::Time deliver(des::Time ready_at);
+
+ private:
+  std::optional<des::Time> last_ready_at_;
+  std::optional<des::Time> free_at_;
 };
 
 /// An ideal link: the application sees each record the instant it is ready.
 class DirectLink final : public Transport {
  public:
-  des::Time deliver(des::Time ready_at) override;
+  Carriage carry(des::Time start) override { return Carriage{start, start, start}; }
   std::string name() const override { return "direct"; }
-
- private:
-  std::optional<des::Time> last_ready_at_;
 };
 
 /// Settings of SerialLink.
@@ -42,30 +65,38 @@ struct SerialLinkParams {
   /// Bits on the wire per byte: start + 8 data + stop = 10.
   int64_t bits_per_byte = 10;
   double baud = 19200.0;
+  /// Records that may wait for the line behind the one being sent; when a
+  /// newer record arrives to a full buffer the oldest waiting one is dropped.
+  int64_t buffer_records = 8;
   HostMode host_mode = Poll;
-  /// Poll mode: the kernel looks at the port every poll_interval, first at poll_phase.
+  /// Poll mode: the kernel looks at the port every poll_interval (nominal),
+  /// first at the poll clock's phase (none: 0; a run draws one), the
+  /// interval corrected by the clock's rate error.
   des::Time poll_interval = des::Time::ms(30);
-  des::Time poll_phase;
+  des::ClockSettings poll_clock;
   /// Interrupt mode: handler time per received character.
   des::Time per_char_interrupt_cost;
 };
 
 /// An asynchronous serial line. A record takes record_bytes * bits_per_byte /
-/// baud seconds to transmit and cannot start before the previous record has
-/// finished (records queue on the line). In poll mode the application sees a
-/// record at the first kernel poll at or after its last character arrived;
-/// in interrupt mode every character raises an interrupt whose handler takes
+/// baud seconds to transmit. In poll mode the application sees a record at
+/// the first kernel poll at or after its last character arrived; in
+/// interrupt mode every character raises an interrupt whose handler takes
 /// per_char_interrupt_cost (handlers run one at a time), and the record is
 /// visible when the handler of its last character returns.
 class SerialLink final : public Transport {
  public:
   explicit SerialLink(SerialLinkParams params);
-  des::Time deliver(des::Time ready_at) override;
+  Carriage carry(des::Time start) override;
+  des::Time occupancy() const override { return transmit_time_; }
+  int64_t buffer_records() const override { return params_.buffer_records; }
   std::string name() const override { return "serial"; }
   /// Wire time of one character and of one record (rounded to the tick; the
   /// rounding never accumulates because arrival times come from an index).
   des::Time character_time() const { return character_time_; }
   des::Time transmit_time() const { return transmit_time_; }
+  /// Interrupt mode: handler time for one record's characters.
+  des::Time handler_time() const { return params_.per_char_interrupt_cost * params_.record_bytes; }
   const SerialLinkParams& params() const { return params_; }
 
  private:
@@ -75,9 +106,8 @@ class SerialLink final : public Transport {
   des::Time character_time_;
   des::Time transmit_time_;
   des::PeriodicSchedule polls_;
-  std::optional<des::Time> line_free_at_;
   std::optional<des::Time> handler_free_at_;
-  std::optional<des::Time> last_ready_at_;
+  std::optional<des::Time> last_start_;
 };
 
 /// The host's view of arrived samples. Records are posted with the time the
