@@ -12,6 +12,7 @@
 #include "latsim/pipelines/smear_recorder.hpp"
 #include "latsim/pipelines/tracker_host.hpp"
 #include "latsim/display/params.hpp"
+#include "latsim/pipelines/run_clocks.hpp"
 #include "latsim/pipelines/run_files.hpp"
 #include "latsim/tracker/transport.hpp"
 
@@ -76,6 +77,7 @@ struct Rig {
   display::Display display;
   pipelines::LatencyRecorder recorder;
   pipelines::RunFiles files;
+  pipelines::RunClocks clocks{1, 0};
   std::unique_ptr<pipelines::RunContext> ctx;
   fs::FrameStagesPipeline pipeline;
   std::unique_ptr<pipelines::SmearRecorder> smear;
@@ -116,7 +118,8 @@ struct Rig {
       display.add_listener(smear.get());
     }
     ctx.reset(new pipelines::RunContext{sim, 1, 0, des::Time::zero(), *motion, tracker_params, link, host, display,
-                                        display_params, nullptr, recorder, files, 0.064, false, nullptr, nullptr});
+                                        display_params, nullptr, recorder, files, clocks, 0.064, false, nullptr,
+                                        nullptr});
   }
 
   /// Runs for `seconds` of simulated time and collects the pipeline's figures.
