@@ -49,8 +49,17 @@ SerialLink::SerialLink(SerialLinkParams params) : params_(params) {
 
 des::Time SerialLink::arrival_of_character(des::Time record_start, int64_t i) const {
   // Character i (1-based) has fully arrived after i * bits_per_byte bit times.
+  // At a whole baud rate the instant is the exact one floored to the tick,
+  // as periodic times are: 32 bytes at 19200 baud then take no longer than a
+  // 60 Hz tracker period, and keep up with it, as they do on the real line.
+  const double baud = params_.baud;
+  if (baud == std::floor(baud) && baud < 1e15) {
+    const __int128 bits = static_cast<__int128>(i) * params_.bits_per_byte;
+    return record_start +
+           des::Time::ps(static_cast<int64_t>(bits * des::Time::kTicksPerSecond / static_cast<int64_t>(baud)));
+  }
   const double bits = static_cast<double>(i) * static_cast<double>(params_.bits_per_byte);
-  return record_start + des::Time::from_seconds(bits / params_.baud);
+  return record_start + des::Time::from_seconds(bits / baud);
 }
 
 Carriage SerialLink::carry(des::Time start) {
