@@ -59,6 +59,11 @@ bool Compositor::on_begin(JobRecord& warp) {
     if (clock_.slot_of(warp.deadline).strip == 0) ++refreshes_without_image_;
     return false;
   }
+  // Once an image exists the compositor means to show a new (warped) one at
+  // every refresh: the recorder counts the refreshes that show none (a warp
+  // that ends late, or a synchronous warp without a new frame).
+  const WarpClock::Slot slot = clock_.slot_of(warp.deadline);
+  if (slot.strip == 0) ctx_.recorder.image_due(ctx_.display.timing().field_start(slot.field));
   EyeImage& src = images_.at(*newest_);
   if (!spec_.asynchronous && src.refreshes > 0) {
     // Synchronous warp: no new image, no warp; the display shows the last one again.
