@@ -1,6 +1,7 @@
 // latsim run / validate / capacity / schema.
 #include <CLI/CLI.hpp>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -52,6 +53,7 @@ int command_run(int argc, char** argv) {
   app.add_flag("--quiet,-q", quiet, "print nothing on success");
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
   pipelines::RunOptions opt;
+  opt.command_start = std::chrono::steady_clock::now();
   if (*seed_opt) opt.seed = seed;
   opt.replication = replication;
   opt.out_dir = out_dir;
@@ -79,8 +81,9 @@ int command_run(int argc, char** argv) {
                   m["mean"].get<double>(), m["p50"].get<double>(), m["p99"].get<double>(), m["max"].get<double>(),
                   static_cast<unsigned long long>(m["count"].get<uint64_t>()));
     }
-    std::printf("  events %llu, wall %.3f s\n", static_cast<unsigned long long>(summary["events"].get<uint64_t>()),
-                summary["wall_s"].get<double>());
+    std::printf("  events %llu, simulation loop %.3f s, whole run %.3f s, peak memory %.1f MB\n",
+                static_cast<unsigned long long>(summary["events"].get<uint64_t>()), summary["wall_s"].get<double>(),
+                summary["command_wall_s"].get<double>(), summary["peak_rss_mb"].get<double>());
   }
   print_warnings(file, summary["warnings"].get<std::vector<std::string>>());
   return kExitOk;

@@ -211,7 +211,8 @@ void LatencyRecorder::first_shown(const ImageRecord& img, const display::Scanout
                                    {"swap_ps", swap.ticks()},
                                    {"scanout_start_ps", scan_start.ticks()},
                                    {"scanout_end_ps", scan_end.ticks()},
-                                   {"image", span.image_id}});
+                                   {"image", span.image_id},
+                                   {"continues_image", img.continues_image ? 1 : 0}});
 }
 
 // One row per run of consecutive spans of a field and eye that show one image.

@@ -78,6 +78,9 @@ int64_t LatencyRecorder::counter(const std::string& name) const {
 
 void LatencyRecorder::finish(const RunTotals& totals) {
   flush_pending();
+  // A field whose first line would be lit after the run showed nothing, new
+  // or old: there is nothing to judge it by.
+  if (open_field_ != INT64_MIN && timing_.scanout_start(open_field_) > totals.duration) open_field_ = INT64_MIN;
   close_field();
   open_field_ = INT64_MIN;
   const double duration_s = totals.duration.to_seconds();

@@ -207,7 +207,7 @@ std::string csv_of_ledger(const std::vector<Json>& ledger) {
   std::ostringstream out;
   const char* cols[] = {"frame",        "eye",      "field",         "sample",          "measured_ps",
                         "host_received_ps", "render_start_ps", "render_end_ps", "swap_ps", "scanout_start_ps",
-                        "scanout_end_ps", "image"};
+                        "scanout_end_ps", "image", "continues_image"};
   for (size_t i = 0; i < std::size(cols); ++i) out << (i ? "," : "") << cols[i];
   out << '\n';
   for (const auto& row : ledger) {
@@ -265,7 +265,20 @@ std::vector<std::string> validate_scenario(const scenario::ScenarioDocument& doc
   return run.recorder->warnings();
 }
 
+// The resolved scenario with the defaults that are not single values: the
+// probe points used when the scenario names none (the ring around the start).
+static Json resolved_with_defaults(const Run& run, const scenario::ScenarioDocument& doc) {
+  Json resolved = doc.resolved();
+  if (!resolved.contains("probes")) {
+    Json points = Json::array();
+    for (const glm::dvec3& p : probes_of(run).points_m) points.push_back({p.x, p.y, p.z});
+    resolved["probes"] = {{"points_m", std::move(points)}};
+  }
+  return resolved;
+}
+
 Json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& options) {
+  const auto command_start = options.command_start.value_or(std::chrono::steady_clock::now());
   Run run;
   build(run, doc, options);
   run.sim.set_profiling(true);
@@ -286,7 +299,7 @@ Json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& optio
   Json deterministic{{"latsim", {{"version", latsim_version()}, {"git_revision", latsim_git_revision()}}},
                      {"seed", run.seed},
                      {"replication", options.replication},
-                     {"scenario", doc.resolved()},
+                     {"scenario", resolved_with_defaults(run, doc)},
                      {"figures", figures},
                      {"warnings", run.recorder->warnings()},
                      {"events", run.sim.events_executed()},
@@ -297,7 +310,6 @@ Json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& optio
   summary["exit_status"] = 0;
   summary["models"] = models;
   summary["wall_s"] = wall_s;
-  summary["peak_rss_mb"] = peak_rss_mb();
   if (!run.timeline.entries().empty()) summary["timeline_entries"] = run.timeline.entries().size();
 
   RunFiles& files = run.files;
@@ -314,9 +326,13 @@ Json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& optio
     }
     if (options.write_samples) files.write_text("samples.csv", csv_of_samples(run.recorder->sample_log()));
     files.write_text("figures.json", deterministic.dump(2) + "\n");
-    // Written last: a run directory is complete exactly when summary.json exists.
-    files.write_text("summary.json", summary.dump(2) + "\n");
   }
+  // The whole command and the process's peak, taken after the analytic
+  // figures and every other result file: wall_s is the simulation loop alone.
+  summary["command_wall_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - command_start).count();
+  summary["peak_rss_mb"] = peak_rss_mb();
+  // Written last: a run directory is complete exactly when summary.json exists.
+  if (files.enabled()) files.write_text("summary.json", summary.dump(2) + "\n");
   return summary;
 }
 

@@ -1,6 +1,7 @@
 // Runs one scenario end to end and writes its self-describing results.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -23,6 +24,9 @@ struct RunOptions {
   bool write_samples = false;             ///< samples.csv
   bool write_ledger = false;              ///< frames.csv, the per-frame ledger
   std::vector<std::string> command_line;  ///< recorded in the summary
+  /// When the command began (reading the scenario included); command_wall_s
+  /// runs from here. Unset: from the start of run_scenario.
+  std::optional<std::chrono::steady_clock::time_point> command_start;
 };
 
 /// Builds the models a scenario asks for, runs it, and returns summary.json's
