@@ -216,6 +216,57 @@ TEST_CASE("the analytic phase enumeration agrees with the simulation", "[double_
   }
 }
 
+TEST_CASE("the analytic mean over one repeat cycle matches a hand derivation at 90, 75, 60 and 59.94 Hz",
+          "[double_buffer][analytic]") {
+  // Direct link, tracker at 60 Hz (T = 16.667 ms) with internal delay d = 1.5
+  // ms, display phase 0, instant rendering: the frame rendered at retrace t_s
+  // uses the newest sample t_k with t_k + d <= t_s and is shown through the
+  // next field. A display of 2 lines without blanking lights its lines at 0
+  // and F/2 after the retrace, so the mean latency per line is
+  //   F (one field) + F/4 (mean line offset) + mean over the cycle of (t_s - t_k).
+  // The repeat cycle holds exactly lcm(F, T)/F frames; one too many biases it.
+  struct Case {
+    const char* name;
+    Json refresh;
+    double tracker_phase_ms;
+    double expected_mean_ms;
+  };
+  const Case cases[] = {
+      // 90 Hz: F = 11.111 ms, cycle 1/30 s = 3 fields, retraces at 0, 11.111, 22.222 ms
+      // against samples at 0 and 16.667 ms (ready 1.5 and 18.167): ages 16.667,
+      // 11.111, 5.556 ms, mean 11.111 ms. 11.111 + 2.778 + 11.111 = 25.0 ms.
+      {"90 Hz", 90, 0.0, 25.0},
+      // 75 Hz: F = 13.333 ms, cycle 1/15 s = 5 fields: retraces at 0, 13.333,
+      // 26.667, 40, 53.333 ms against samples at 0, 16.667, 33.333, 50 ms: ages
+      // 16.667, 13.333, 10, 6.667, 3.333 ms, mean 10 ms. 13.333 + 3.333 + 10 = 26.667 ms.
+      {"75 Hz", 75, 0.0, 13.0 + 1.0 / 3.0 + 10.0 / 3.0 + 10.0},
+      // 60 Hz, tracker phase 10 ms: every retrace (at k·16.667 ms) sees the sample
+      // measured 6.667 ms earlier (ready 5.167 ms earlier). 16.667 + 4.167 + 6.667 = 27.5 ms.
+      {"60 Hz", 60, 10.0, 27.5},
+      // 59.94 Hz: F = 1001/60 ms, cycle 1000 fields = 1001 samples. Retrace s lies
+      // u_s = s/60 ms after sample s (s = 0 … 999); that sample is ready when
+      // u_s >= 1.5 ms (s >= 90), otherwise the one before serves (age u_s + T).
+      // Sum of ages = Σ s/60 + 90·T = (499500 + 90000)/60 ms = 9825 ms, mean 9.825 ms.
+      // 1001/60 · 1.25 + 9.825 = 20.854167 + 9.825 = 30.679167 ms.
+      {"59.94 Hz", "60000/1001", 0.0, 1001.0 / 60.0 * 1.25 + 9.825},
+  };
+  for (const auto& c : cases) {
+    SECTION(c.name) {
+      Json s = base_scenario();
+      s["duration_s"] = 3;
+      s["tracker"] = {{"rate_hz", 60}, {"internal_delay_ms", 1.5}, {"phase_ms", c.tracker_phase_ms}};
+      s["display"]["refresh_hz"] = c.refresh;
+      s["display"]["height_px"] = 2;
+      s["display"]["vblank_lines"] = 0;
+      s["display"]["hblank_px"] = 0;
+      const Json out = run(s);
+      REQUIRE(out["figures"].contains("analytic"));
+      const auto& a = out["figures"]["analytic"];
+      CHECK(a["motion_to_photon_ms"]["mean"].get<double>() == Approx(c.expected_mean_ms).margin(1e-6));
+    }
+  }
+}
+
 TEST_CASE("no analytic figure where the configuration is not tractable", "[double_buffer][analytic]") {
   Json s = base_scenario();
   s["tracker"]["jitter_ms"] = 1;

@@ -10,6 +10,7 @@ import csv
 import glob
 import json
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -96,7 +97,10 @@ with open(os.path.join(killed, "results.csv.tmp.99999"), "w") as f:
     f.write("run_id,po")
 proc = latsim("sweep", sweep, "--out", killed, "-j", "2")
 check(proc.returncode == 0, f"resumed sweep: exit {proc.returncode} {proc.stderr}")
-check("removed 2 unfinished temporary file(s)" in proc.stderr, f"resume did not report the stray files: {proc.stderr}")
+# At least the two planted files: a kill during a write legitimately leaves
+# another (every one must be gone afterwards, checked below).
+removed = re.search(r"removed (\d+) unfinished temporary file", proc.stderr)
+check(removed is not None and int(removed.group(1)) >= 2, f"resume did not report the stray files: {proc.stderr}")
 check(" resumed," in proc.stdout and "(0 resumed" not in proc.stdout, f"nothing was resumed: {proc.stdout}")
 resumed = table(killed)
 ids = [r[0] for r in resumed[1:]]
