@@ -167,10 +167,10 @@ TEST_CASE("reference: late-scheduled time warp re-projects the finished image 2 
   CHECK(rig.figures["warps_late"].get<int64_t>() == 0);
 }
 
-TEST_CASE("reference: continuous time warp warps 2 ms strips just ahead of the beam") {
-  // WARP: |               W| W W W W W W W W| : strip s of a refresh is warped
-  // in the millisecond before its first line; a line d into its 2 ms strip is
-  // lit 1 + d after the warp read a pose 1 ms old: 2 - 3.9 ms.
+namespace {
+/// Continuous time warp: a positional warp on its own processor, 8 strips a
+/// refresh, each warped in the millisecond before its first line.
+FrameStagesSpec continuous_warp() {
   FrameStagesSpec s = base({"cpu1", "cpu2", "gpu", "warp"}, 2);
   s.stages = {stage("I", {kCpu1}, 1, kRetrace, true), stage("S", {kCpu1}, 9), stage("R", {kCpu2}, 11, kRetrace),
               streaming("G", {kGpu}, 12, 1)};
@@ -179,6 +179,15 @@ TEST_CASE("reference: continuous time warp warps 2 ms strips just ahead of the b
   w.strips = 8;
   w.stages = {stage("W", {3}, 1, kLate, true)};
   s.warp = w;
+  return s;
+}
+}  // namespace
+
+TEST_CASE("reference: continuous time warp warps 2 ms strips just ahead of the beam") {
+  // WARP: |               W| W W W W W W W W| : strip s of a refresh is warped
+  // in the millisecond before its first line; a line d into its 2 ms strip is
+  // lit 1 + d after the warp read a pose 1 ms old: 2 - 3.9 ms.
+  const FrameStagesSpec s = continuous_warp();
   check_range(s, 2.0, 2.0 + 1.9, 500);
 }
 
@@ -241,14 +250,7 @@ TEST_CASE("reference: an hour of continuous time warp keeps every strip on its l
   // due at 30 ms (strip 7 of refresh 1); then every strip of refreshes 2 to
   // 224,999, and strip 0 of refresh 225,000, due at the end instant:
   // 1 + 8 x 224,998 + 1 = 1,799,986 warps.
-  FrameStagesSpec s = base({"cpu1", "cpu2", "gpu", "warp"}, 2);
-  s.stages = {stage("I", {kCpu1}, 1, kRetrace, true), stage("S", {kCpu1}, 9), stage("R", {kCpu2}, 11, kRetrace),
-              streaming("G", {kGpu}, 12, 1)};
-  WarpSpec w;
-  w.mode = WarpSpec::Mode::positional;
-  w.strips = 8;
-  w.stages = {stage("W", {3}, 1, kLate, true)};
-  s.warp = w;
+  const FrameStagesSpec s = continuous_warp();
   latsim::testing::RigOptions o;
   o.tracker_hz = 500;
   o.lines = 16;
