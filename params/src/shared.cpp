@@ -33,11 +33,14 @@ void clock(Section& s, std::string_view prefix, des::ClockSettings& c, std::stri
 
 namespace {
 
-void bind_host(Section& s, HostParams& p) {
-  s.doc("The application's view of the head: one eye or two.");
+void bind_host(Section& s, HostParams& p, const tracker::TrackerParams& tracker) {
+  s.doc("The application's view of the head: one eye or two, and whether it predicts the pose.");
   s.flag("stereo", p.stereo, {.doc = "two eyes, two synchronised displays"});
   s.number("ipd_m", p.ipd_m,
            {.unit = "m", .min = 0.0, .max = 1.0, .doc = "inter-pupillary distance (eyes ±ipd/2 along the head's x axis)"});
+  s.optional_object("prediction", p.prediction,
+                    [&tracker](Section& q, tracker::PredictionParams& v) { bind(q, v, tracker); },
+                    {.doc = "pose prediction (none when absent)"});
 }
 
 void bind_probes(Section& s, ProbeParams& p) {
@@ -106,7 +109,9 @@ void bind(Section& s, SharedParams& p) {
            {.required = true, .doc = "sampling the head pose"});
   s.object("transport", p.transport, [](Section& t, tracker::TransportParams& v) { bind(t, v); },
            {.doc = "the link from tracker to host"});
-  s.object("host", p.host, bind_host, {.doc = "the application's view of the head"});
+  const tracker::TrackerParams& tracker = p.tracker;
+  s.object("host", p.host, [&tracker](Section& h, HostParams& v) { bind_host(h, v, tracker); },
+           {.doc = "the application's view of the head"});
   s.object("display", p.display, [](Section& d, display::DisplayParams& v) { bind(d, v); },
            {.required = true, .doc = "the raster and how finely it is simulated"});
   s.object("output", p.output, bind_output, {.doc = "what a run keeps"});
@@ -116,6 +121,9 @@ void bind(Section& s, SharedParams& p) {
   const HostParams& host = p.host;
   s.optional_object("frames", p.frames, [&host](Section& f, FramesParams& v) { bind_frames(f, v, host); },
                     {.doc = "captured images"});
+  s.optional_object("motion_phases", p.motion_phases,
+                    [](Section& m, tracker::MotionPhaseParams& v) { bind(m, v); },
+                    {.doc = "figures split by motion phase (not split when absent)"});
 }
 
 }  // namespace latsim::params

@@ -58,8 +58,9 @@ class ArpPipeline final : public Pipeline {
   // sample reaches the host it retries every millisecond within its slot.
   des::Process render(int64_t k) {
     const des::Time slot_end = ticks_->schedule().at(k + 1);
-    std::optional<tracker::TrackerSample> sample;
-    while (!(sample = ctx_->host.newest_at(ctx_->sim.now()))) {
+    std::optional<tracker::PosePrediction> pose;
+    // The cube is used from the first retrace after it is rendered.
+    while (!(pose = ctx_->host.pose_for(ctx_->sim.now(), ctx_->photon_time_after(ctx_->sim.now() + p_.render_time)))) {
       const des::Time retry = ctx_->sim.now() + des::Time::ms(1);
       if (retry >= slot_end || retry >= ctx_->duration) {
         ++skipped_;
@@ -73,14 +74,15 @@ class ArpPipeline final : public Pipeline {
     co_await ctx_->sim.delay(p_.render_time);
     ++renders_;
     // Display memories are double-buffered: the new cube is used from the next field on.
-    ctx_->present_display_memory(k, *sample, start, "arp");
+    ctx_->present_display_memory(k, *pose, start, "arp");
   }
 
   // The cube shown now: rendered from the position of the image in the front buffer.
   void write_frame() {
     const int64_t front = ctx_->display.front(0);
     const ImageRecord* img = front >= 0 ? ctx_->recorder.image(front) : nullptr;
-    const auto newest = ctx_->host.newest_at(ctx_->sim.now());
+    // The orientation the next field is looked up with (its middle line).
+    const auto newest = ctx_->host.pose_for(ctx_->sim.now(), ctx_->photon_time_after(ctx_->sim.now()));
     if (!img || !newest) return;
     if (!renderer_) {
       segmented_ = std::make_unique<arp::SegmentedScene>();

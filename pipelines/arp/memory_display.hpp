@@ -10,17 +10,19 @@
 
 namespace latsim::pipelines {
 
-/// The tracker samples that display-memory images may still refer to, by index.
+/// The poses (a host sample, predicted to the photon time expected when it
+/// was taken) that display-memory images may still refer to, by the tag the
+/// pipeline gave the render (its tick: increasing, one pose per tick).
 class SampleBook {
  public:
-  void add(const tracker::TrackerSample& s) { samples_.emplace(s.index, s); }
-  const tracker::TrackerSample& at(int64_t index) const { return samples_.at(index); }
+  void add(int64_t tag, const tracker::PosePrediction& p) { samples_.emplace(tag, p); }
+  const tracker::PosePrediction& at(int64_t tag) const { return samples_.at(tag); }
   /// Drops samples older than every image the memories show: those can be
   /// neither shown nor requested again (a request is newer than its memory's shown image).
   void forget_unreachable(const arp::DisplayMemories& memories);
 
  private:
-  std::map<int64_t, tracker::TrackerSample> samples_;
+  std::map<int64_t, tracker::PosePrediction> samples_;
 };
 
 /// Shows a batch of images presented together: every render on the timeline

@@ -112,8 +112,13 @@ class PriorityPipeline final : public Pipeline {
       }
       last_ = sample;
     }
-    samples_.add(*sample);
-    const arp::PriorityTick& t = system_->tick(k, ctx_->sim.now(), sample->pose.position_m, velocity_m_s_, sample->index);
+    // Memories are drawn from the pose predicted for their first field: the
+    // host expects this render to take as long as the last one did.
+    const des::Time now = ctx_->sim.now();
+    const tracker::PosePrediction pose =
+        ctx_->host.basis_of(*sample).for_photon_time(ctx_->photon_time_after(now + last_render_time_));
+    samples_.add(k, pose);
+    const arp::PriorityTick& t = system_->tick(k, now, pose.pose.position_m, velocity_m_s_, k);
     if (!t.updated_memories.empty()) {
       ctx_->recorder.add("objects_rendered_per_tick", static_cast<double>(t.objects_rendered));
       // The updated display memories are meant to be in use by the next tick.
@@ -123,6 +128,7 @@ class PriorityPipeline final : public Pipeline {
 
   void present(const std::vector<const arp::MemoryImage*>& batch) {
     show_memory_images(*ctx_, batch, samples_);
+    if (!batch.empty()) last_render_time_ = batch.back()->cost;
     samples_.forget_unreachable(system_->memories());
   }
 
@@ -133,6 +139,8 @@ class PriorityPipeline final : public Pipeline {
   std::optional<des::Periodic> ticks_;
   int64_t object_count_ = 0;
   std::optional<tracker::TrackerSample> last_;
+  des::Time last_render_time_;
+  des::Time last_render_time_;
   glm::dvec3 velocity_m_s_{0.0};
   SampleBook samples_;
 };

@@ -115,10 +115,15 @@ class RegionPriorityPipeline final : public Pipeline {
   void tick(int64_t k) {
     const auto sample = ctx_->host.newest_at(ctx_->sim.now());
     if (!sample) return;
-    samples_.add(*sample);
+    // Memories are drawn from the pose predicted for their first field: the
+    // host expects this render to take as long as the last one did.
+    const des::Time now = ctx_->sim.now();
+    const tracker::PosePrediction pose =
+        ctx_->host.basis_of(*sample).for_photon_time(ctx_->photon_time_after(now + last_render_time_));
+    samples_.add(k, pose);
     bool updated = false;
     for (size_t i = 0; i < runs_.size(); ++i) {
-      const arp::RegionTick& t = runs_[i]->system().tick(ctx_->sim.now(), sample->pose.position_m, sample->index);
+      const arp::RegionTick& t = runs_[i]->system().tick(now, pose.pose.position_m, k);
       if (i == 0) updated = !t.updated.empty();
     }
     // The updated display memories are meant to be in use by the next tick.
@@ -127,6 +132,7 @@ class RegionPriorityPipeline final : public Pipeline {
 
   void present(const std::vector<const arp::MemoryImage*>& batch) {
     show_memory_images(*ctx_, batch, samples_);
+    if (!batch.empty()) last_render_time_ = batch.back()->cost;
     samples_.forget_unreachable(runs_[0]->system().memories());
   }
 
@@ -139,7 +145,7 @@ class RegionPriorityPipeline final : public Pipeline {
       const arp::MemoryImage* img = memories.shown(m);
       if (!img) continue;
       ctx_->recorder.add("translation_latency_memory" + std::to_string(m) + "_ms",
-                         (photon - samples_.at(img->sample).measured_at).to_ms());
+                         (photon - samples_.at(img->sample).sample.measured_at).to_ms());
     }
     const auto newest = ctx_->host.newest_at(ctx_->sim.now());
     if (!newest) return;
@@ -147,7 +153,8 @@ class RegionPriorityPipeline final : public Pipeline {
   }
 
   void write_frames() {
-    const auto newest = ctx_->host.newest_at(ctx_->sim.now());
+    // The orientation the next field is looked up with (its middle line).
+    const auto newest = ctx_->host.pose_for(ctx_->sim.now(), ctx_->photon_time_after(ctx_->sim.now()));
     if (!newest) return;
     const auto& raster = ctx_->display.timing().params();
     const renderer::Camera camera(ctx_->display_params.hfov_deg, raster.width_px, raster.height_px);
@@ -170,6 +177,7 @@ class RegionPriorityPipeline final : public Pipeline {
   std::unique_ptr<arp::SegmentedScene> whole_;
   std::vector<std::unique_ptr<RegionRun>> runs_;  // the primary first, then the variants
   SampleBook samples_;
+  des::Time last_render_time_;
   std::optional<arp::ScreenProjection> screen_;
 };
 

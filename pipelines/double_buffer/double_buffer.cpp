@@ -1,6 +1,7 @@
 // Conventional double buffering: render with the newest pose, swap at the next
 // retrace after completion; optionally render ahead with N frames queued, or
 // swap at once without vsync (tearing).
+#include <algorithm>
 #include <deque>
 #include <memory>
 
@@ -90,8 +91,8 @@ class DoubleBufferPipeline final : public Pipeline {
   // swap queue and the renderer waits while the queue is full.
   des::Process renderer() {
     for (;;) {
-      std::optional<tracker::TrackerSample> sample;
-      while (!(sample = ctx_->host.newest_at(ctx_->sim.now()))) {
+      std::optional<tracker::PosePrediction> pose;
+      while (!(pose = ctx_->host.pose_for(ctx_->sim.now(), expected_photon_time()))) {
         if (p_.vsync) co_await retrace_;  // retried at the next retrace
         else co_await ctx_->sim.delay(des::Time::ms(1));
       }
@@ -99,7 +100,7 @@ class DoubleBufferPipeline final : public Pipeline {
       // With vsync every render aims at the next refresh.
       if (p_.vsync) ctx_->recorder.image_due(start + des::Time::ps(1));
       co_await ctx_->sim.delay(p_.cost.frame_time(*stream_));
-      Done done = complete(*sample, start);
+      Done done = complete(*pose, start);
       if (!p_.vsync) {
         // No vsync: the new image replaces the front buffer mid-scan.
         for (int eye = 0; eye < ctx_->display.eyes(); ++eye) ctx_->display.present_now(eye, done.ids[eye]);
@@ -110,11 +111,25 @@ class DoubleBufferPipeline final : public Pipeline {
     }
   }
 
-  Done complete(const tracker::TrackerSample& s, des::Time start) {
+  // When a frame started now is expected to be lit: after its nominal render
+  // time, at the next retrace behind the frames already queued (vsync), or
+  // as soon as the beam reaches the middle line (no vsync).
+  des::Time expected_photon_time() const {
+    const des::Time now = ctx_->sim.now();
+    const des::Time ready = now + p_.cost.nominal_frame_time();
+    if (!p_.vsync) return ctx_->next_middle_line_time(ready);
+    // Each queued image takes one of the retraces after now (the one at now,
+    // if any, has already swapped).
+    const display::RasterTiming& t = ctx_->display.timing();
+    const int64_t first_free = t.field_at_or_before(now) + 1 + static_cast<int64_t>(queue_.size());
+    return ctx_->frame_photon_time(std::max(t.field_at_or_after(ready), first_free));
+  }
+
+  Done complete(const tracker::PosePrediction& pose, des::Time start) {
     const des::Time now = ctx_->sim.now();
     Done done{{}, frame_, now};
     for (int eye = 0; eye < ctx_->display.eyes(); ++eye) {
-      ImageRecord rec = ctx_->image_record(frame_, eye, s, start, now);
+      ImageRecord rec = ctx_->image_record(frame_, eye, pose, start, now);
       done.ids.push_back(ctx_->recorder.register_image(rec));
     }
     if (ctx_->timeline) ctx_->timeline->add("RENDER", frame_, -1, "renderer", start, now);

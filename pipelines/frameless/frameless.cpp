@@ -35,12 +35,15 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 /// What one buffer pixel holds: the sample its colour was computed from (a
-/// slot in the pipeline's sample list; -1 = never computed) and the pixel,
+/// slot in the pipeline's sample list; -1 = never computed), the pixel,
 /// within its eye, whose ray gave the colour (itself, or its block's sample
-/// pixel at reduced resolution).
+/// pixel at reduced resolution), and the field it was expected to be shown
+/// in first when it was computed (its pose is predicted to its photon time
+/// there).
 struct PixelState {
   int64_t slot = -1;
   int32_t source = 0;
+  int64_t field = 0;
 };
 
 /// What the pipeline does with its next unit of pixel budget.
@@ -143,21 +146,25 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
       }
       const PixelState& st = visible_[pixel_id(span.eye, *it, span.row)];
       if (st.slot < 0) continue;
-      const tracker::TrackerSample& s = sample_of(st.slot);
-      ctx_->recorder.pixel_lit(s, photon);
-      registration(span.eye, *it, span.row, st, s, photon);
+      const auto [first_field, pose] = pixel_pose(st, *it, span.row);
+      ctx_->recorder.pixel_lit(pose.sample, photon);
+      registration(span.eye, *it, span.row, st, pose.pose, photon);
+      // Each pixel's own prediction, judged once: where it was first shown.
+      if (ctx_->host.predicts() && span.eye == 0 && span.field == first_field)
+        ctx_->recorder.add_prediction_error(pose, true, true);
     }
   }
 
   void shown_pixels(int eye, int row, int x_begin, std::span<ShownPixel> out) const override {
     for (size_t i = 0; i < out.size(); ++i) {
-      const PixelState& st = visible_[pixel_id(eye, x_begin + static_cast<int>(i), row)];
+      const int x = x_begin + static_cast<int>(i);
+      const PixelState& st = visible_[pixel_id(eye, x, row)];
       ShownPixel& p = out[i];
       p.lit = st.slot >= 0;
       if (!p.lit) continue;
-      const tracker::TrackerSample& s = sample_of(st.slot);
-      p.eye_pose = ctx_->eye_pose(s, eye);
-      p.measured_at = s.measured_at;
+      const tracker::PosePrediction pose = pixel_pose(st, x, row).second;
+      p.eye_pose = ctx_->eye_pose(pose.pose, eye);
+      p.measured_at = pose.sample.measured_at;
       p.source_x = st.source % width_;
       p.source_y = st.source / width_;
     }
@@ -197,12 +204,36 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
     block_order_.emplace(blocks_x_ * blocks_y_ * eyes_, std::move(stream));
   }
 
-  const tracker::TrackerSample& sample_of(int64_t slot) const { return samples_[static_cast<size_t>(slot - slot_base_)]; }
+  const tracker::PredictionBasis& basis_of(int64_t slot) const {
+    return samples_[static_cast<size_t>(slot - slot_base_)];
+  }
 
   int64_t slot_for(const tracker::TrackerSample& s) {
-    // Pixels are computed in time order, so the samples they use never go back.
-    if (samples_.empty() || samples_.back().index != s.index) samples_.push_back(s);
+    // Pixels are computed in time order, so the samples they use never go
+    // back; a pixel may be shown for longer than the host remembers its
+    // sample, so the slot keeps what the host knew then.
+    if (samples_.empty() || samples_.back().sample.index != s.index) samples_.push_back(ctx_->host.basis_of(s));
     return slot_base_ + static_cast<int64_t>(samples_.size()) - 1;
+  }
+
+  /// The field in which a pixel is first shown and the pose it was computed
+  /// from, predicted to its own photon time there (frameless computes pixel
+  /// by pixel, so each has its own horizon). Interlaced, a row missing from
+  /// the field it was latched for is first lit in the next one.
+  std::pair<int64_t, tracker::PosePrediction> pixel_pose(const PixelState& st, int x, int row) const {
+    const display::RasterTiming& t = ctx_->display.timing();
+    int64_t field = st.field;
+    int line = t.line_of_row(field, row);
+    if (line < 0) line = t.line_of_row(++field, row);
+    return {field, basis_of(st.slot).for_photon_time(t.pixel_time(field, line, x))};
+  }
+
+  /// The field whose retrace first latches a pixel computed in unit k: the
+  /// first retrace at or after the unit ends (a double-buffering fallback:
+  /// after its whole image).
+  int64_t latch_field(int64_t k) const {
+    const int64_t done = mode_ == Mode::DoubleBufferFallback ? fallback_end_unit_ : k + 1;
+    return ctx_->display.timing().field_at_or_after(schedule_.at(done));
   }
 
   // ---- frameless: the pixel stream -------------------------------------
@@ -253,29 +284,29 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
       const auto s = newest_for(k, end);
       const int32_t b = block_order_->pixel_of(block_cursor_++);
       if (block_cursor_ == block_order_->pixel_count()) mode_ = Mode::Normal;
-      if (s) write_block(b, slot_for(*s));
+      if (s) write_block(b, slot_for(*s), latch_field(k));
       return;
     }
     const int32_t p = order_->pixel_of(cursor_++);
     if (cursor_ % pixels_ == 0) prune_samples();
     if (mode_ == Mode::DoubleBufferFallback) {
       // One image from one pose, held back from the display until complete.
-      write(p, fallback_slot_, p % (width_ * height_));
+      write(p, fallback_slot_, p % (width_ * height_), latch_field(k));
       if (--fallback_left_ == 0) mode_ = Mode::Normal;
       return;
     }
-    if (const auto s = newest_for(k, end)) write(p, slot_for(*s), p % (width_ * height_));
+    if (const auto s = newest_for(k, end)) write(p, slot_for(*s), p % (width_ * height_), latch_field(k));
   }
 
-  void write(int32_t p, int64_t slot, int32_t source) {
-    computed_[static_cast<size_t>(p)] = PixelState{slot, source};
+  void write(int32_t p, int64_t slot, int32_t source, int64_t field) {
+    computed_[static_cast<size_t>(p)] = PixelState{slot, source, field};
     if (stamp_[static_cast<size_t>(p)] != generation_) {
       stamp_[static_cast<size_t>(p)] = generation_;
       dirty_.push_back(p);
     }
   }
 
-  void write_block(int32_t b, int64_t slot) {
+  void write_block(int32_t b, int64_t slot, int64_t field) {
     const int per_eye = blocks_x_ * blocks_y_;
     const int eye = b / per_eye, bx = (b % per_eye) % blocks_x_, by = (b % per_eye) / blocks_x_;
     const int x0 = bx * block_px_, y0 = by * block_px_;
@@ -283,7 +314,7 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
     // The block's colour is the ray through its middle pixel.
     const int32_t source = ((y0 + y1) / 2) * width_ + (x0 + x1) / 2;
     for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) write(static_cast<int32_t>(pixel_id(eye, x, y)), slot, source);
+      for (int x = x0; x < x1; ++x) write(static_cast<int32_t>(pixel_id(eye, x, y)), slot, source, field);
   }
 
   void delivered(const tracker::TrackerSample& s, des::Time t) {
@@ -309,6 +340,7 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
     mode_ = Mode::DoubleBufferFallback;
     fallback_slot_ = slot_for(*s);
     fallback_left_ = pixels_;
+    fallback_end_unit_ = k + pixels_;
   }
 
   // Drops samples no pixel refers to any more (checked once per cycle).
@@ -355,14 +387,15 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
     // Image 0 begins with the first pixel of the budget, at the clock's phase.
     if (schedule_.at(0) > ctx_->sim.now()) co_await ctx_->sim.until(schedule_.at(0));
     for (int64_t image = 0;; ++image) {
-      const std::optional<tracker::TrackerSample> sample = ctx_->host.newest_at(ctx_->sim.now());
       const des::Time end = schedule_.at((image + 1) * pixels_);
+      // Shown from the first retrace after its last pixel is spent.
+      const auto pose = ctx_->host.pose_for(ctx_->sim.now(), ctx_->photon_time_after(end));
       if (end >= ctx_->duration) co_return;
       co_await ctx_->sim.until(end);
-      if (!sample) continue;
+      if (!pose) continue;
       const des::Time start = schedule_.at(image * pixels_), now = ctx_->sim.now();
       for (int eye = 0; eye < eyes_; ++eye) {
-        ImageRecord rec = ctx_->image_record(image, eye, *sample, start, now);
+        ImageRecord rec = ctx_->image_record(image, eye, *pose, start, now);
         ctx_->display.present_at_next_retrace(eye, ctx_->recorder.register_image(rec));
       }
       ++images_;
@@ -371,8 +404,8 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
     }
   }
 
-  void registration(int eye, int x, int row, const PixelState& st, const tracker::TrackerSample& s, des::Time photon) {
-    const tracker::Pose drawn = ctx_->eye_pose(s, eye);
+  void registration(int eye, int x, int row, const PixelState& st, const tracker::Pose& head, des::Time photon) {
+    const tracker::Pose drawn = ctx_->eye_pose(head, eye);
     // The pixel shows the surface point its source ray met, taken at a fixed
     // depth, drawn along the pixel's own direction.
     const int sx = st.source % width_, sy = st.source / width_;
@@ -406,7 +439,7 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
   std::vector<int64_t> stamp_;        ///< refresh generation a pixel was last written in
   std::vector<int32_t> dirty_;        ///< pixels written since the last latch
   int64_t generation_ = 0;
-  std::deque<tracker::TrackerSample> samples_;
+  std::deque<tracker::PredictionBasis> samples_;
   int64_t slot_base_ = 0;
   int64_t next_unit_ = 0;   ///< next unit of pixel budget to compute
   int64_t cursor_ = 0;      ///< updates taken from the permutation table
@@ -414,6 +447,7 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
   Mode mode_ = Mode::Normal;
   int64_t fallback_slot_ = -1;
   int32_t fallback_left_ = 0;
+  int64_t fallback_end_unit_ = 0;  ///< the unit after the fallback image's last pixel
   std::deque<int64_t> triggers_;
   std::optional<tracker::Pose> last_delivered_;
   std::optional<tracker::TrackerSample> cached_;

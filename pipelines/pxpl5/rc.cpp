@@ -22,6 +22,10 @@ class Pxpl5RcPipeline final : public Pipeline {
   void start(RunContext& ctx) override {
     wiring_ = std::make_unique<Pxpl5Wiring>(ctx);
     p_.rc.stereo = p_.common.stereo;
+    // RC's latency follows the load, so the host expects the next frame to
+    // take as long from its pose read to its last COPY as the newest
+    // finished frame did, and to be swapped in at the retrace after that.
+    wiring_->expect_photon_time([this, &ctx](des::Time t) { return ctx.photon_time_after(t + wiring_->read_to_copy_end()); });
     engine_ = std::make_unique<pxpl5::RcEngine>(ctx.sim, p_.rc, wiring_->field_timing(), wiring_->grid(),
                                                 wiring_->workload(p_.common), wiring_->hooks());
     engine_->start(ctx.sim.now() + ctx.duration);

@@ -25,9 +25,13 @@ class Pxpl5SlatsPipeline final : public Pipeline {
     p_.slats.stereo = p_.common.stereo;
     engine_ = std::make_unique<pxpl5::SlatsEngine>(ctx.sim, p_.slats, wiring_->field_timing(), wiring_->grid(),
                                                    wiring_->workload(p_.common), wiring_->hooks());
-    // SEND is asynchronous: every sample the host sees goes to the GP.
-    ctx.host.on_delivery([this](const tracker::TrackerSample& s, des::Time) {
-      engine_->host_sample(wiring_->remember(s));
+    // SEND is asynchronous: every sample the host sees goes to the GP, which
+    // takes the newest at the first retrace after it arrives and shows that
+    // field's image one field later; the host predicts for that field.
+    const des::Time send = p_.slats.host_compute_time + p_.slats.hw.transfer_time(p_.slats.host_message_words);
+    wiring_->expect_photon_time([&ctx, send](des::Time t) { return ctx.photon_time_after(t + send, 1); });
+    ctx.host.on_delivery([this](const tracker::TrackerSample& s, des::Time t) {
+      engine_->host_sample(wiring_->remember(s, t));
     });
     engine_->start(ctx.sim.now() + ctx.duration);
     // Once the processor holds viewing transforms, every field is due a new

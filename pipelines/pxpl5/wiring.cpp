@@ -12,7 +12,7 @@ namespace latsim::pipelines {
 
 namespace {
 
-// Samples older than this many tracker periods can no longer be asked for.
+// Poses of samples older than this many tracker periods can no longer be asked for.
 constexpr int64_t kSamplesKept = 256;
 // Images a Slats frame buffer may still show: a backup of the last complete
 // field can be many fields old.
@@ -33,16 +33,19 @@ pxpl5::RegionGrid Pxpl5Wiring::grid() const {
   return pxpl5::RegionGrid::for_screen(p.width_px, p.height_px, p.interlaced, 128);
 }
 
-int64_t Pxpl5Wiring::remember(const tracker::TrackerSample& sample) {
-  samples_[sample.index] = sample;
-  while (!samples_.empty() && samples_.begin()->first < sample.index - kSamplesKept) samples_.erase(samples_.begin());
-  return sample.index;
+int64_t Pxpl5Wiring::remember(const tracker::TrackerSample& sample, des::Time t) {
+  const des::Time photon = expected_photon_time_ ? expected_photon_time_(t) : ctx_->photon_time_after(t);
+  const int64_t token = next_token_++;
+  poses_.emplace(token, ctx_->host.basis_of(sample).for_photon_time(photon));
+  while (!poses_.empty() && poses_.begin()->second.sample.index < sample.index - kSamplesKept)
+    poses_.erase(poses_.begin());
+  return token;
 }
 
 // Before the first sample the application draws from where the head starts.
 tracker::Pose Pxpl5Wiring::eye_pose_of_token(int64_t token, int eye) const {
-  const auto it = samples_.find(token);
-  if (it != samples_.end()) return ctx_->eye_pose(it->second, eye);
+  const auto it = poses_.find(token);
+  if (it != poses_.end()) return ctx_->eye_pose(it->second.pose, eye);
   return eye_pose_of(ctx_->motion.pose_at(des::Time::zero()), eye, ctx_->ipd_m, ctx_->stereo);
 }
 
@@ -75,12 +78,12 @@ pxpl5::EngineHooks Pxpl5Wiring::hooks() {
   pxpl5::EngineHooks h;
   h.newest_sample = [this](des::Time t) -> int64_t {
     const auto s = ctx_->host.newest_at(t);
-    return s ? remember(*s) : -1;
+    return s ? remember(*s, t) : -1;
   };
   h.sample_age_ms = [this](int64_t older, int64_t newer) {
-    const auto a = samples_.find(older), b = samples_.find(newer);
-    if (a == samples_.end() || b == samples_.end()) return 0.0;
-    return (b->second.measured_at - a->second.measured_at).to_ms();
+    const auto a = poses_.find(older), b = poses_.find(newer);
+    if (a == poses_.end() || b == poses_.end()) return 0.0;
+    return (b->second.sample.measured_at - a->second.sample.measured_at).to_ms();
   };
   h.frame_ready = [this](const pxpl5::FrameReady& f) { present(f); };
   h.region_written = [this](const pxpl5::RegionWrite& w) { region_written(w); };
@@ -95,9 +98,9 @@ pxpl5::EngineHooks Pxpl5Wiring::hooks() {
 int64_t Pxpl5Wiring::image_id(int64_t frame, const pxpl5::EyeImage& e) {
   const auto key = std::make_pair(frame, e.eye);
   if (const auto it = image_ids_.find(key); it != image_ids_.end()) return it->second;
-  const auto it = samples_.find(e.sample_token);
+  const auto it = poses_.find(e.sample_token);
   int64_t id = -1;
-  if (it == samples_.end()) {
+  if (it == poses_.end()) {
     ++images_without_sample_;  // nothing tracked yet: the display keeps what it has
   } else {
     id = ctx_->recorder.register_image(ctx_->image_record(frame, e.eye, it->second, e.transform_start, e.copy_end));
@@ -107,13 +110,16 @@ int64_t Pxpl5Wiring::image_id(int64_t frame, const pxpl5::EyeImage& e) {
   return id;
 }
 
-// Each eye's image is registered with the sample it was computed from and
+// Each eye's image is registered with the pose it was computed from and
 // swapped in at the next retrace (both eyes together in stereo).
 void Pxpl5Wiring::present(const pxpl5::FrameReady& f) {
+  des::Time last_copy_end = des::Time::zero();
   for (const pxpl5::EyeImage& e : f.eyes) {
+    last_copy_end = std::max(last_copy_end, e.copy_end);
     const int64_t id = image_id(f.frame, e);
     if (id >= 0) ctx_->display.present_at_next_retrace(e.eye, id);
   }
+  if (!f.eyes.empty()) read_to_copy_end_ = last_copy_end - f.eyes.front().sample_read_at;
 }
 
 // A Slats region reached the displayed buffer: its rectangle of the field's

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -54,8 +55,15 @@ class Pxpl5Wiring {
   pxpl5::WorkloadSource& workload(const Pxpl5Common& common);
   /// Hooks that feed this wiring; valid while it lives.
   pxpl5::EngineHooks hooks();
-  /// Remembers a sample the host delivered and returns its token.
-  int64_t remember(const tracker::TrackerSample& sample);
+  /// When an image whose pose is taken at time t is expected to be lit: each
+  /// pipeline's own horizon (set before the engine starts).
+  void expect_photon_time(std::function<des::Time(des::Time)> fn) { expected_photon_time_ = std::move(fn); }
+  /// The pose the host gives an image computed from `sample` (its newest) at
+  /// time t, predicted to the expected photon time, remembered under a new token.
+  int64_t remember(const tracker::TrackerSample& sample, des::Time t);
+  /// From a frame's pose read to the last COPY of its last eye, as observed
+  /// for the newest finished frame (zero before the first).
+  des::Time read_to_copy_end() const { return read_to_copy_end_; }
   /// Whether the host has sent the processors viewing transforms yet.
   bool transforms_sent() const { return transforms_sent_; }
   /// Reports the collected distributions and utilisation to the recorder.
@@ -69,7 +77,10 @@ class Pxpl5Wiring {
   tracker::Pose eye_pose_of_token(int64_t token, int eye) const;
 
   RunContext* ctx_;
-  std::map<int64_t, tracker::TrackerSample> samples_;  // by tracker index, recent ones only
+  std::function<des::Time(des::Time)> expected_photon_time_;
+  std::map<int64_t, tracker::PosePrediction> poses_;  // by token, recent samples' only
+  int64_t next_token_ = 0;
+  des::Time read_to_copy_end_;
   std::map<std::string, des::Distribution> samples_by_name_;
   std::map<std::pair<int64_t, int>, int64_t> image_ids_;  // (frame, eye) -> recorder id, recent ones only
   std::unique_ptr<pxpl5::WorkloadSource> workload_;

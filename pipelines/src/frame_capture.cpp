@@ -36,6 +36,7 @@ struct ShownSpan {
   bool orientation_at_scanout = false;
   int eye = 0;
   des::Time written_at;
+  des::Time photon_time;  ///< the instant the host predicts the looked-up orientation for
 };
 
 /// Everything one field of the captured eye showed, kept until the field ends.
@@ -131,6 +132,7 @@ struct FrameCapture::Impl {
       s.orientation_at_scanout = img->orientation_at_scanout;
       s.eye = span.eye;
       s.written_at = span.written_at;
+      s.photon_time = span.photon_time;
     }
     c.lines[static_cast<size_t>(span.line)].push_back(s);
   }
@@ -271,12 +273,13 @@ struct FrameCapture::Impl {
     c.undefined_px = draw_warped_spans(*caster, *camera, warped, displayed, unwarped, options(), background);
   }
 
-  // Address recalculation looks the orientation up as each pixel is fetched.
+  // Address recalculation looks the orientation up as each pixel is fetched,
+  // predicted by the host to the instant the pixel is seen.
   void resolve_orientations(Collection& c) const {
     for (auto& line : c.lines)
       for (ShownSpan& s : line)
         if (s.lit && s.orientation_at_scanout)
-          if (const auto newest = in.host.newest_at(s.written_at))
+          if (const auto newest = in.host.pose_for(s.written_at, s.photon_time))
             s.eye_pose.orientation = eye_pose_of(newest->pose, s.eye, in.ipd_m, in.stereo).orientation;
   }
 

@@ -149,11 +149,14 @@ void LatencyRecorder::record_span(const ImageRecord& img, const display::Scanout
   int64_t orientation_index = img.sample.index;
   des::Time orientation_measured = img.sample.measured_at;
   if (img.orientation_at_scanout) {
-    // Address recalculation looks up the newest orientation as the pixel is fetched.
-    if (const auto newest = host_.newest_at(span.written_at)) {
+    // Address recalculation looks up the newest orientation as the pixel is
+    // fetched, predicted by the host to the pixel's photon time.
+    if (const auto newest = host_.pose_for(span.written_at, photon)) {
       drawn.orientation = eye_pose_of(newest->pose, span.eye, ipd_m_, stereo_).orientation;
-      orientation_index = newest->index;
-      orientation_measured = newest->measured_at;
+      orientation_index = newest->sample.index;
+      orientation_measured = newest->sample.measured_at;
+      if (predicting_ && span.eye == 0 && span.line == timing_.lines_per_field() / 2 && span.x_begin == 0)
+        add_prediction_error(*newest, true, false);
     }
   } else if (img.warp == ImageRecord::Warp::rotation) [[unlikely]] {
     // Time warp re-projected the image to a newer orientation (eye_pose has
@@ -196,6 +199,12 @@ void LatencyRecorder::first_shown(const ImageRecord& img, const display::Scanout
     if (timeline_ && img.render_start > img.host_received)
       timeline_->add("HOST", img.frame, -1, "host application", img.host_received, img.render_start);
   }
+  // Once per image (stereo pairs share one head pose): what it was predicted
+  // from, for when, and how far off. Address recalculation replaces the
+  // orientation at scanout, so only its position counts here.
+  if (predicting_ && img.eye == 0)
+    add_prediction_error(tracker::PosePrediction{img.sample, img.predicted_for, img.head_pose},
+                         !img.orientation_at_scanout, true);
   if (!ledger_on_) return;
   const des::Time swap = timing_.field_start(span.field);
   const des::Time scan_start = timing_.scanout_start(span.field);
@@ -208,6 +217,7 @@ void LatencyRecorder::first_shown(const ImageRecord& img, const display::Scanout
                                    {"host_received_ps", img.host_received.ticks()},
                                    {"render_start_ps", img.render_start.ticks()},
                                    {"render_end_ps", img.render_end.ticks()},
+                                   {"predicted_for_ps", img.predicted_for.ticks()},
                                    {"swap_ps", swap.ticks()},
                                    {"scanout_start_ps", scan_start.ticks()},
                                    {"scanout_end_ps", scan_end.ticks()},
@@ -263,8 +273,10 @@ void LatencyRecorder::registration(int eye, const glm::dvec3& point_m, const glm
   const glm::dvec3 seen = truth.orientation * drawn_head_dir;
   const glm::dvec3 should = glm::normalize(point_m - truth.position_m);
   const double angle = angle_between_dirs(seen, should);
-  record(reg_arcmin_, "registration_error_arcmin", angle * 180.0 / kPi * 60.0);
+  const double arcmin = angle * 180.0 / kPi * 60.0;
+  record(reg_arcmin_, "registration_error_arcmin", arcmin);
   record(reg_px_, "registration_error_px", angle / rad_per_px_);
+  add_split(reg_split_, "registration_error_arcmin", arcmin, photon);
 }
 
 void LatencyRecorder::record_carried(const tracker::TrackerSample& s, const tracker::Carriage& c, bool line) {
@@ -283,11 +295,15 @@ void LatencyRecorder::record_carried(const tracker::TrackerSample& s, const trac
 void LatencyRecorder::record_probes(const display::ScanoutSpan& span, const tracker::Pose& drawn,
                                     int64_t sample_index, int64_t image_id) {
   ProbeCache& cache = probe_cache_[span.eye & 1];
-  if (cache.image_id != image_id || cache.field != span.field || cache.sample_index != sample_index) {
+  // Predicted per line (address recalculation), the drawn orientation may
+  // change from line to line even with the same sample.
+  if (cache.image_id != image_id || cache.field != span.field || cache.sample_index != sample_index ||
+      cache.orientation != drawn.orientation) {
     // Where each probe is drawn in this image: project with the drawn pose.
     cache.image_id = image_id;
     cache.field = span.field;
     cache.sample_index = sample_index;
+    cache.orientation = drawn.orientation;
     cache.hits.clear();
     const glm::dquat inv = glm::conjugate(drawn.orientation);
     const int w = timing_.params().width_px, h = timing_.params().height_px;
@@ -316,6 +332,31 @@ void LatencyRecorder::record_probes(const display::ScanoutSpan& span, const trac
     if (persistence_) t = persistence_->lit(span.field, t).middle();
     registration(span.eye, p, drawn_head_dir, t);
   }
+}
+
+void LatencyRecorder::enable_prediction(bool on) { predicting_ = on; }
+
+void LatencyRecorder::split_by_phase(const tracker::MotionPhaseParams& params) {
+  phases_.emplace(motion_, params);
+}
+
+void LatencyRecorder::add_split(PhaseSplit& split, const char* name, double value, des::Time at) {
+  if (!phases_) return;
+  const tracker::MotionPhase phase = phases_->phase_at(at);
+  const auto i = static_cast<size_t>(phase);
+  const std::string split_name = std::string(name) + "_" + std::string(tracker::phase_name(phase));
+  record(split[i], split_name.c_str(), value);
+}
+
+void LatencyRecorder::add_prediction_error(const tracker::PosePrediction& p, bool orientation, bool position) {
+  const tracker::Pose truth = motion_.pose_at(p.target);
+  record(prediction_horizon_, "prediction_horizon_ms", p.horizon().to_ms());
+  if (orientation) {
+    const double deg = tracker::angle_between(p.pose.orientation, truth.orientation) * 180.0 / kPi;
+    record(prediction_deg_, "prediction_error_deg", deg);
+    add_split(prediction_split_, "prediction_error_deg", deg, p.target);
+  }
+  if (position) record(prediction_mm_, "prediction_error_mm", glm::length(p.pose.position_m - truth.position_m) * 1e3);
 }
 
 }  // namespace latsim::pipelines

@@ -132,7 +132,7 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
   run.transport = tracker::make_transport(p.transport);
   Timeline* timeline = p.output.timeline ? &run.timeline : nullptr;
   run.timeline.set_max_entries(static_cast<size_t>(p.output.timeline_max_entries));
-  run.host = std::make_unique<TrackerHost>(run.sim, *run.tracker, *run.transport, timeline);
+  run.host = std::make_unique<TrackerHost>(run.sim, *run.tracker, *run.transport, timeline, p.host.prediction);
   const bool stereo = p.host.stereo;
   run.display = std::make_unique<display::Display>(run.sim,
                                                    display::RasterTiming(p.display.raster, *p.display.clock.phase),
@@ -140,6 +140,8 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
   run.recorder = std::make_unique<LatencyRecorder>(run.sim, *run.motion, *run.host, run.display->timing(),
                                                    probes_of(run), p.host.ipd_m, stereo, p.output.keep_samples);
   for (const auto& w : run.input_warnings) run.recorder->warn(w);
+  run.recorder->enable_prediction(p.host.prediction.has_value());
+  if (p.motion_phases) run.recorder->split_by_phase(*p.motion_phases);
   run.recorder->enable_ledger(options.write_ledger);
   run.recorder->enable_sample_log(options.write_samples);
   run.display->add_listener(run.recorder.get());
@@ -206,8 +208,8 @@ Json figures_of(Run& run) {
 std::string csv_of_ledger(const std::vector<Json>& ledger) {
   std::ostringstream out;
   const char* cols[] = {"frame",        "eye",      "field",         "sample",          "measured_ps",
-                        "host_received_ps", "render_start_ps", "render_end_ps", "swap_ps", "scanout_start_ps",
-                        "scanout_end_ps", "image", "continues_image"};
+                        "host_received_ps", "render_start_ps", "render_end_ps", "predicted_for_ps", "swap_ps",
+                        "scanout_start_ps", "scanout_end_ps", "image", "continues_image"};
   for (size_t i = 0; i < std::size(cols); ++i) out << (i ? "," : "") << cols[i];
   out << '\n';
   for (const auto& row : ledger) {

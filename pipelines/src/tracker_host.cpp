@@ -13,8 +13,13 @@ constexpr size_t kPruneAbove = 4096;
 }  // namespace
 
 TrackerHost::TrackerHost(des::Simulator& sim, tracker::Tracker& tracker, tracker::Transport& transport,
-                         Timeline* timeline)
-    : sim_(sim), tracker_(tracker), transport_(transport), timeline_(timeline) {
+                         Timeline* timeline, const std::optional<tracker::PredictionParams>& prediction)
+    : sim_(sim),
+      tracker_(tracker),
+      transport_(transport),
+      timeline_(timeline),
+      prediction_(prediction.value_or(tracker::PredictionParams{})),
+      predicts_(prediction.has_value()) {
   kind_sample_ = sim_.kind("tracker.sample");
 }
 
@@ -89,6 +94,7 @@ void TrackerHost::line_free() {
 void TrackerHost::send(const tracker::TrackerSample& s, des::Time start) {
   const tracker::Carriage c = transport_.carry(start);
   link_free_at_ = start + transport_.occupancy();
+  prediction_.observe(s);
   delivered_.push_back(Delivered{c.visible, s});
   for (auto& fn : carried_fns_) fn(s, c);
   if (timeline_ && transport_.occupancy() > des::Time::zero()) {
@@ -109,6 +115,7 @@ void TrackerHost::prune() {
   // Keep one second of history behind the newest sample visible now.
   const des::Time horizon = sim_.now() - des::Time::s(1);
   while (delivered_.size() > 2 && delivered_[1].at <= horizon) delivered_.pop_front();
+  prediction_.forget_before(delivered_.front().sample.index);
 }
 
 std::optional<tracker::TrackerSample> TrackerHost::newest_at(des::Time t) const {

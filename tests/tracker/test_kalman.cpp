@@ -14,11 +14,14 @@
 #include "latsim/des/random.hpp"
 #include "latsim/tracker/kalman_predictor.hpp"
 #include "latsim/tracker/tracker.hpp"
+#include "../prediction/kalman_steady_state.hpp"
 
 using namespace latsim::tracker;
 using latsim::des::RandomStream;
 using latsim::des::RationalSeconds;
 using latsim::des::Time;
+using latsim::testing::ScalarSteadyState;
+using latsim::testing::scalar_steady_state;
 
 namespace {
 
@@ -33,35 +36,6 @@ KalmanParams params_with_noise(double orientation_stddev_deg, double position_st
     p.measurement_covariance(i + 3, i + 3) = std::pow(orientation_stddev_deg * kDeg, 2);
   }
   return p;
-}
-
-/// Steady state of one axis of the constant-velocity filter, by iterating
-/// the scalar 2x2 recursion written out by hand: the filter's own posterior
-/// covariance [[a, b], [b, c]] (process noise psd s, measurement variance r)
-/// and, for a truly still head (no process noise), the covariance
-/// [[A, B], [B, C]] of the actual error under the filter's gains.
-struct ScalarSteadyState {
-  double a = 0, b = 0, c = 0;  // filter's belief
-  double A = 0, B = 0, C = 0;  // actual, still head
-};
-
-ScalarSteadyState scalar_steady_state(double r, double s, double dt, double prior_c, int steps) {
-  ScalarSteadyState x{r, 0.0, prior_c, r, 0.0, 0.0};
-  for (int i = 0; i < steps; ++i) {
-    x.a += 2 * dt * x.b + dt * dt * x.c + s * dt * dt * dt / 3;
-    x.b += dt * x.c + s * dt * dt / 2;
-    x.c += s * dt;
-    const double A = x.A + 2 * dt * x.B + dt * dt * x.C, B = x.B + dt * x.C, C = x.C;
-    const double k0 = x.a / (x.a + r), k1 = x.b / (x.a + r);
-    x.c -= k1 * x.b;
-    x.b *= 1 - k0;
-    x.a *= 1 - k0;
-    // Actual error e' = (I - K H) e + K n, e = [angle, rate].
-    x.A = (1 - k0) * (1 - k0) * A + k0 * k0 * r;
-    x.B = (1 - k0) * (B - k1 * A) + k0 * k1 * r;
-    x.C = k1 * k1 * A - 2 * k1 * B + C + k1 * k1 * r;
-  }
-  return x;
 }
 
 TrackerParams tracker_params(int64_t hz, double orientation_stddev_deg, double position_stddev_m) {

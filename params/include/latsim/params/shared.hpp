@@ -13,6 +13,8 @@
 #include "latsim/renderer/scene_spec.hpp"
 #include "latsim/scenario/params.hpp"
 #include "latsim/tracker/params.hpp"
+#include "latsim/tracker/host_prediction.hpp"
+#include "latsim/tracker/motion_phase.hpp"
 #include "latsim/tracker/tracker.hpp"
 
 namespace latsim::params {
@@ -21,6 +23,8 @@ namespace latsim::params {
 struct HostParams {
   bool stereo = false;
   double ipd_m = 0.064;
+  /// /host/prediction: how the host predicts poses (none when absent).
+  std::optional<tracker::PredictionParams> prediction;
 };
 
 /// /scene: the geometry frames and address recalculation draw, and the
@@ -71,6 +75,8 @@ struct SharedParams {
   std::optional<ProbeParams> probes;
   OutputParams output;
   std::optional<FramesParams> frames;
+  /// /motion_phases: split figures by motion phase (not split when absent).
+  std::optional<tracker::MotionPhaseParams> motion_phases;
 };
 
 /// Declares (and reads) every top-level key except /pipeline.
@@ -81,6 +87,9 @@ void bind(scenario::Section& s, tracker::TrackerParams& p);
 void bind(scenario::Section& s, tracker::TransportParams& p);
 void bind(scenario::Section& s, display::DisplayParams& p);
 void bind(scenario::Section& s, SceneParams& p);
+/// /host/prediction; the Kalman filter's noise defaults to `tracker`'s.
+void bind(scenario::Section& s, tracker::PredictionParams& p, const tracker::TrackerParams& tracker);
+void bind(scenario::Section& s, tracker::MotionPhaseParams& p);
 
 /// A clock's `<prefix>phase_ms` (absent: drawn per replication, uniformly
 /// over one period, from the clock's own stream) and `<prefix>rate_error_ppm`.

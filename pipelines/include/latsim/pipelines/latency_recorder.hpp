@@ -1,6 +1,8 @@
 // Turns what the display lights into the figures of docs/figures.md.
 #pragma once
 
+#include <array>
+#include <optional>
 #include <cstdint>
 #include <deque>
 #include <map>
@@ -15,6 +17,7 @@
 #include "latsim/display/display.hpp"
 #include "latsim/pipelines/figures.hpp"
 #include "latsim/pipelines/pipeline.hpp"
+#include "latsim/tracker/motion_phase.hpp"
 #include "latsim/tracker/transport.hpp"
 
 namespace latsim::pipelines {
@@ -111,6 +114,18 @@ class LatencyRecorder : public display::ScanoutListener {
   /// Every figure in the one serialisation of figures.json.
   nlohmann::json figures() const { return table_.to_json(dists_, counters_); }
 
+  /// Prediction figures: per image shown, prediction_error_deg (predicted
+  /// against true head orientation at the instant predicted for),
+  /// prediction_error_mm (position) and prediction_horizon_ms.
+  void enable_prediction(bool on);
+  /// Splits registration_error_arcmin and prediction_error_deg by the
+  /// motion phase at their photon (or target) time into <name>_still,
+  /// _onset, _steady and _stop.
+  void split_by_phase(const tracker::MotionPhaseParams& params);
+  /// One prediction: its error against the truth at its target, in degrees
+  /// (when `orientation`) and millimetres (when `position`), and its horizon.
+  void add_prediction_error(const tracker::PosePrediction& prediction, bool orientation, bool position);
+
   void on_field_start(int eye, int64_t field, des::Time retrace) override;
   void on_scanout(const display::ScanoutSpan& span) override;
 
@@ -134,7 +149,13 @@ class LatencyRecorder : public display::ScanoutListener {
 
  private:
   struct ProbeHit { int line; double x_px; size_t probe; bool operator<(const ProbeHit& o) const { return line < o.line; } };
-  struct ProbeCache { int64_t image_id = -2; int64_t field = -1; int64_t sample_index = -1; std::vector<ProbeHit> hits; };
+  struct ProbeCache {
+    int64_t image_id = -2;
+    int64_t field = -1;
+    int64_t sample_index = -1;
+    glm::dquat orientation{1.0, 0.0, 0.0, 0.0};  ///< the drawn orientation the hits were projected with
+    std::vector<ProbeHit> hits;
+  };
   struct Held { ImageRecord record; bool shown = false; };
   /// A span whose orientation must come from a sample not simulated yet.
   struct Pending { ImageRecord record; display::ScanoutSpan span; };
@@ -142,6 +163,8 @@ class LatencyRecorder : public display::ScanoutListener {
   void record_span(const ImageRecord& img, const display::ScanoutSpan& span);
   void record_probes(const display::ScanoutSpan& span, const tracker::Pose& drawn, int64_t sample_index,
                      int64_t image_id);
+  using PhaseSplit = std::array<des::Distribution*, 4>;
+  void add_split(PhaseSplit& split, const char* name, double value, des::Time at);
   void first_shown(const ImageRecord& img, const display::ScanoutSpan& span);
   void ledger_span(int64_t image_id, const ImageRecord& img, const display::ScanoutSpan& span);
   void flush_pending();
@@ -179,6 +202,13 @@ class LatencyRecorder : public display::ScanoutListener {
   des::Distribution* pixel_age_ = nullptr;
   des::Distribution* reg_arcmin_ = nullptr;
   des::Distribution* reg_px_ = nullptr;
+  bool predicting_ = false;
+  std::optional<tracker::MotionPhaseClassifier> phases_;
+  des::Distribution* prediction_horizon_ = nullptr;
+  des::Distribution* prediction_deg_ = nullptr;
+  des::Distribution* prediction_mm_ = nullptr;
+  PhaseSplit reg_split_{};
+  PhaseSplit prediction_split_{};
   std::map<std::string, int64_t> counters_;
   // Refresh deadlines: due times of renders not yet shown, oldest first, and
   // the field (one eye) being scanned now.

@@ -4,10 +4,12 @@
 
 #include <deque>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "latsim/des/simulator.hpp"
 #include "latsim/pipelines/pipeline.hpp"
+#include "latsim/tracker/host_prediction.hpp"
 #include "latsim/tracker/tracker.hpp"
 #include "latsim/tracker/transport.hpp"
 
@@ -20,11 +22,16 @@ class Timeline;
 /// link's buffer (drop-oldest when full), and a line event starts the next
 /// waiting record when the link frees (no events when nothing waits).
 /// newest_at(t) answers with the newest sample visible at t (several
-/// arriving at one poll: the newest wins).
+/// arriving at one poll: the newest wins). With prediction, every record
+/// also goes through the host's predictor as it is put on the link (no extra
+/// events; a record pushed out of the buffer never reaches the host, so the
+/// predictor never sees it; an estimate is used only once its sample is
+/// visible, so nothing is known early).
 class TrackerHost final : public HostFeed {
  public:
   TrackerHost(des::Simulator& sim, tracker::Tracker& tracker, tracker::Transport& transport,
-              Timeline* timeline = nullptr);
+              Timeline* timeline = nullptr,
+              const std::optional<tracker::PredictionParams>& prediction = std::nullopt);
 
   /// Schedules samples measured in [now, end).
   void start(des::Time end);
@@ -34,6 +41,8 @@ class TrackerHost final : public HostFeed {
   std::optional<tracker::TrackerSample> newest_at(des::Time t) const override;
   des::Time received_at(const tracker::TrackerSample& s) const override;
   void on_delivery(std::function<void(const tracker::TrackerSample&, des::Time)> fn) override;
+  tracker::PredictionBasis basis_of(const tracker::TrackerSample& s) const override { return prediction_.basis_of(s); }
+  bool predicts() const override { return predicts_; }
   int64_t samples_measured() const { return measured_; }
   /// Records pushed out of a full link buffer before they could be sent.
   int64_t records_dropped() const { return dropped_; }
@@ -56,6 +65,8 @@ class TrackerHost final : public HostFeed {
   tracker::Tracker& tracker_;
   tracker::Transport& transport_;
   Timeline* timeline_;
+  tracker::HostPrediction prediction_;
+  bool predicts_ = false;
   des::Time end_;
   std::deque<Delivered> delivered_;
   std::deque<tracker::TrackerSample> waiting_;  // ready, not yet on the link, oldest first
