@@ -6,8 +6,10 @@ DIR is a run directory (summary.json), a sweep directory (results.csv and
 runs/*/summary.json) or a directory of run directories (each subdirectory with
 a summary.json is one row). Writes into DIR: report.md, latency_table.csv,
 mtp_cdf.{png,svg}, mtp_histogram.{png,svg}, for sweeps sweep_<axis>.{png,svg}
-(figures against each axis, mean and 95 % t-interval over replications), and
-gantt.{png,svg} next to every summary whose run has a timeline.csv.
+(figures against each axis, mean and 95 % t-interval over replications),
+registration_vs_latency.{png,svg} and a pose-prediction section when any run
+predicts, and gantt.{png,svg} next to every summary whose run has a
+timeline.csv.
 """
 
 import argparse
@@ -19,6 +21,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import gantt  # noqa: E402
 import latsim_results as lr  # noqa: E402
 import plotting  # noqa: E402
+import prediction  # noqa: E402
 from plotting import plt  # noqa: E402
 
 # More curves than this on one CDF or histogram plot cannot be told apart.
@@ -169,7 +172,7 @@ def markdown_table(coll):
     return lines
 
 
-def write_markdown(coll, plots, sweep_plots, gantts, skipped):
+def write_markdown(coll, plots, sweep_plots, gantts, skipped, prediction_plot=None):
     first = coll.rows[0].summaries[0]
     version = first.get("latsim", {})
     md = [f"# latsim report: {os.path.basename(os.path.normpath(coll.directory))}", ""]
@@ -192,6 +195,10 @@ def write_markdown(coll, plots, sweep_plots, gantts, skipped):
         md += ["## Figures against each swept axis", "",
                "Lines are means over replications; bands are 95 % Student-t intervals.", ""]
         md += [f"![{p}]({p}.png)" for p in sweep_plots] + [""]
+    if prediction_plot or prediction.has_prediction(coll):
+        md += prediction.markdown(coll)
+        if prediction_plot:
+            md += [f"![{prediction_plot}]({prediction_plot}.png)", ""]
     if gantts or skipped:
         md += ["## Stage timelines", ""]
         md += [f"![{g}]({g}.png)" for g in gantts]
@@ -219,8 +226,10 @@ def main(argv):
     plots = plot_distributions(coll)
     sweep_plots = [p for p in (plot_sweep_axis(coll, a) for a in coll.axes) if p]
     gantts, skipped = draw_gantts(coll, args.gantt_limit)
-    write_markdown(coll, plots, sweep_plots, gantts, skipped)
-    print(f"report: {len(coll.rows)} row(s), {len(plots) + len(sweep_plots) + len(gantts)} plot(s) -> "
+    prediction_plot = prediction.plot_registration_vs_latency(coll) if prediction.has_prediction(coll) else None
+    write_markdown(coll, plots, sweep_plots, gantts, skipped, prediction_plot)
+    plots_drawn = len(plots) + len(sweep_plots) + len(gantts) + (1 if prediction_plot else 0)
+    print(f"report: {len(coll.rows)} row(s), {plots_drawn} plot(s) -> "
           f"{os.path.join(coll.directory, 'report.md')}")
     return 0
 

@@ -1,0 +1,108 @@
+"""Pose prediction in a report: registration error against latency, with and
+without prediction, and the split by motion phase.
+
+Reads only result files (through latsim_results). A row's predictor is the
+resolved scenario's /host/prediction/type ("none" when the scenario has no
+prediction); its pipeline is /pipeline/type.
+"""
+
+import os
+
+import latsim_results as lr
+import plotting
+from plotting import plt
+
+PHASES = ["still", "onset", "steady", "stop"]
+
+
+def _prediction(row):
+    scenario = row.summaries[0].get("scenario", {}) if row.summaries else {}
+    prediction = scenario.get("host", {}).get("prediction")
+    return prediction if isinstance(prediction, dict) else None
+
+
+def predictor_of(row):
+    prediction = _prediction(row)
+    return prediction.get("type", "none") if prediction else "none"
+
+
+def predicting_rows(coll):
+    """Rows whose scenario configures /host/prediction (type none included: the baseline)."""
+    return [r for r in coll.rows if _prediction(r) is not None]
+
+
+def has_prediction(coll):
+    return bool(predicting_rows(coll))
+
+
+def _fmt(value, digits=4):
+    return "" if value is None else f"{value:.{digits}g}"
+
+
+def markdown(coll):
+    """Two tables: the headline per (pipeline, predictor), and registration error by motion phase."""
+    head = ["pipeline", "predictor", "MTP mean (ms)", "horizon mean (ms)", "registration mean (arcmin)",
+            "registration p99 (arcmin)", "prediction error mean (deg)", "prediction error p99 (deg)"]
+    paths = ["motion_to_photon_ms.mean", "prediction_horizon_ms.mean", "registration_error_arcmin.mean",
+             "registration_error_arcmin.p99", "prediction_error_deg.mean", "prediction_error_deg.p99"]
+    rows = predicting_rows(coll)
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    for row in rows:
+        cells = [row.pipeline(), predictor_of(row)] + [_fmt(row.mean(p)) for p in paths]
+        lines.append("| " + " | ".join(cells) + " |")
+    phase_head = ["pipeline", "predictor"] + [f"{p} (arcmin)" for p in PHASES] + ["onset / steady"]
+    phase_lines = ["| " + " | ".join(phase_head) + " |", "|" + "---|" * len(phase_head)]
+    any_phase = False
+    for row in rows:
+        means = [row.mean(f"registration_error_arcmin_{p}.mean") for p in PHASES]
+        any_phase = any_phase or any(m is not None for m in means)
+        onset, steady = means[1], means[2]
+        ratio = onset / steady if onset is not None and steady else None
+        phase_lines.append("| " + " | ".join([row.pipeline(), predictor_of(row)] + [_fmt(m) for m in means] +
+                                             [_fmt(ratio, 3)]) + " |")
+    md = ["## Pose prediction", "",
+          "Registration error is measured against the true pose at each probe's photon time; the prediction "
+          "error is the predicted head pose against the true pose at the instant it was predicted for "
+          "(docs/prediction.md).", ""] + lines + [""]
+    if any_phase:
+        md += ["Registration error by motion phase (mean; onset and stop: within the window after the head's "
+               "angular speed crosses the threshold; see docs/prediction.md).", ""] + phase_lines + [""]
+    return md
+
+
+def plot_registration_vs_latency(coll):
+    """One marker per row at (mean motion-to-photon, mean registration error), a line per predictor."""
+    rows = [r for r in predicting_rows(coll)
+            if r.values("motion_to_photon_ms") and r.values("registration_error_arcmin")]
+    if not rows:
+        return None
+    predictors = []
+    for r in rows:
+        if predictor_of(r) not in predictors:
+            predictors.append(predictor_of(r))
+    pipelines = []
+    for r in rows:
+        if r.pipeline() not in pipelines:
+            pipelines.append(r.pipeline())
+    markers = ["o", "s", "^", "D", "v", "P", "X", "*"]
+    fig, ax = plt.subplots(figsize=(8, 5))
+    for predictor, colour in zip(predictors, plotting.colours(len(predictors))):
+        members = sorted((r for r in rows if predictor_of(r) == predictor),
+                         key=lambda r: r.mean("motion_to_photon_ms"))
+        xs = [r.mean("motion_to_photon_ms") for r in members]
+        ys = [r.mean("registration_error_arcmin") for r in members]
+        ax.plot(xs, ys, color=colour, linewidth=1.0, alpha=0.6, label=predictor)
+        for r, x, y in zip(members, xs, ys):
+            ax.plot([x], [y], marker=markers[pipelines.index(r.pipeline()) % len(markers)], color=colour,
+                    linestyle="none")
+    for pipeline, marker in zip(pipelines, markers * (1 + len(pipelines) // len(markers))):
+        ax.plot([], [], marker=marker, color="grey", linestyle="none", label=pipeline)
+    ax.set_xlabel("mean motion-to-photon latency (ms)")
+    ax.set_ylabel("mean registration error (arcmin)")
+    ax.set_title("Registration error against latency, by predictor (colour) and pipeline (marker)")
+    ax.set_xlim(left=0)
+    ax.set_ylim(bottom=0)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    base = "registration_vs_latency"
+    plotting.save(fig, os.path.join(coll.directory, base))
+    return base
