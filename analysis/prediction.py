@@ -85,6 +85,13 @@ def plot_registration_vs_latency(coll):
         if r.pipeline() not in pipelines:
             pipelines.append(r.pipeline())
     markers = ["o", "s", "^", "D", "v", "P", "X", "*"]
+
+    def marker_of(pipeline):
+        # Hollow, and smaller for each further pipeline: two systems with the
+        # same latency and error stay visible one inside the other.
+        i = pipelines.index(pipeline)
+        return {"marker": markers[i % len(markers)], "markersize": max(4, 12 - 2 * i), "fillstyle": "none"}
+
     fig, ax = plt.subplots(figsize=(8, 5))
     for predictor, colour in zip(predictors, plotting.colours(len(predictors))):
         members = sorted((r for r in rows if predictor_of(r) == predictor),
@@ -93,10 +100,9 @@ def plot_registration_vs_latency(coll):
         ys = [r.mean("registration_error_arcmin") for r in members]
         ax.plot(xs, ys, color=colour, linewidth=1.0, alpha=0.6, label=predictor)
         for r, x, y in zip(members, xs, ys):
-            ax.plot([x], [y], marker=markers[pipelines.index(r.pipeline()) % len(markers)], color=colour,
-                    linestyle="none")
-    for pipeline, marker in zip(pipelines, markers * (1 + len(pipelines) // len(markers))):
-        ax.plot([], [], marker=marker, color="grey", linestyle="none", label=pipeline)
+            ax.plot([x], [y], color=colour, linestyle="none", **marker_of(r.pipeline()))
+    for pipeline in pipelines:
+        ax.plot([], [], color="grey", linestyle="none", label=pipeline, **marker_of(pipeline))
     ax.set_xlabel("mean motion-to-photon latency (ms)")
     ax.set_ylabel("mean registration error (arcmin)")
     ax.set_title("Registration error against latency, by predictor (colour) and pipeline (marker)")
