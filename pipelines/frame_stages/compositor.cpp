@@ -17,8 +17,8 @@ Compositor::Compositor(RunContext& ctx, const WarpSpec& spec, des::Resource& eye
 
 void Compositor::on_frame_complete(const JobRecord& frame) {
   EyeImage img;
-  img.sample = *frame.last_sample;
-  for (int eye = 0; eye < ctx_.display.eyes(); ++eye) img.eye_poses.push_back(ctx_.eye_pose(img.sample, eye));
+  img.pose = *frame.last_pose;
+  for (int eye = 0; eye < ctx_.display.eyes(); ++eye) img.eye_poses.push_back(ctx_.eye_pose(img.pose.pose, eye));
   if (spec_.mode == Mode::render || (newest_ && frame.job < *newest_)) {
     // Nothing reads it: beam racing renders its own strips, and an image
     // older than the newest (alternate frame rendering) is never warped.
@@ -77,23 +77,27 @@ bool Compositor::on_begin(JobRecord& warp) {
 }
 
 ImageRecord Compositor::warped_record(const JobRecord& warp, int64_t frame, const EyeImage* src, int eye) const {
-  const tracker::TrackerSample& now_sample = *warp.last_sample;
+  const tracker::PosePrediction& now_pose = *warp.last_pose;
   const des::Time now = ctx_.sim.now();
-  if (spec_.mode == Mode::render) return ctx_.image_record(warp.job, eye, now_sample, warp.last_sample_at, now);
+  if (spec_.mode == Mode::render) return ctx_.image_record(warp.job, eye, now_pose, warp.last_sample_at, now);
   if (spec_.mode == Mode::positional) {
-    ImageRecord rec = ctx_.image_record(frame, eye, now_sample, warp.last_sample_at, now);
+    ImageRecord rec = ctx_.image_record(frame, eye, now_pose, warp.last_sample_at, now);
     rec.warp = ImageRecord::Warp::positional;
     rec.source_pose = src->eye_poses[static_cast<size_t>(eye)];
     return rec;
   }
   // Rotation only: the position (and the latency origin of the whole pose)
   // stays the rendered one; the orientation is the newest.
-  ImageRecord rec = ctx_.image_record(frame, eye, src->sample, warp.last_sample_at, now);
+  ImageRecord rec = ctx_.image_record(frame, eye, src->pose, warp.last_sample_at, now);
   rec.warp = ImageRecord::Warp::rotation;
   rec.source_pose = src->eye_poses[static_cast<size_t>(eye)];
   rec.eye_pose.position_m = rec.source_pose.position_m;
-  rec.eye_pose.orientation = ctx_.eye_pose(now_sample, eye).orientation;
-  rec.orientation_measured_at = now_sample.measured_at;
+  rec.eye_pose.orientation = ctx_.eye_pose(now_pose.pose, eye).orientation;
+  rec.orientation_measured_at = now_pose.sample.measured_at;
+  // What is shown: the rendered position and the warp's orientation,
+  // predicted for the warp's own photon time.
+  rec.predicted_for = now_pose.target;
+  rec.head_pose.orientation = now_pose.pose.orientation;
   return rec;
 }
 

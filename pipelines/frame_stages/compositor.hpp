@@ -46,7 +46,7 @@ class Compositor {
  private:
   /// A completed application image in an eye buffer.
   struct EyeImage {
-    tracker::TrackerSample sample;
+    tracker::PosePrediction pose;  ///< the pose it was rendered from
     std::vector<tracker::Pose> eye_poses;  ///< per eye, as rendered
     int refreshes = 0;                     ///< refreshes whose first strip showed it
     int readers = 0;                       ///< warps reading it now

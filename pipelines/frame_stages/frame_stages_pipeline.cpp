@@ -27,7 +27,7 @@ des::Time FrameStagesPipeline::app_photon_target(des::Time completion) const {
   // Without vsync a frame is shown at once, on average half a field lit
   // later; otherwise from the next retrace, the middle line as its centre.
   if (!spec_.vsync && !spec_.warp) return completion + des::Time::ps(timing.field_start(1).ticks() / 2);
-  return timing.line_time(timing.field_at_or_after(completion), timing.lines_per_field() / 2);
+  return ctx_->photon_time_after(completion);
 }
 
 FlowHooks FrameStagesPipeline::app_hooks() {

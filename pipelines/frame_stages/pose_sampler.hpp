@@ -1,12 +1,12 @@
 // The one call through which a stage reads the head pose: "the pose for
-// pixels lit at photon time T". Pose prediction plugs in here.
+// pixels lit at photon time T", predicted there by the host.
 #pragma once
 
 #include <optional>
 
 #include "latsim/des/time.hpp"
 #include "latsim/pipelines/pipeline.hpp"
-#include "latsim/tracker/tracker.hpp"
+#include "latsim/tracker/host_prediction.hpp"
 
 namespace latsim::pipelines::frame_stages {
 
@@ -15,12 +15,11 @@ class PoseSampler {
  public:
   explicit PoseSampler(const HostFeed& host) : host_(&host) {}
 
-  /// The sample a stage beginning at `now` uses for pixels expected to be lit
-  /// at `photon_target`: the newest one the host can see (no prediction, so
-  /// the target is not used yet); nullopt before the first sample arrives.
-  std::optional<tracker::TrackerSample> sample(des::Time now, des::Time photon_target) const {
-    (void)photon_target;
-    return host_->newest_at(now);
+  /// The pose a stage beginning at `now` uses for pixels expected to be lit
+  /// at `photon_target`: from the newest sample the host can see, predicted
+  /// to that instant when the host predicts; nullopt before the first sample.
+  std::optional<tracker::PosePrediction> pose(des::Time now, des::Time photon_target) const {
+    return host_->pose_for(now, photon_target);
   }
 
  private:

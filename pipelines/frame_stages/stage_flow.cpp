@@ -221,12 +221,12 @@ des::Process StageFlow::worker(int r, int lane) {
       }
       if (st.samples_pose) {
         const des::Time target = photon_target(s);
-        std::optional<tracker::TrackerSample> sample;
+        std::optional<tracker::PosePrediction> pose;
         // Before the first tracker sample there is nothing to read: try again shortly.
-        while (!(sample = env_.poses.sample(sim.now(), target))) co_await sim.delay(des::Time::ms(1));
+        while (!(pose = env_.poses.pose(sim.now(), target))) co_await sim.delay(des::Time::ms(1));
         JobRecord& rec = record(j);
-        if (!rec.first_sample) rec.first_sample = sample;
-        rec.last_sample = sample;
+        if (!rec.first_pose) rec.first_pose = pose;
+        rec.last_pose = pose;
         rec.last_sample_at = sim.now();
       }
       begin_stage(s, record(j));

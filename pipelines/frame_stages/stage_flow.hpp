@@ -26,8 +26,8 @@ struct JobRecord {
   std::vector<des::Time> start, end;                   ///< per stage
   std::vector<des::Time> released;                     ///< per stage: when its start rule let it go (it may then
                                                        ///< still wait for its processor)
-  std::optional<tracker::TrackerSample> first_sample;  ///< the first pose read (the simulation's input)
-  std::optional<tracker::TrackerSample> last_sample;   ///< the last pose read (the view drawn)
+  std::optional<tracker::PosePrediction> first_pose;  ///< the first pose read (the simulation's input)
+  std::optional<tracker::PosePrediction> last_pose;   ///< the last pose read (the view drawn)
   des::Time last_sample_at;                            ///< when the stage that read it began
   des::Time deadline;                                  ///< what the job's last late stage aimed for (zero: none)
   bool skipped = false;                                ///< dropped by FlowHooks::on_begin

@@ -10,7 +10,7 @@ SwapChain::SwapChain(RunContext& ctx, des::Resource& images, bool vsync) : ctx_(
 void SwapChain::on_frame_complete(const JobRecord& frame) {
   Done d{frame.job, {}, ctx_.sim.now()};
   for (int eye = 0; eye < ctx_.display.eyes(); ++eye) {
-    const ImageRecord rec = ctx_.image_record(frame.job, eye, *frame.last_sample, frame.last_sample_at, d.completed);
+    const ImageRecord rec = ctx_.image_record(frame.job, eye, *frame.last_pose, frame.last_sample_at, d.completed);
     d.ids.push_back(ctx_.recorder.register_image(rec));
   }
   // Frames are presented in the order they were issued.
