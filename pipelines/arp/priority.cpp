@@ -140,7 +140,6 @@ class PriorityPipeline final : public Pipeline {
   int64_t object_count_ = 0;
   std::optional<tracker::TrackerSample> last_;
   des::Time last_render_time_;
-  des::Time last_render_time_;
   glm::dvec3 velocity_m_s_{0.0};
   SampleBook samples_;
 };
