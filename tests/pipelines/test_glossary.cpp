@@ -10,6 +10,7 @@
 #include "latsim/display/raster_timing.hpp"
 #include "latsim/pipelines/glossary.hpp"
 #include "latsim/pipelines/latency_recorder.hpp"
+#include "latsim/tracker/motion_phase.hpp"
 #include "latsim/tracker/motion_source.hpp"
 
 using namespace latsim;
@@ -22,6 +23,8 @@ class NoSamples final : public pipelines::HostFeed {
   std::optional<tracker::TrackerSample> newest_at(des::Time) const override { return std::nullopt; }
   des::Time received_at(const tracker::TrackerSample& s) const override { return s.ready_at; }
   void on_delivery(std::function<void(const tracker::TrackerSample&, des::Time)>) override {}
+  tracker::PredictionBasis basis_of(const tracker::TrackerSample& s) const override { return tracker::hold_basis(s); }
+  bool predicts() const override { return false; }
 };
 
 struct Recorder {
@@ -62,4 +65,20 @@ TEST_CASE("a pipeline cannot report under a glossary name, nor set a figure twic
   CHECK_THROWS_AS(rec.set("tear_gap_px", 1.0), std::logic_error);
   CHECK(pipelines::is_glossary_figure("rotation_latency_ms"));
   CHECK_FALSE(pipelines::is_glossary_figure("translation_latency_memory0_ms"));
+}
+
+TEST_CASE("the motion-phase parts of split figures are the recorder's", "[glossary]") {
+  Recorder r;
+  CHECK(pipelines::is_glossary_figure("prediction_error_deg"));
+  CHECK(pipelines::is_glossary_figure("registration_error_arcmin_onset"));
+  CHECK(pipelines::is_glossary_figure("prediction_error_deg_still.mean"));
+  CHECK_FALSE(pipelines::is_glossary_figure("prediction_error_deg_early"));
+  CHECK_FALSE(pipelines::is_glossary_figure("registration_error_arcmin_onsets"));
+  CHECK_FALSE(pipelines::is_glossary_figure("prediction_error_mm_steady"));
+  CHECK_THROWS_AS(r.recorder.add("registration_error_arcmin_steady", 1.0), std::logic_error);
+  CHECK_THROWS_AS(r.recorder.add("prediction_horizon_ms", 1.0), std::logic_error);
+  // The suffixes are the classifier's own phase names, in its order.
+  const auto phases = pipelines::motion_phase_suffixes();
+  REQUIRE(phases.size() == 4);
+  for (size_t i = 0; i < phases.size(); ++i) CHECK(tracker::phase_name(static_cast<tracker::MotionPhase>(i)) == phases[i]);
 }
