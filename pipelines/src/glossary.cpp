@@ -34,6 +34,14 @@ constexpr std::array kGlossary = {
                   "per lit world point: the angle between where it is drawn and where it should appear given the head "
                   "pose at its photon time"},
     GlossaryEntry{"registration_error_px", "registration_error_arcmin in display pixels at the image centre"},
+    GlossaryEntry{"prediction_horizon_ms",
+                  "per prediction: the instant the pose was predicted for minus the measurement time of its sample"},
+    GlossaryEntry{"prediction_error_deg",
+                  "per prediction: the angle between the predicted head orientation and the true one at the instant "
+                  "predicted for"},
+    GlossaryEntry{"prediction_error_mm",
+                  "per prediction: the distance between the predicted head position and the true one at the instant "
+                  "predicted for"},
     GlossaryEntry{"frame_rate_hz", "distinct images first shown per second on one eye's display"},
     GlossaryEntry{"missed_refreshes",
                   "refreshes (one eye) that showed no new image although the pipeline had one due by then"},
@@ -47,6 +55,10 @@ constexpr std::array kGlossary = {
                   "keep up"},
 };
 
+// Figures split by motion phase (/motion_phases) into <name>_<phase>.
+constexpr std::array<std::string_view, 2> kSplit = {"registration_error_arcmin", "prediction_error_deg"};
+constexpr std::array<std::string_view, 4> kPhases = {"still", "onset", "steady", "stop"};
+
 constexpr std::array<std::string_view, 3> kCounters = {"images_shown", "fields", "unlit_spans"};
 
 }  // namespace
@@ -55,9 +67,21 @@ std::span<const GlossaryEntry> glossary() { return kGlossary; }
 
 std::span<const std::string_view> recorder_counters() { return kCounters; }
 
+std::span<const std::string_view> phase_split_figures() { return kSplit; }
+
+std::span<const std::string_view> motion_phase_suffixes() { return kPhases; }
+
 bool is_glossary_figure(std::string_view name) {
   const std::string_view head = name.substr(0, name.find('.'));
-  return std::any_of(kGlossary.begin(), kGlossary.end(), [&](const GlossaryEntry& e) { return e.name == head; });
+  if (std::any_of(kGlossary.begin(), kGlossary.end(), [&](const GlossaryEntry& e) { return e.name == head; }))
+    return true;
+  // A motion-phase part of a split figure is the recorder's too.
+  for (std::string_view base : kSplit)
+    for (std::string_view phase : kPhases)
+      if (head.size() == base.size() + 1 + phase.size() && head.starts_with(base) && head[base.size()] == '_' &&
+          head.ends_with(phase))
+        return true;
+  return false;
 }
 
 }  // namespace latsim::pipelines

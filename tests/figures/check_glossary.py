@@ -204,6 +204,28 @@ def check_missed(scenario, raster, figures, frames, fields, pipeline, duration_t
         fail(scenario, f"missed_refreshes {figures['missed_refreshes']}, ledger gives {missed}")
 
 
+def check_prediction(scenario, scen, raster, figures, frames, fields, newest):
+    """prediction_horizon_ms: per image of eye 0, and per field's middle line where the orientation is looked up."""
+    if "prediction_horizon_ms" not in figures:
+        return
+    if scen["pipeline"]["type"] == "frameless":
+        return  # per sampled pixel: not in the ledger
+    fixed = scen["host"]["prediction"].get("horizon_ms")
+    horizons = [ms(f["predicted_for_ps"] - f["measured_ps"]) for f in frames if f["eye"] == 0]
+    middle = raster.lines // 2
+    for row in fields:
+        if row["eye"] != 0 or not row["orientation_at_scanout"] or not row["first_line"] <= middle <= row["last_line"]:
+            continue
+        written = raster.line_time(row["field"], middle)
+        s = newest.at(written)
+        if s is None:
+            continue
+        # The newest sample predicted to the middle line's photon time (or its fixed horizon).
+        target = s["measured_ps"] + ticks_of_ms(fixed) if fixed is not None else raster.photon(row["field"], written)
+        horizons.append(ms(target - s["measured_ps"]))
+    compare_dist(scenario, "prediction_horizon_ms", figures, horizons)
+
+
 def check_link(scenario, scen, figures, tracker_rows, duration_s):
     compare_dist(scenario, "tracker_to_host_ms", figures, [ms(r["visible_ps"] - r["measured_ps"]) for r in tracker_rows])
     transport = scen.get("transport", {})
@@ -256,7 +278,8 @@ def check_scenario(latsim, source, work, path):
     frames = read_csv(os.path.join(out, "frames.csv"))
     fields = read_csv(os.path.join(out, "fields.csv"))
     tracker_rows = read_csv(os.path.join(out, "tracker.csv"))
-    spans = span_latencies(name, raster, fields, Newest(tracker_rows))
+    newest = Newest(tracker_rows)
+    spans = span_latencies(name, raster, fields, newest)
     if spans is None:
         return
     mtp, rot, trans, disp, age = spans
@@ -276,6 +299,7 @@ def check_scenario(latsim, source, work, path):
         compare_dist(name, "image_age_ms", figures, age)
     check_images(name, raster, figures, frames, fields, duration_s)
     check_missed(name, raster, figures, frames, fields, scen["pipeline"], duration_ticks)
+    check_prediction(name, scen, raster, figures, frames, fields, newest)
     check_link(name, scen, figures, tracker_rows, duration_s)
     check_counts(name, scen, raster, figures, duration_ticks)
     return figures

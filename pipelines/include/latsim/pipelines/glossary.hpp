@@ -17,7 +17,12 @@ struct GlossaryEntry {
 std::span<const GlossaryEntry> glossary();
 /// Counters under "counts" that the recorder owns.
 std::span<const std::string_view> recorder_counters();
-/// Whether `name` (or the first part of a dotted name) is a glossary figure.
+/// Glossary figures also reported split by motion phase, as <name>_<phase>.
+std::span<const std::string_view> phase_split_figures();
+/// The phases of that split, in docs/figures.md's order.
+std::span<const std::string_view> motion_phase_suffixes();
+/// Whether `name` (or the first part of a dotted name) is a glossary figure
+/// or a motion-phase part of one.
 bool is_glossary_figure(std::string_view name);
 
 }  // namespace latsim::pipelines
