@@ -11,6 +11,8 @@
 
 #include "latsim/des/random.hpp"
 #include "latsim/scenario/config.hpp"
+#include "latsim/scenario/json_text.hpp"
+#include "latsim/scenario/readable.hpp"
 
 namespace latsim::app {
 
@@ -58,11 +60,10 @@ uint64_t non_negative_integer(const Json& sweep, const char* key, uint64_t def, 
 
 // The base scenario with its includes merged, as a plain document.
 Json load_base(const fs::path& base_file, const fs::path& sweep_file) {
-  if (!fs::exists(base_file)) throw SweepError(sweep_file, "/base", "base scenario not found: " + base_file.string());
   try {
     return scenario::ScenarioDocument::load(base_file).json();
   } catch (const scenario::ScenarioError& e) {
-    throw SweepError(sweep_file, "/base", base_file.string() + ": " + e.pointer() + ": " + e.message());
+    throw SweepError(sweep_file, "/base", e.line(base_file));
   }
 }
 
@@ -122,7 +123,8 @@ SweepAxis read_axis(const Json& axis, const std::string& where, const fs::path& 
 }  // namespace
 
 SweepError::SweepError(const fs::path& file, const std::string& pointer, const std::string& message)
-    : std::runtime_error(file.string() + ": " + (pointer.empty() ? "" : pointer + ": ") + message) {}
+    : std::runtime_error(scenario::readable(file.string(), 2 * scenario::kQuotedChars) + ": " +
+                         (pointer.empty() ? "" : scenario::readable_pointer(pointer) + ": ") + scenario::readable(message)) {}
 
 std::vector<Json> expand_range(const Json& range, const fs::path& file, const std::string& pointer) {
   if (!range.is_object()) throw SweepError(file, pointer, "expected {\"from\": a, \"to\": b, \"step\": s}");
@@ -188,15 +190,11 @@ std::string value_text(const Json& value) {
 }
 
 SweepPlan SweepPlan::load(const fs::path& sweep_file, const ResolveDefaults& resolve) {
-  std::ifstream in(sweep_file);
-  if (!in) throw SweepError(sweep_file, "", "cannot read the sweep file");
-  std::stringstream buf;
-  buf << in.rdbuf();
   Json sweep;
   try {
-    sweep = Json::parse(buf.str());
-  } catch (const Json::parse_error& e) {
-    throw SweepError(sweep_file, "", std::string("malformed JSON: ") + e.what());
+    sweep = scenario::read_json_file(sweep_file, "sweep file");
+  } catch (const scenario::ScenarioError& e) {
+    throw SweepError(sweep_file, e.pointer(), e.message());
   }
   return from_json(sweep, sweep_file, resolve);
 }
@@ -239,7 +237,7 @@ SweepPlan SweepPlan::from_json(const Json& sweep, const fs::path& sweep_file, co
         try {
           resolved = resolve(doc, plan.base_dir());
         } catch (const scenario::ScenarioError& e) {
-          throw SweepError(file, "/base", plan.base_file_.string() + ": " + e.pointer() + ": " + e.message());
+          throw SweepError(file, "/base", e.line(plan.base_file_));
         }
       }
       if (!resolved->contains(ptr))

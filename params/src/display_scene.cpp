@@ -7,6 +7,9 @@ using scenario::Section;
 
 namespace {
 
+// About twice as many triangles: far beyond any scene latsim draws, and still within memory.
+constexpr double kMaxGalleryTiles = 2e6;
+
 void gallery(Section& s, renderer::GalleryParams& g) {
   s.number("size_x_m", g.size_x_m, {.unit = "m", .min = 0.0, .above_min = true, .doc = "extent along x"});
   s.number("size_z_m", g.size_z_m, {.unit = "m", .min = 0.0, .above_min = true, .doc = "extent along z"});
@@ -16,6 +19,11 @@ void gallery(Section& s, renderer::GalleryParams& g) {
   s.number("tile_m", g.tile_m,
            {.unit = "m", .min = 0.0, .above_min = true,
             .doc = "tessellation step (a divisor of the region size keeps segments aligned with regions)"});
+  // The scene is built in memory and cast by Embree: floor, ceiling and walls in tiles of tile_m.
+  const double surface_m2 = 2.0 * (g.size_x_m * g.size_z_m + (g.size_x_m + g.size_z_m) * g.height_m);
+  s.check("tile_m", surface_m2 / (g.tile_m * g.tile_m) <= kMaxGalleryTiles,
+          "the gallery's floor, ceiling and walls would need more than 2e6 tiles of tile_m: make it smaller or the "
+          "tiles larger");
 }
 
 void persistence(Section& s, display::PersistenceParams& p, const display::RasterParams& raster) {
@@ -48,7 +56,8 @@ void persistence(Section& s, display::PersistenceParams& p, const display::Raste
 void bind(Section& s, display::DisplayParams& p) {
   s.doc("One display per eye, synchronised; for interlaced displays `refresh_hz` is the field rate.");
   display::RasterParams& r = p.raster;
-  s.rate("refresh_hz", r.field_period, {.unit = "Hz", .doc = "field rate (exact rational; \"60000/1001\" for NTSC's 59.94 Hz)"});
+  s.rate("refresh_hz", r.field_period,
+         {.unit = "Hz", .max = 1e4, .doc = "field rate (exact rational; \"60000/1001\" for NTSC's 59.94 Hz)"});
   s.flag("interlaced", r.interlaced, {.doc = "odd/even fields; a frame is two fields"});
   s.integer("width_px", r.width_px, {.unit = "px", .min = 1.0, .max = 16384.0, .doc = "active pixels per line"});
   s.integer("height_px", r.height_px, {.unit = "px", .min = 2.0, .max = 16384.0, .doc = "active lines (both fields together)"});

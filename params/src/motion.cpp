@@ -14,8 +14,12 @@ namespace {
 
 constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 
+// A head is somewhere in a building, a city at most: a kilometre-scale bound
+// keeps positions where single-precision ray casting still resolves millimetres.
+constexpr double kFarthestM = 1e6;
+
 void start_position(Section& s, tracker::MotionParams& p) {
-  vec3(s, "position_m", p.position_m, {.unit = "m", .doc = "head position [x, y, z]"});
+  vec3(s, "position_m", p.position_m, {.unit = "m", .min = -kFarthestM, .max = kFarthestM, .doc = "head position [x, y, z]"});
 }
 
 void start_orientation(Section& s, tracker::MotionParams& p) {
@@ -46,7 +50,8 @@ void sinusoid(Section& s, tracker::MotionParams& p) {
 void walk(Section& s, tracker::MotionParams& p) {
   tracker::WalkParams& w = p.walk;
   std::vector<std::vector<double>> rows;
-  s.number_rows("points", rows, {.unit = "m", .count = 3, .required = true, .doc = "the path [[x, y, z], …]"});
+  s.number_rows("points", rows,
+                {.unit = "m", .min = -kFarthestM, .max = kFarthestM, .count = 3, .required = true, .doc = "the path [[x, y, z], …]"});
   s.check("points", s.describing() || !rows.empty(), "a walk needs at least one point");
   w.points_m.clear();
   for (const auto& r : rows) w.points_m.emplace_back(r[0], r[1], r[2]);
@@ -111,6 +116,8 @@ void serial(Section& s, tracker::SerialLinkParams& p) {
                     "buffer drops the oldest waiting one",
              .default_doc = "⌊256 / record_bytes⌋ (at least 1): a BSD tty queue of 256 bytes (TTYHOG); a 16550 UART's "
                             "16-byte FIFO holds less than one record"});
+  const double record_bits = static_cast<double>(p.record_bytes) * static_cast<double>(p.bits_per_byte);
+  s.check_span("baud", 1.0 / p.baud, record_bits, "record_bytes × bits_per_byte (one record)");
   s.modes("host", "poll",
           {{"poll", "the kernel looks every poll_interval_ms; the newest complete record wins",
             [&p](Section& m) {
@@ -124,6 +131,8 @@ void serial(Section& s, tracker::SerialLinkParams& p) {
               p.host_mode = tracker::SerialLinkParams::Interrupt;
               m.duration("per_char_interrupt_us", p.per_char_interrupt_cost,
                          {.unit = "us", .doc = "handler cost per character (above the character time, handlers back up)"});
+              m.check_span("per_char_interrupt_us", p.per_char_interrupt_cost.to_seconds(),
+                           static_cast<double>(p.record_bytes), "record_bytes (one record)");
             }}},
           {.doc = "how the host learns of received characters"});
 }

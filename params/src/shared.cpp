@@ -48,7 +48,8 @@ void bind_probes(Section& s, ProbeParams& p) {
       "World points whose registration error is measured on every field they are drawn in. Without this section: "
       "a ring 2 m around the start position, every 15° of yaw at −15°, 0° and +15° of pitch.");
   std::vector<std::vector<double>> rows;
-  s.number_rows("points_m", rows, {.unit = "m", .count = 3, .required = true, .doc = "world points [[x, y, z], …]"});
+  s.number_rows("points_m", rows,
+                {.unit = "m", .min = -1e6, .max = 1e6, .count = 3, .required = true, .doc = "world points [[x, y, z], …]"});
   p.points_m.clear();
   for (const auto& r : rows) p.points_m.emplace_back(r[0], r[1], r[2]);
 }

@@ -147,7 +147,7 @@ class PriorityPipeline final : public Pipeline {
 constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 
 void bind(scenario::Section& s, PriorityPipeline::Params& p, const params::SharedParams& shared) {
-  s.rate("max_update_rate_hz", p.model.base_period, {.unit = "Hz", .doc = "rate of the fastest display memory (and of the ticks)"});
+  s.rate("max_update_rate_hz", p.model.base_period, {.unit = "Hz", .max = 1e4, .doc = "rate of the fastest display memory (and of the ticks)"});
   s.integer("memory_count", p.model.memory_count, {.min = 1.0, .max = 16.0, .doc = "display memories at rates halving from the fastest"});
   s.integer("face_px", p.face_px, {.unit = "px", .min = 1.0, .max = 8192.0, .doc = "cube display memory face size"});
   // Default threshold: one texel of the cube memory at a face centre.

@@ -183,7 +183,7 @@ class RegionPriorityPipeline final : public Pipeline {
 
 void bind(scenario::Section& s, RegionPriorityPipeline::Params& p, const params::SharedParams& shared) {
   arp::RegionPriorityParams& m = p.model;
-  s.rate("max_update_rate_hz", p.period, {.unit = "Hz", .doc = "rate of the fastest display memory (and of the ticks)"});
+  s.rate("max_update_rate_hz", p.period, {.unit = "Hz", .max = 1e4, .doc = "rate of the fastest display memory (and of the ticks)"});
   params::clock(s, "loop_", p.loop, "tick loop");
   bind(s, p.frames);
   s.number("region_size_m", p.region_size_m, {.unit = "m", .min = 0.0, .above_min = true, .doc = "edge of a square floor region"});

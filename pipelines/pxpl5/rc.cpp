@@ -66,6 +66,15 @@ void bind(scenario::Section& s, Pxpl5RcPipeline::Params& p, const params::Shared
       },
       {.doc = "when the host reads the tracker"});
   bind_pxpl5_common(s, shared, r.hw, p.common);
+  // What one frame of the synthetic workload costs must fit the run's clock.
+  const double triangles = static_cast<double>(p.common.synthetic.triangles) * (p.common.stereo ? 2.0 : 1.0);
+  const double bins = triangles * p.common.synthetic.regions_per_triangle;
+  s.check_span("transform_us_per_triangle", r.transform_time_per_triangle.to_seconds(), triangles,
+               "/scene/triangles per frame");
+  s.check_span("binitize_us_per_bin", r.binitize_time_per_bin.to_seconds(), bins,
+               "/scene/triangles × regions_per_triangle per frame");
+  s.check_span("render_us_per_command", r.hw.render_time_per_command.to_seconds(), bins,
+               "/scene/triangles × regions_per_triangle per frame");
 }
 
 }  // namespace

@@ -82,6 +82,11 @@ void bind(scenario::Section& s, Pxpl5SlatsPipeline::Params& p, const params::Sha
   s.check_pointer("/display/scanout", shared.display.fidelity != display::ScanoutFidelity::Field,
                   "Slats writes regions into the displayed frame buffer during scanout: use \"line\" or \"pixel\"");
   bind_pxpl5_common(s, shared, q.hw, p.common);
+  // What one field of the synthetic workload costs must fit the run's clock; every region renders the one bin.
+  const double triangles = static_cast<double>(p.common.synthetic.triangles);
+  s.check_span("gp_us_per_triangle", q.gp_time_per_triangle.to_seconds(), triangles, "/scene/triangles per field");
+  s.check_span("render_us_per_command", q.hw.render_time_per_command.to_seconds(), triangles * 20.0,
+               "/scene/triangles × 20 regions per field");
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "latsim/scenario/config.hpp"
 
+#include "latsim/scenario/json_text.hpp"
+#include "latsim/scenario/readable.hpp"
 #include "latsim/scenario/schema.hpp"
 
 #include <cmath>
@@ -10,10 +12,23 @@ namespace latsim::scenario {
 
 using Json = nlohmann::json;
 
-ScenarioError::ScenarioError(std::string pointer, std::string message)
-    : std::runtime_error((pointer.empty() ? std::string("/") : pointer) + ": " + message),
+namespace {
+
+std::string located(const std::string& pointer, const std::string& message) {
+  return pointer.empty() ? readable(message) : readable_pointer(pointer) + ": " + readable(message);
+}
+
+}  // namespace
+
+ScenarioError::ScenarioError(std::string pointer, std::string message, std::filesystem::path file)
+    : std::runtime_error(located(pointer, message)),
       pointer_(std::move(pointer)),
-      message_(std::move(message)) {}
+      message_(std::move(message)),
+      file_(std::move(file)) {}
+
+std::string ScenarioError::line(const std::filesystem::path& named_file) const {
+  return readable((file_.empty() ? named_file : file_).string(), kQuotedChars * 2) + ": " + what();
+}
 
 std::string join_pointer(std::string_view pointer, std::string_view key) {
   std::string out(pointer);
@@ -325,171 +340,6 @@ std::filesystem::path ConfigNode::path(std::string_view key) const {
   if (p.empty()) fail(key, "empty file path");
   if (p.is_relative()) p = log_->base_dir / p;
   return p.lexically_normal();
-}
-
-// ---------------------------------------------------------------------------
-
-namespace {
-
-Json parse_file(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw ScenarioError("", "cannot open scenario file " + file.string());
-  std::ostringstream buf;
-  buf << in.rdbuf();
-  const std::string text = buf.str();
-  try {
-    return Json::parse(text);
-  } catch (const Json::parse_error& e) {
-    // Turn the byte offset into a line number for the user.
-    size_t line = 1;
-    for (size_t i = 0; i < e.byte && i < text.size(); ++i)
-      if (text[i] == '\n') ++line;
-    std::string what = e.what();
-    const auto pos = what.find("; ");
-    throw ScenarioError("", "malformed JSON in " + file.string() + " at line " + std::to_string(line) + ": " +
-                                (pos == std::string::npos ? what : what.substr(pos + 2)));
-  }
-}
-
-// Objects merge key by key; anything else in `over` replaces `base`. An
-// object whose "type" differs from the base's is a different thing altogether
-// (a trace instead of a sinusoid) and replaces it whole.
-void deep_merge(Json& base, const Json& over) {
-  const bool retyped = base.is_object() && over.is_object() && base.contains("type") && over.contains("type") &&
-                       base["type"] != over["type"];
-  if (!base.is_object() || !over.is_object() || retyped) {
-    base = over;
-    return;
-  }
-  for (auto it = over.begin(); it != over.end(); ++it) {
-    if (base.contains(it.key())) deep_merge(base[it.key()], it.value());
-    else base[it.key()] = it.value();
-  }
-}
-
-Json load_with_includes(const std::filesystem::path& file, std::vector<std::filesystem::path>& chain) {
-  const auto canon = std::filesystem::weakly_canonical(file);
-  for (const auto& c : chain)
-    if (c == canon) throw ScenarioError("/include", "include cycle through " + file.string());
-  chain.push_back(canon);
-  Json doc = parse_file(file);
-  if (!doc.is_object()) throw ScenarioError("", "a scenario must be a JSON object");
-  Json result = Json::object();
-  if (doc.contains("include")) {
-    const Json inc = doc["include"];
-    std::vector<std::string> files;
-    if (inc.is_string()) files.push_back(inc.get<std::string>());
-    else if (inc.is_array()) {
-      for (size_t i = 0; i < inc.size(); ++i) {
-        if (!inc[i].is_string()) throw ScenarioError("/include/" + std::to_string(i), "expected a file name");
-        files.push_back(inc[i].get<std::string>());
-      }
-    } else {
-      throw ScenarioError("/include", "expected a file name or an array of file names");
-    }
-    for (const auto& f : files) {
-      std::filesystem::path p = f;
-      if (p.is_relative()) p = file.parent_path() / p;
-      if (!std::filesystem::exists(p)) throw ScenarioError("/include", "included file not found: " + p.string());
-      deep_merge(result, load_with_includes(p, chain));
-    }
-    doc.erase("include");
-  }
-  deep_merge(result, doc);
-  chain.pop_back();
-  return result;
-}
-
-}  // namespace
-
-void apply_override(Json& doc, const std::string& assignment, const ObjectSchema* schema) {
-  const auto eq = assignment.find('=');
-  if (eq == std::string::npos || assignment.empty() || assignment[0] != '/')
-    throw ScenarioError("", "override \"" + assignment + "\" must look like /json/pointer=value");
-  const std::string ptr = assignment.substr(0, eq);
-  const std::string text = assignment.substr(eq + 1);
-  Json value;
-  try {
-    value = Json::parse(text);
-  } catch (const Json::parse_error&) {
-    value = text;  // a bare word is a string
-  }
-  try {
-    Json::json_pointer p(ptr);
-    if (!p.parent_pointer().empty() && !doc.contains(p.parent_pointer())) {
-      // Every missing ancestor must be an object the schema declares.
-      for (Json::json_pointer q = p.parent_pointer(); !q.empty() && !doc.contains(q); q = q.parent_pointer()) {
-        const KeySchema* k = schema ? schema->key_at(q.to_string()) : nullptr;
-        if (!k || k->type != "object")
-          throw ScenarioError(ptr, "override target's parent does not exist in the scenario");
-      }
-    }
-    doc[p] = std::move(value);
-  } catch (const Json::exception& e) {
-    throw ScenarioError(ptr, std::string("cannot apply override: ") + e.what());
-  }
-}
-
-ScenarioDocument ScenarioDocument::load(const std::filesystem::path& file, const std::vector<std::string>& overrides,
-                                        const ObjectSchema* schema) {
-  std::vector<std::filesystem::path> chain;
-  Json doc = load_with_includes(file, chain);
-  for (const auto& o : overrides) apply_override(doc, o, schema);
-  auto dir = file.parent_path();
-  if (dir.empty()) dir = ".";
-  return from_json(std::move(doc), dir);
-}
-
-ScenarioDocument ScenarioDocument::from_json(Json doc, std::filesystem::path base_dir) {
-  ScenarioDocument d;
-  if (!doc.is_object()) throw ScenarioError("", "a scenario must be a JSON object");
-  d.doc_ = std::move(doc);
-  d.log_ = std::make_shared<ReadLog>();
-  d.log_->resolved = d.doc_;
-  d.log_->base_dir = std::move(base_dir);
-  return d;
-}
-
-ConfigNode ScenarioDocument::root() const { return ConfigNode(&doc_, "", log_); }
-
-void ScenarioDocument::resolve(const std::string& pointer, Json value) const {
-  log_->resolved[Json::json_pointer(pointer)] = std::move(value);
-}
-
-void ScenarioDocument::check_unknown_keys(const ObjectSchema* schema, std::vector<std::string>* warnings) const {
-  // Depth-first in document order, so the first problem reported is stable.
-  std::vector<std::pair<const Json*, std::string>> stack{{&doc_, ""}};
-  while (!stack.empty()) {
-    auto [n, p] = stack.back();
-    stack.pop_back();
-    std::vector<std::pair<const Json*, std::string>> kids;
-    if (n->is_object()) {
-      for (auto it = n->begin(); it != n->end(); ++it) kids.emplace_back(&*it, join_pointer(p, it.key()));
-    } else if (n->is_array()) {
-      for (size_t i = 0; i < n->size(); ++i)
-        if ((*n)[i].is_object()) kids.emplace_back(&(*n)[i], join_pointer(p, std::to_string(i)));
-    }
-    std::vector<std::pair<const Json*, std::string>> read;
-    for (auto& k : kids) {
-      if (log_->read_pointers.count(k.second)) {
-        read.push_back(k);
-        continue;
-      }
-      const bool array_elem = n->is_array();
-      const KeySchema* declared = schema && !array_elem ? schema->key_at(k.second) : nullptr;
-      if (declared) {
-        std::string when;
-        for (const auto& m : declared->modes) when += (when.empty() ? "" : "; or ") + m;
-        if (warnings)
-          warnings->push_back(k.second + ": ignored: " +
-                              (when.empty() ? std::string("not read by this scenario") : "read only when " + when));
-        continue;
-      }
-      throw ScenarioError(k.second, array_elem ? "entry was not used by the scenario"
-                                               : "unknown key (check its spelling, or remove it: nothing reads it)");
-    }
-    for (auto it = read.rbegin(); it != read.rend(); ++it) stack.push_back(*it);
-  }
 }
 
 }  // namespace latsim::scenario

@@ -35,6 +35,43 @@ double ticks_per_unit(std::string_view unit) {
   throw std::logic_error("a duration's unit must be s, ms or us, not \"" + std::string(unit) + "\"");
 }
 
+// Every number a scenario gives is finite and at most this large in
+// magnitude unless its declaration says otherwise: beyond it no quantity of a
+// head-mounted display means anything, and products of two such numbers stay
+// far inside a double.
+constexpr double kLargestNumber = 1e12;
+// Every span of time a scenario implies (a duration, a period) is at most the
+// longest run, 1e6 s, so that any sum of a few of them stays inside int64
+// picoseconds (about 9.2e6 s).
+constexpr double kLongestSpanSeconds = 1e6;
+// A rate's period must be a whole number of picoseconds or more (the time unit).
+constexpr double kHighestRateHz = 1e6;
+
+// The declared range, or the default bounds on the sides it leaves open.
+KeySpec bounded_number(const KeySpec& spec) {
+  KeySpec b = spec;
+  if (!b.min) b.min = -kLargestNumber;
+  if (!b.max) b.max = kLargestNumber;
+  return b;
+}
+
+KeySpec bounded_duration(const KeySpec& spec, double ticks_per_unit) {
+  KeySpec b = spec;
+  if (!b.min) b.min = 0.0;
+  if (!b.max) b.max = kLongestSpanSeconds * 1e12 / ticks_per_unit;
+  return b;
+}
+
+KeySpec bounded_rate(const KeySpec& spec) {
+  KeySpec b = spec;
+  if (!b.min) {
+    b.min = 1.0 / kLongestSpanSeconds;
+    b.above_min = false;
+  }
+  if (!b.max) b.max = kHighestRateHz;
+  return b;
+}
+
 bool same_declaration(const KeySchema& a, const KeySchema& b) {
   const bool same_object = (!a.object && !b.object) ||
                            (a.object && b.object && json_schema(*a.object) == json_schema(*b.object));
@@ -104,7 +141,8 @@ void Section::check_range(std::string_view key, double x, const KeySpec& spec) c
   if (const auto problem = range_problem(x, spec)) fail(key, *problem);
 }
 
-void Section::number(std::string_view key, double& v, const KeySpec& spec) {
+void Section::number(std::string_view key, double& v, const KeySpec& declared) {
+  const KeySpec spec = bounded_number(declared);
   if (schema_) {
     KeySchema& k = declare(key, "number", spec);
     if (!spec.required) k.default_value = v;
@@ -114,7 +152,8 @@ void Section::number(std::string_view key, double& v, const KeySpec& spec) {
   check_range(key, v, spec);
 }
 
-void Section::number(std::string_view key, std::optional<double>& v, const KeySpec& spec) {
+void Section::number(std::string_view key, std::optional<double>& v, const KeySpec& declared) {
+  const KeySpec spec = bounded_number(declared);
   if (schema_) {
     declare(key, "number", spec);
     return;
@@ -186,7 +225,8 @@ void Section::choices(std::string_view key, std::vector<std::string>& v, const s
   }
 }
 
-void Section::rate(std::string_view key, des::RationalSeconds& period, const KeySpec& spec) {
+void Section::rate(std::string_view key, des::RationalSeconds& period, const KeySpec& declared) {
+  const KeySpec spec = bounded_rate(declared);
   const Json def = hz_of_period(period);
   if (schema_) {
     KeySchema& k = declare(key, "rate", spec);
@@ -194,12 +234,18 @@ void Section::rate(std::string_view key, des::RationalSeconds& period, const Key
     return;
   }
   period = node_->rate_as_period(key, def.is_string() ? def.get<std::string>() : std::to_string(def.get<int64_t>()));
+  // The frequency is den/num Hz; its range in exact arithmetic first, so that
+  // a fraction like "9223372036854775807/1" is judged, not rounded.
+  const __int128 ticks_num = static_cast<__int128>(period.num) * des::Time::kTicksPerSecond;
+  const double hz = static_cast<double>(period.den) / static_cast<double>(period.num);
+  check_range(key, hz, spec);
+  if (ticks_num < static_cast<__int128>(period.den))
+    fail(key, "the period of " + format_number(hz) + " Hz is shorter than the time unit, 1 ps");
 }
 
 void Section::duration(std::string_view key, des::Time& v, const KeySpec& spec) {
   const double scale = ticks_per_unit(spec.unit);
-  KeySpec bounded = spec;
-  if (!bounded.min) bounded.min = 0.0;
+  const KeySpec bounded = bounded_duration(spec, scale);
   const double def = static_cast<double>(v.ticks()) / scale;
   if (schema_) {
     KeySchema& k = declare(key, "duration", bounded);
@@ -220,9 +266,7 @@ void Section::duration(std::string_view key, des::Time& v, const KeySpec& spec) 
 
 void Section::duration(std::string_view key, std::optional<des::Time>& v, const KeySpec& spec) {
   if (schema_) {
-    KeySpec bounded = spec;
-    if (!bounded.min) bounded.min = 0.0;
-    declare(key, "duration", bounded);
+    declare(key, "duration", bounded_duration(spec, ticks_per_unit(spec.unit)));
     return;
   }
   if (!has(key)) return;
@@ -233,7 +277,8 @@ void Section::duration(std::string_view key, std::optional<des::Time>& v, const 
   v = t;
 }
 
-void Section::numbers(std::string_view key, std::vector<double>& v, const KeySpec& spec) {
+void Section::numbers(std::string_view key, std::vector<double>& v, const KeySpec& declared) {
+  const KeySpec spec = bounded_number(declared);
   if (schema_) {
     KeySchema& k = declare(key, "numbers", spec);
     k.count = spec.count;
@@ -248,7 +293,8 @@ void Section::numbers(std::string_view key, std::vector<double>& v, const KeySpe
       throw ScenarioError(join_pointer(join_pointer(pointer(), key), std::to_string(i)), *problem);
 }
 
-void Section::number_rows(std::string_view key, std::vector<std::vector<double>>& v, const KeySpec& spec) {
+void Section::number_rows(std::string_view key, std::vector<std::vector<double>>& v, const KeySpec& declared) {
+  const KeySpec spec = bounded_number(declared);
   if (schema_) {
     KeySchema& k = declare(key, "number_rows", spec);
     k.row_count = spec.count;
@@ -257,17 +303,21 @@ void Section::number_rows(std::string_view key, std::vector<std::vector<double>>
   }
   if (!spec.required && !has(key)) return;
   v = node_->number_rows(key);
-  if (spec.count > 0)
-    for (size_t i = 0; i < v.size(); ++i)
-      if (static_cast<int>(v[i].size()) != spec.count)
-        fail(key, "row " + std::to_string(i) + " must have " + std::to_string(spec.count) + " numbers");
+  const std::string base = join_pointer(pointer(), key);
+  for (size_t i = 0; i < v.size(); ++i) {
+    const std::string row = join_pointer(base, std::to_string(i));
+    if (spec.count > 0 && static_cast<int>(v[i].size()) != spec.count)
+      throw ScenarioError(row, "expected " + std::to_string(spec.count) + " numbers, found " + std::to_string(v[i].size()));
+    for (size_t j = 0; j < v[i].size(); ++j)
+      if (const auto problem = range_problem(v[i][j], spec)) throw ScenarioError(join_pointer(row, std::to_string(j)), *problem);
+  }
 }
 
 void Section::number_rows(std::string_view key, std::optional<std::vector<std::vector<double>>>& v,
                           const KeySpec& spec) {
   std::vector<std::vector<double>> rows;
   if (schema_) {
-    KeySpec optional = spec;
+    KeySpec optional = bounded_number(spec);
     optional.required = false;
     declare(key, "number_rows", optional).row_count = spec.count;
     return;
@@ -376,6 +426,22 @@ void Section::check_pointer(std::string_view pointer, bool ok, std::string_view 
     return;
   }
   if (!ok) throw ScenarioError(std::string(pointer), std::string(message));
+}
+
+void check_span_at(std::string_view pointer, double per_item_s, double items, std::string_view items_text) {
+  const double total_s = per_item_s * items;
+  if (total_s <= kLongestSpanSeconds) return;
+  throw ScenarioError(std::string(pointer), format_number(per_item_s) + " s × " + std::string(items_text) + " (" +
+                                                format_number(items) + ") = " + format_number(total_s) +
+                                                " s, more than the 1e6 s a run may last");
+}
+
+void Section::check_span(std::string_view key, double per_item_s, double items, std::string_view items_text) {
+  if (schema_) {
+    add_rule(std::string(key) + " × " + std::string(items_text) + ": at most 1e6 s");
+    return;
+  }
+  check_span_at(join_pointer(pointer(), key), per_item_s, items, items_text);
 }
 
 void Section::add_rule(std::string text) {

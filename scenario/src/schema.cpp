@@ -55,15 +55,19 @@ Json value_json(const KeySchema& k) {
   } else if (k.type == "choices") {
     j = {{"type", "array"}, {"items", {{"enum", k.choices}}}};
   } else if (k.type == "rate") {
-    j = {{"anyOf", Json::array({Json{{"type", "number"}, {"exclusiveMinimum", 0}},
-                                Json{{"type", "string"}, {"pattern", "^[0-9]+(/[0-9]+)?$"}}})}};
+    Json number{{"type", "number"}};
+    add_bounds(number, k);
+    if (!k.min) number["exclusiveMinimum"] = 0;
+    j = {{"anyOf", Json::array({number, Json{{"type", "string"}, {"pattern", "^[0-9]+(/[0-9]+)?$"}}})}};
   } else if (k.type == "numbers") {
     Json item{{"type", "number"}};
     add_bounds(item, k);
     j = {{"type", "array"}, {"items", item}};
     if (k.count > 0) j["minItems"] = j["maxItems"] = k.count;
   } else if (k.type == "number_rows") {
-    Json row{{"type", "array"}, {"items", {{"type", "number"}}}};
+    Json item{{"type", "number"}};
+    add_bounds(item, k);
+    Json row{{"type", "array"}, {"items", item}};
     if (k.row_count > 0) row["minItems"] = row["maxItems"] = k.row_count;
     j = {{"type", "array"}, {"items", row}};
   } else if (k.type == "object") {
@@ -107,8 +111,16 @@ std::string code(const std::string& s) { return "`" + s + "`"; }
 
 std::string number_text(double x) {
   std::ostringstream s;
-  if (x == static_cast<double>(static_cast<int64_t>(x)) && x > -1e15 && x < 1e15) s << static_cast<int64_t>(x);
-  else s << x;
+  if (x == static_cast<double>(static_cast<int64_t>(x)) && x > -1e15 && x < 1e15) {
+    // Round powers of ten read better as 1e12 than as thirteen digits.
+    int64_t mantissa = static_cast<int64_t>(x);
+    int exponent = 0;
+    while (mantissa != 0 && mantissa % 10 == 0) mantissa /= 10, ++exponent;
+    if (exponent >= 6) s << mantissa << "e" << exponent;
+    else s << static_cast<int64_t>(x);
+  } else {
+    s << x;
+  }
   return s.str();
 }
 

@@ -141,7 +141,8 @@ TEST_CASE("an axis pointer missing from the base scenario is reported with its p
 TEST_CASE("sweep file errors name the JSON pointer", "[sweep]") {
   Scratch s;
   const Json axis = {{"pointer", "/display/refresh_hz"}, {"values", {60}}};
-  CHECK_THAT(error_of(s, {{"base", "missing.json"}, {"axes", {axis}}}), Catch::Contains("/base: base scenario not found"));
+  CHECK_THAT(error_of(s, {{"base", "missing.json"}, {"axes", {axis}}}), Catch::Contains("missing.json: cannot read the scenario file: No such file"));
+  CHECK_THAT(error_of(s, {{"base", "missing.json"}, {"axes", {axis}}}), Catch::Contains("sweep.json: /base: "));
   CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", Json::array()}}), Catch::Contains("/axes: expected a non-empty"));
   CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {axis}}, {"mode", "diagonal"}}), Catch::Contains("/mode:"));
   CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {axis}}, {"replications", 0}}), Catch::Contains("/replications:"));

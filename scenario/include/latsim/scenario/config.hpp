@@ -20,16 +20,24 @@ namespace latsim::scenario {
 
 struct ObjectSchema;
 
-/// Bad scenario input: names the JSON pointer of the problem.
+/// Bad scenario input: names the JSON pointer of the problem and, when it is
+/// not the file the user named (an included file), the file it is in.
+/// what() is "pointer: message" (just the message for the whole document),
+/// cut to a readable length on one line.
 class ScenarioError : public std::runtime_error {
  public:
-  ScenarioError(std::string pointer, std::string message);
+  ScenarioError(std::string pointer, std::string message, std::filesystem::path file = {});
   const std::string& pointer() const { return pointer_; }
   const std::string& message() const { return message_; }
+  const std::filesystem::path& file() const { return file_; }
+  /// The one line to print: "<file>: <pointer>: <message>", the file being
+  /// file() when set and `named_file` (what the user gave) otherwise.
+  std::string line(const std::filesystem::path& named_file) const;
 
  private:
   std::string pointer_;
   std::string message_;
+  std::filesystem::path file_;
 };
 
 /// Appends an escaped key to a JSON pointer ("/a" + "b/c" -> "/a/b~1c").

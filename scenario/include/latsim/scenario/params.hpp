@@ -31,6 +31,11 @@
 
 namespace latsim::scenario {
 
+/// The check of Section::check_span for a model that learns its item count
+/// only when it is built (objects of a generated scene): throws
+/// ScenarioError at `pointer` unless per_item_s × items is at most 1e6 s.
+void check_span_at(std::string_view pointer, double per_item_s, double items, std::string_view items_text);
+
 /// How a key is declared besides its name, type and default.
 struct KeySpec {
   std::string_view unit;          ///< "ms", "Hz", "px", "m", "deg", ...; durations: "s", "ms" or "us"
@@ -155,6 +160,11 @@ class Section {
   void check(std::string_view key, bool ok, std::string_view message);
   /// The same for a key elsewhere in the scenario, by its absolute JSON pointer.
   void check_pointer(std::string_view pointer, bool ok, std::string_view message);
+  /// A cross-field rule on time: `per_item_s` (what the value of `key` costs) times
+  /// `items` (described by `items_text`, such as "/scene/triangles × 2 eyes")
+  /// must not exceed the longest span a scenario may imply, 1e6 s, so that
+  /// the run can add it to its clock.
+  void check_span(std::string_view key, double per_item_s, double items, std::string_view items_text);
   /// Runs fn (reading mode only); a std::exception it throws becomes an error at `key`.
   void guard(std::string_view key, const std::function<void()>& fn);
   [[noreturn]] void fail(std::string_view key, const std::string& message) const;
