@@ -75,25 +75,35 @@ std::optional<des::RationalSeconds> rational_lcm(des::RationalSeconds x, des::Ra
 
 /// Per-line latencies summed exactly in picoseconds. Every field has the
 /// same line offsets from its retrace, so a displayed field adds
-/// lines x (retrace - measured) + the sum of the offsets.
+/// lines x (retrace - measured) + the sum of the offsets. At most
+/// `max_fields` fields are taken: the work follows what the run can afford,
+/// not the render time (one frame of a long render spans many fields).
 class Tally {
  public:
-  explicit Tally(const display::RasterTiming& t) : lines_(t.lines_per_field()) {
+  Tally(const display::RasterTiming& t, int64_t max_fields) : lines_(t.lines_per_field()), max_fields_(max_fields) {
     for (int j = 0; j < lines_; ++j) offsets_sum_ += (t.line_time(0, j) - t.field_start(0)).ticks();
     first_ = t.line_time(0, 0) - t.field_start(0);
     last_ = t.line_time(0, lines_ - 1) - t.field_start(0);
   }
-  void field(des::Time retrace, des::Time measured) {
+  /// False, and nothing added, once the budget of fields is spent.
+  bool field(des::Time retrace, des::Time measured) {
+    if (fields_ >= max_fields_) {
+      truncated_ = true;
+      return false;
+    }
+    ++fields_;
     const des::Time base = retrace - measured;
     sum_ += static_cast<i128>(lines_) * base.ticks() + offsets_sum_;
     count_ += lines_;
     min_ = std::min(min_, base + first_);
     max_ = std::max(max_, base + last_);
+    return true;
   }
   double mean_ms() const { return static_cast<double>(sum_) / static_cast<double>(count_) * 1e-9; }
   double min_ms() const { return min_.to_ms(); }
   double max_ms() const { return max_.to_ms(); }
   bool empty() const { return count_ == 0; }
+  bool truncated() const { return truncated_; }
 
  private:
   int lines_;
@@ -101,6 +111,9 @@ class Tally {
   des::Time first_, last_;
   i128 sum_ = 0;
   int64_t count_ = 0;
+  int64_t max_fields_;
+  int64_t fields_ = 0;
+  bool truncated_ = false;
   des::Time min_ = des::Time::max(), max_ = -des::Time::max();
 };
 
@@ -118,7 +131,8 @@ struct Frames {
   int64_t add(int64_t s, const Visibility& vis, Tally& tally) const {
     const des::Time measured = *vis.newest_measured(timing.field_start(s));
     const int64_t swap = swap_after(s), next = swap_after(swap);
-    for (int64_t f = swap; f < next; ++f) tally.field(timing.field_start(f), measured);
+    for (int64_t f = swap; f < next; ++f)
+      if (!tally.field(timing.field_start(f), measured)) break;
     return swap;
   }
 };
@@ -154,13 +168,13 @@ std::optional<AnalyticLatency> enumerate_fixed(const AnalyticInputs& in, const L
   const auto fields = cycle_fields(in.raster.field_period, frames.swap_after(s) - s, in.tracker_period, link.poll,
                                    a.hyperperiod_s);
   if (!fields) return std::nullopt;
-  Tally tally(timing);
+  Tally tally(timing, in.max_fields);
   const int64_t s0 = s;
-  while (s - s0 < *fields && a.frames < kMaxFrames) {
+  while (s - s0 < *fields && a.frames < kMaxFrames && !tally.truncated()) {
     s = frames.add(s, vis, tally);
     ++a.frames;
   }
-  a.complete = s - s0 >= *fields;
+  a.complete = s - s0 >= *fields && !tally.truncated();
   a.method = "phase enumeration over one repeat cycle of the fixed phases (no events)";
   a.min_ms = tally.min_ms();
   a.mean_ms = tally.mean_ms();
@@ -193,7 +207,7 @@ std::optional<AnalyticLatency> integrate(const AnalyticInputs& in, const Link& l
   };
   const int64_t nt = in.integrate_tracker ? a.phase_grid : 1;
   const int64_t np = poll_integrated ? a.phase_grid : 1;
-  Tally tally(timing);
+  Tally tally(timing, in.max_fields);
   for (int64_t i = 0; i < nt; ++i)
     for (int64_t j = 0; j < np; ++j) {
       const des::Time tp = in.integrate_tracker ? midpoint(tracker_step, i, nt) : in.tracker_phase - in.display_phase;
@@ -201,9 +215,10 @@ std::optional<AnalyticLatency> integrate(const AnalyticInputs& in, const Link& l
       if (link.poll)
         vis.polls = des::PeriodicSchedule(poll_integrated ? midpoint(poll_step, j, np) : in.poll_phase - in.display_phase,
                                           *link.poll);
-      for (int64_t s = 0; s < *fields && a.frames < kMaxFrames; ++a.frames) s = frames.add(s, vis, tally);
+      for (int64_t s = 0; s < *fields && a.frames < kMaxFrames && !tally.truncated(); ++a.frames)
+        s = frames.add(s, vis, tally);
     }
-  a.complete = a.frames < kMaxFrames;
+  a.complete = a.frames < kMaxFrames && !tally.truncated();
   a.method = std::string("integrated over the phase") + (in.integrate_tracker && poll_integrated ? "s" : "") +
              " of the " + (in.integrate_tracker ? "tracker" : "") + (in.integrate_tracker && poll_integrated ? " and the " : "") +
              (poll_integrated ? "poll timer" : "") + " relative to the display (midpoints of " +

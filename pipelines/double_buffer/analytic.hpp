@@ -26,6 +26,9 @@ struct AnalyticInputs {
   /// integrated over: true when either clock of the pair is drawn or drifts.
   bool integrate_tracker = false;
   bool integrate_poll = false;
+  /// Fields evaluated at most (the work's bound); beyond it the result is
+  /// marked incomplete.
+  int64_t max_fields = 4'000'000;
 };
 
 /// Motion-to-photon latency per displayed line over every phase the system takes.
@@ -35,7 +38,7 @@ struct AnalyticLatency {
   double hyperperiod_s = 0.0;
   int64_t frames = 0;       ///< frames enumerated (per phase point when integrating)
   int64_t phase_grid = 0;   ///< points per integrated clock period (0: fixed phases)
-  bool complete = true;     ///< false: the enumeration stopped at its frame limit
+  bool complete = true;     ///< false: the enumeration stopped at its limit of frames or fields
   double min_ms = 0.0, mean_ms = 0.0, max_ms = 0.0;
 };
 

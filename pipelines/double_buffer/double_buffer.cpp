@@ -77,6 +77,10 @@ class DoubleBufferPipeline final : public Pipeline {
     in.poll_phase = poll ? poll->phase : des::Time::zero();
     in.integrate_tracker = varies(tracker) || varies(display);
     in.integrate_poll = poll && (varies(poll) || varies(display));
+    // As many fields as the run itself scans out, within bounds: enough for
+    // every repeat cycle a real configuration has, and never minutes of work.
+    const double run_fields = ctx.duration.to_seconds() / in.raster.field_period.to_seconds();
+    in.max_fields = static_cast<int64_t>(std::clamp(run_fields, 4e6, 4e7));
     return in;
   }
 
