@@ -4,6 +4,8 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <limits>
+#include <vector>
 
 using namespace latsim::renderer;
 
@@ -78,4 +80,26 @@ TEST_CASE("Object masks hide objects from rays") {
   options.thread_count = 2;
   caster.cast_rays(rays, hits, options);
   for (const Hit& h : hits) CHECK(h.object_id == 1);
+}
+
+TEST_CASE("rays Embree cannot trace are refused with an error instead of ending the process") {
+  // Embree's ray.valid() asserts |component| <= 1.844e18 and finite values; a
+  // head placed at 1e20 m used to abort the run inside Embree.
+  Scene scene;
+  add_wall(scene, "wall", -5.0, glm::vec3(0.8f));
+  const RayCaster caster(std::move(scene));
+  const double inf = std::numeric_limits<double>::infinity();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const glm::dvec3 origin : {glm::dvec3(1e20, 0, 0), glm::dvec3(0, -2e18, 0), glm::dvec3(inf, 0, 0),
+                                  glm::dvec3(0, 0, nan)})
+    CHECK_THROWS_WITH(caster.cast(origin, {0, 0, -1}), Catch::Contains("cannot trace a ray"));
+  for (const glm::dvec3 dir : {glm::dvec3(0, 0, 0), glm::dvec3(nan, 0, -1), glm::dvec3(inf, 0, -1)})
+    CHECK_THROWS_WITH(caster.cast({0, 0, 0}, dir), Catch::Contains("cannot trace a ray"));
+  // The batch paths check every ray too.
+  std::vector<Ray> rays{{{0, 0, 0}, {0, 0, -1}}, {{1e20, 0, 0}, {0, 0, -1}}};
+  std::vector<Hit> hits(rays.size());
+  CHECK_THROWS_WITH(caster.cast_rays(rays, hits, RenderOptions{}), Catch::Contains("cannot trace a ray"));
+  // Far but within the limit still traces (and misses the wall 1e17 m away sideways).
+  CHECK_FALSE(caster.cast({1e17, 0, 0}, {0, 0, -1}).hit);
+  CHECK(caster.cast({0, 0, 0}, {0, 0, -1}).hit);
 }

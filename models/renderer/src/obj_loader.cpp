@@ -11,6 +11,9 @@
 namespace latsim::renderer {
 namespace {
 
+// Farthest vertex coordinate accepted, in metres (Embree refuses about 1.8e18).
+constexpr double kFarthestVertexM = 1e18;
+
 // Reads one OBJ line at a time and turns it into scene objects; knows where it is so
 // every error can name the file and line.
 class ObjParser {
@@ -86,6 +89,10 @@ class ObjParser {
     }
     std::vector<double> values;
     for (size_t i = 1; i < tokens.size(); ++i) values.push_back(number(tokens[i]));
+    // Stored in single precision and traced by Embree, which takes nothing beyond about 1.8e18.
+    for (size_t i = 0; i < 3; ++i)
+      if (std::fabs(values[i]) > kFarthestVertexM)
+        fail("vertex coordinate '" + std::string(tokens[i + 1]) + "' is beyond 1e18 m, which ray casting cannot reach");
     positions_.emplace_back(values[0], values[1], values[2]);
     colours_.push_back(count == 6 ? glm::vec3(values[3], values[4], values[5]) : default_colour_);
   }

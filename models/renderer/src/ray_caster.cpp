@@ -7,6 +7,7 @@
 #include <tbb/task_arena.h>
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace latsim::renderer {
@@ -36,8 +37,28 @@ void reject_masked_objects(const RTCFilterFunctionNArguments* args) {
   }
 }
 
+// Embree traces a ray only when its origin and direction are finite and below
+// about 1.8e18 in every component (its ray.valid(), an assertion that ends the
+// process); poses and directions outside that are refused here instead.
+constexpr double kLargestTraceable = 1e18;
+
+bool traceable(const glm::dvec3& v) {
+  return std::fabs(v.x) <= kLargestTraceable && std::fabs(v.y) <= kLargestTraceable &&
+         std::fabs(v.z) <= kLargestTraceable;  // false for NaN too
+}
+
+std::string vec_text(const glm::dvec3& v) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "(%.6g, %.6g, %.6g)", v.x, v.y, v.z);
+  return buf;
+}
+
 RTCRayHit make_ray(const glm::dvec3& origin_m, const glm::dvec3& dir) {
   const glm::dvec3 unit = glm::normalize(dir);
+  if (!traceable(origin_m) || !traceable(unit) || !(glm::dot(unit, unit) > 0.5)) [[unlikely]]
+    throw std::invalid_argument("ray caster: cannot trace a ray from " + vec_text(origin_m) + " along " +
+                                vec_text(dir) + ": the origin must be finite and within 1e18 m, the direction "
+                                "finite and not zero");
   RTCRayHit rh{};
   rh.ray.org_x = static_cast<float>(origin_m.x);
   rh.ray.org_y = static_cast<float>(origin_m.y);
