@@ -23,17 +23,42 @@ def save(fig, base_path):
     for ext, metadata in (("png", PNG_METADATA), ("svg", SVG_METADATA)):
         final = f"{base_path}.{ext}"
         temp = f"{final}.tmp.{os.getpid()}"
-        fig.savefig(temp, format=ext, metadata=metadata, bbox_inches="tight", dpi=120)
-        os.replace(temp, final)
+        try:
+            fig.savefig(temp, format=ext, metadata=metadata, bbox_inches="tight", dpi=120)
+            os.replace(temp, final)
+        except OSError as e:
+            _remove_quietly(temp)
+            plt.close(fig)
+            raise OSError(e.errno, e.strerror, final) from None
+        except BaseException:
+            _remove_quietly(temp)
+            plt.close(fig)
+            raise
     plt.close(fig)
+
+
+def _remove_quietly(path):
+    """Removes a temporary file of a failed write (it may not exist yet)."""
+    try:
+        os.remove(path)
+    except OSError:
+        pass
 
 
 def write_text(path, text):
     """Writes a text file atomically: a temporary file, then rename."""
     temp = f"{path}.tmp.{os.getpid()}"
-    with open(temp, "w", encoding="utf-8", newline="") as f:
-        f.write(text)
-    os.replace(temp, path)
+    try:
+        with open(temp, "w", encoding="utf-8", newline="") as f:
+            f.write(text)
+        os.replace(temp, path)
+    except OSError as e:
+        # A full disk leaves no partial or empty file behind, and the error names the file.
+        _remove_quietly(temp)
+        raise OSError(e.errno, e.strerror, path) from None
+    except BaseException:
+        _remove_quietly(temp)
+        raise
 
 
 def colours(n):

@@ -222,12 +222,21 @@ def main(argv):
     except (ValueError, OSError, KeyError) as e:
         print(f"report: {e}", file=sys.stderr)
         return 2
-    write_latency_table(coll)
-    plots = plot_distributions(coll)
-    sweep_plots = [p for p in (plot_sweep_axis(coll, a) for a in coll.axes) if p]
-    gantts, skipped = draw_gantts(coll, args.gantt_limit)
-    prediction_plot = prediction.plot_registration_vs_latency(coll) if prediction.has_prediction(coll) else None
-    write_markdown(coll, plots, sweep_plots, gantts, skipped, prediction_plot)
+    try:
+        write_latency_table(coll)
+        plots = plot_distributions(coll)
+        sweep_plots = [p for p in (plot_sweep_axis(coll, a) for a in coll.axes) if p]
+        gantts, skipped = draw_gantts(coll, args.gantt_limit)
+        prediction_plot = prediction.plot_registration_vs_latency(coll) if prediction.has_prediction(coll) else None
+        write_markdown(coll, plots, sweep_plots, gantts, skipped, prediction_plot)
+    except OSError as e:
+        # A full disk or a read-only directory: one line, no traceback.
+        where = f"{e.filename}: " if e.filename else ""
+        print(f"report: cannot write {where}{e.strerror or e}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print("report: interrupted; files written so far are whole", file=sys.stderr)
+        return 130
     plots_drawn = len(plots) + len(sweep_plots) + len(gantts) + (1 if prediction_plot else 0)
     print(f"report: {len(coll.rows)} row(s), {plots_drawn} plot(s) -> "
           f"{os.path.join(coll.directory, 'report.md')}")

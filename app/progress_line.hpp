@@ -1,10 +1,13 @@
-// A one-line progress display on stderr for long batches of runs.
+// One-line progress displays on stderr: for long batches of runs, and for one
+// long run.
 #pragma once
 
 #include <chrono>
 #include <cstddef>
 #include <mutex>
 #include <string>
+
+#include "latsim/pipelines/runner.hpp"
 
 namespace latsim::app {
 
@@ -33,6 +36,34 @@ class ProgressLine {
   std::chrono::steady_clock::time_point start_;
   std::chrono::steady_clock::time_point last_draw_;
   std::mutex mutex_;
+};
+
+/// Shows "run: simulated 12.3 s of 1000 s (1.2 %), 3.4 M events/s, ETA 14 min"
+/// on stderr for a run that has taken more than a couple of seconds, redrawn
+/// in place a few times a second; silent unless stderr is a terminal. With
+/// `forced` it also reports from the start, and into a log one line per report.
+/// finish() clears it, so the run's own output follows cleanly.
+class SimulationProgress {
+ public:
+  explicit SimulationProgress(bool forced = false);
+  SimulationProgress(const SimulationProgress&) = delete;
+  SimulationProgress& operator=(const SimulationProgress&) = delete;
+  ~SimulationProgress() { finish(); }
+
+  /// For RunOptions::progress (called from the simulation's thread).
+  void update(const pipelines::RunProgress& progress);
+  void finish();
+
+  /// The line for `progress` after `elapsed_s` of wall time (no control characters).
+  static std::string line(const pipelines::RunProgress& progress, double elapsed_s);
+
+ private:
+  bool terminal_;
+  bool enabled_;
+  bool forced_;
+  bool drawn_ = false;
+  std::chrono::steady_clock::time_point start_;
+  std::chrono::steady_clock::time_point last_draw_;
 };
 
 }  // namespace latsim::app

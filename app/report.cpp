@@ -29,8 +29,11 @@ int command_report(int argc, char** argv) {
     std::vector<std::string> command{python_interpreter(), analysis_script("report.py").string(), dir};
     if (gantt_limit >= 0) command.insert(command.end(), {"--gantt-limit", std::to_string(gantt_limit)});
     const ChildResult child = run_child(command);
-    // The script's own codes already follow the program's: 0 ok, 2 bad input.
-    if (child.exit_code == kExitOk || child.exit_code == kExitBadInput) return child.exit_code;
+    // The script's own codes already follow the program's (0 ok, 1 cannot
+    // write, 2 bad input, 130 interrupted) and it has said why in one line.
+    if (child.exit_code == kExitOk || child.exit_code == kExitFailure || child.exit_code == kExitBadInput ||
+        child.exit_code == 130)
+      return child.exit_code;
     std::cerr << "report: the analysis script failed (exit status " << child.exit_code << ")\n";
     return kExitFailure;
   } catch (const std::exception& e) {

@@ -1,16 +1,25 @@
 // latsim run / validate / capacity / schema.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
 #include "latsim/pipelines/runner.hpp"
 #include "latsim/scenario/config.hpp"
+#include "latsim/scenario/readable.hpp"
+#include "progress_line.hpp"
+#include "stop_signals.hpp"
+#include "sweep_common.hpp"
+#include "sweep_claims.hpp"
+#include "sweep_store.hpp"
 
 namespace latsim::app {
 
@@ -24,13 +33,40 @@ std::vector<std::string> command_line_of(int argc, char** argv) {
 
 // One line on stderr: the file, the JSON pointer and what is wrong.
 int bad_input(const std::string& file, const scenario::ScenarioError& e) {
-  std::fprintf(stderr, "%s: %s\n", file.c_str(), e.what());
+  std::fprintf(stderr, "%s\n", e.line(file).c_str());
   return kExitBadInput;
 }
 
 // Legal but doubtful input, one line each on stderr.
 void print_warnings(const std::string& file, const std::vector<std::string>& warnings) {
-  for (const auto& w : warnings) std::fprintf(stderr, "%s: warning: %s\n", file.c_str(), w.c_str());
+  const std::string name = scenario::readable(file, 2 * scenario::kQuotedChars);
+  for (const auto& w : warnings) std::fprintf(stderr, "%s: warning: %s\n", name.c_str(), scenario::readable(w).c_str());
+}
+
+// What is wrong with --out before anything runs, if anything.
+std::optional<std::string> output_dir_problem(const std::string& out_dir) {
+  if (out_dir.empty()) return "must name a directory";
+  std::error_code ec;
+  const auto st = std::filesystem::status(out_dir, ec);
+  if (std::filesystem::exists(st) && !std::filesystem::is_directory(st))
+    return scenario::quote_value(out_dir) + " exists and is not a directory";
+  return std::nullopt;
+}
+
+// Removes what runs into the same directory left when they were killed:
+// staging directories "<out>.tmp.<pid>" of processes that are gone.
+void remove_stale_staging(const std::string& out_dir) {
+  namespace fs = std::filesystem;
+  const fs::path mine = pipelines::staging_dir_of(out_dir, 0);
+  const std::string prefix = mine.filename().string().substr(0, mine.filename().string().size() - 1);
+  std::error_code ec;
+  for (fs::directory_iterator it(mine.parent_path(), ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind(prefix, 0) != 0 || !is_temporary_name(name)) continue;
+    const long pid = std::strtol(name.c_str() + prefix.size(), nullptr, 10);
+    std::error_code rm;
+    if (pid > 0 && !process_alive(pid, 0)) fs::remove_all(it->path(), rm);
+  }
 }
 
 }  // namespace
@@ -42,7 +78,7 @@ int command_run(int argc, char** argv) {
   std::vector<std::string> sets;
   uint64_t seed = 0;
   uint64_t replication = 0;
-  bool samples = false, ledger = false, quiet = false;
+  bool samples = false, ledger = false, quiet = false, progress = false;
   app.add_option("scenario", file, "scenario JSON file")->required();
   app.add_option("--out,-o", out_dir, "output directory")->capture_default_str();
   auto* seed_opt = app.add_option("--seed", seed, "run seed (overrides the scenario's /seed)");
@@ -51,7 +87,17 @@ int command_run(int argc, char** argv) {
   app.add_flag("--samples", samples, "also write samples.csv (every recorded sample)");
   app.add_flag("--ledger", ledger, "also write frames.csv (every stage timestamp of every frame)");
   app.add_flag("--quiet,-q", quiet, "print nothing on success");
+  app.add_flag("--progress", progress,
+               "report progress from the start, also when stderr is not a terminal (on a terminal a run "
+               "longer than a few seconds always shows it)");
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
+  if (const auto problem = output_dir_problem(out_dir)) {
+    std::fprintf(stderr, "latsim run: --out %s\n", problem->c_str());
+    return kExitBadInput;
+  }
+  remove_stale_staging(out_dir);
+  StopSignals signals;
+  SimulationProgress shown(progress);
   pipelines::RunOptions opt;
   opt.command_start = std::chrono::steady_clock::now();
   if (*seed_opt) opt.seed = seed;
@@ -60,7 +106,10 @@ int command_run(int argc, char** argv) {
   opt.write_samples = samples;
   opt.write_ledger = ledger;
   opt.command_line = command_line_of(argc, argv);
+  opt.stop = &signals.flag();
+  opt.progress = [&shown](const pipelines::RunProgress& p) { shown.update(p); };
   nlohmann::json summary;
+  const std::string name = scenario::readable(file, 2 * scenario::kQuotedChars);
   try {
     const auto doc = pipelines::load_scenario(file, sets);
     // Validate fully before touching the output directory: bad input writes nothing.
@@ -68,14 +117,21 @@ int command_run(int argc, char** argv) {
     summary = pipelines::run_scenario(doc, opt);
   } catch (const scenario::ScenarioError& e) {
     return bad_input(file, e);
+  } catch (const pipelines::RunInterrupted& e) {
+    shown.finish();
+    std::fprintf(stderr, "%s: stopped by %s: %s; nothing written\n", name.c_str(), signals.name(), e.what());
+    return signals.exit_code();
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "%s: run failed: %s\n", file.c_str(), e.what());
+    // RunFailure names the model and the simulated time; WriteError the file and the reason.
+    shown.finish();
+    std::fprintf(stderr, "%s: %s; nothing written\n", name.c_str(), scenario::readable(e.what()).c_str());
     return kExitFailure;
   }
+  shown.finish();
   if (!quiet) {
     const auto& f = summary["figures"];
-    std::printf("%s -> %s/summary.json\n", file.c_str(), out_dir.c_str());
-    if (f.contains("motion_to_photon_ms")) {
+    std::printf("%s -> %s/summary.json\n", name.c_str(), scenario::readable(out_dir).c_str());
+    if (f.contains("motion_to_photon_ms") && f["motion_to_photon_ms"].value("count", 0) > 0) {
       const auto& m = f["motion_to_photon_ms"];
       std::printf("  motion-to-photon ms: mean %.3f  p50 %.3f  p99 %.3f  max %.3f  (%llu samples)\n",
                   m["mean"].get<double>(), m["p50"].get<double>(), m["p99"].get<double>(), m["max"].get<double>(),
@@ -90,25 +146,30 @@ int command_run(int argc, char** argv) {
 }
 
 int command_validate(int argc, char** argv) {
-  CLI::App app{"Check scenario files without running them", "latsim validate"};
+  CLI::App app{"Check scenario and sweep files without running them", "latsim validate"};
   std::vector<std::string> files;
   std::vector<std::string> sets;
   bool resolved = false;
-  app.add_option("scenarios", files, "scenario JSON files")->required();
-  app.add_option("--set", sets, "override a value: /json/pointer=value (repeatable)");
+  app.add_option("files", files, "scenario or sweep JSON files")->required();
+  app.add_option("--set", sets, "override a value: /json/pointer=value (repeatable; scenarios only)");
   app.add_flag("--resolved", resolved, "print each scenario as it would run (every default applied) instead of ok");
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
   int rc = kExitOk;
   for (const auto& file : files) {
+    const std::string name = scenario::readable(file, 2 * scenario::kQuotedChars);
     try {
+      if (is_sweep_file(file)) {
+        rc = std::max(rc, validate_sweep(file));
+        continue;
+      }
       const auto doc = pipelines::load_scenario(file, sets);
       print_warnings(file, pipelines::validate_scenario(doc));
-      if (resolved) std::printf("%s\n", doc.resolved().dump(2).c_str());
-      else std::printf("%s: ok\n", file.c_str());
+      if (resolved) std::printf("%s\n", doc.resolved().dump(2, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
+      else std::printf("%s: ok\n", name.c_str());
     } catch (const scenario::ScenarioError& e) {
       rc = bad_input(file, e);
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "%s: %s\n", file.c_str(), e.what());
+      std::fprintf(stderr, "%s: %s\n", name.c_str(), scenario::readable(e.what()).c_str());
       rc = kExitBadInput;
     }
   }

@@ -4,6 +4,7 @@
 // results.sqlite.
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -15,7 +16,9 @@
 
 #include "commands.hpp"
 #include "parallel_for.hpp"
+#include "latsim/scenario/readable.hpp"
 #include "progress_line.hpp"
+#include "stop_signals.hpp"
 #include "sweep_common.hpp"
 #include "sweep_cost.hpp"
 #include "sweep_mpi.hpp"
@@ -32,7 +35,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 // Runs the unfinished runs among `selected` on `jobs` threads, longest expected first.
 SweepTally run_here(const SweepPlan& plan, const std::vector<size_t>& selected, const PointCheck& check,
-                    SweepWorkspace& work, unsigned jobs) {
+                    SweepWorkspace& work, unsigned jobs, const std::atomic<bool>* stop) {
   SweepTally tally;
   std::vector<size_t> pending;
   for (size_t i : selected) {
@@ -42,8 +45,15 @@ SweepTally run_here(const SweepPlan& plan, const std::vector<size_t>& selected, 
   pending = longest_first(pending, check.cost_of_run);
   ProgressLine progress("sweep", selected.size(), tally.resumed);
   std::vector<RunAttempt> attempts(pending.size());
+  // Once a stop signal came or the directory cannot take results, starting more runs only fails more.
+  std::atomic<bool> storage_unusable{false};
   parallel_for(pending.size(), jobs, [&](size_t i) {
+    if (storage_unusable.load() || (stop != nullptr && stop->load())) {
+      attempts[i].result = RunAttempt::Result::not_started;
+      return;
+    }
     attempts[i] = work.executor.execute(RunTask::of(plan, plan.runs()[pending[i]]));
+    if (attempts[i].storage_unusable) storage_unusable.store(true);
     progress.advance();
   });
   progress.finish();
@@ -67,12 +77,26 @@ int sweep_here(const SweepRequest& request, const SweepPlan& plan, const std::op
     return kExitBadInput;
   }
 
-  SweepWorkspace work(request);
+  StopSignals signals;
+  SweepRequest stoppable = request;
+  stoppable.stop = &signals.flag();
+  SweepWorkspace work(stoppable);
   write_file_if_changed(work.store.out_dir() / "plan.json", plan.to_json().dump(2) + "\n");
   const auto runs_start = std::chrono::steady_clock::now();
-  const SweepTally tally = run_here(plan, selected, check, work, request.jobs);
+  const SweepTally tally = run_here(plan, selected, check, work, request.jobs, &signals.flag());
   phases.runs_s = seconds_since(runs_start);
   size_t temporaries = work.executor.temporaries_removed();
+  if (signals.requested()) {
+    std::fprintf(stderr,
+                 "sweep: stopped by %s: %zu of %zu run(s) finished %s, none partly written; run the same command "
+                 "again to finish\n",
+                 signals.name(), tally.finished(), selected.size(), tally.counts().c_str());
+    return signals.exit_code();
+  }
+  if (tally.storage_problem) {
+    tally.print_notes(temporaries);
+    return kExitFailure;
+  }
   if (shard && shard->count > 1) {
     const std::string from = shard->source == request.shard ? "" : " (" + shard->source + ")";
     std::printf("sweep: shard %zu/%zu%s: %zu of %zu runs %s on %u thread(s) in %.2f s; "
@@ -84,7 +108,15 @@ int sweep_here(const SweepRequest& request, const SweepPlan& plan, const std::op
     return tally.failures.empty() ? kExitOk : kExitFailure;
   }
   const auto tables_start = std::chrono::steady_clock::now();
-  const size_t gathered = write_tables(plan, work.store, request.jobs, temporaries);
+  size_t gathered = 0;
+  try {
+    gathered = write_tables(plan, work.store, request.jobs, temporaries);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "sweep: %s; the %zu finished run(s) are kept: make room and run the same command again "
+                         "(or latsim sweep --collect) to write the tables\n",
+                 scenario::readable(e.what()).c_str(), tally.finished());
+    return kExitFailure;
+  }
   phases.tables_s = seconds_since(tables_start);
   std::printf("sweep: %zu runs %s on %u thread(s) in %.2f s -> %s\n", plan.runs().size(), tally.counts().c_str(),
               request.jobs, seconds_since(start), (work.store.out_dir() / "results.csv").c_str());

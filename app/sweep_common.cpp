@@ -11,6 +11,8 @@
 
 #include "latsim/pipelines/runner.hpp"
 #include "latsim/scenario/config.hpp"
+#include "latsim/scenario/json_text.hpp"
+#include "latsim/scenario/readable.hpp"
 #include "parallel_for.hpp"
 #include "sweep_cost.hpp"
 
@@ -33,9 +35,9 @@ std::string blame(const SweepPlan& plan, const SweepRun& run, const scenario::Sc
   for (size_t a = 0; a < plan.axes().size(); ++a) {
     const std::string& axis = plan.axes()[a].pointer;
     if (e.pointer() == axis || e.pointer().rfind(axis + "/", 0) == 0)
-      return plan.value_pointer(a, run.value_indices[a]) + ": " + e.pointer() + ": " + e.message();
+      return scenario::readable(plan.value_pointer(a, run.value_indices[a]) + ": " + e.what());
   }
-  return "/axes: at " + plan.describe(run) + ": " + e.pointer() + ": " + e.message();
+  return scenario::readable("/axes: at " + plan.describe(run) + ": " + e.what());
 }
 
 }  // namespace
@@ -56,6 +58,32 @@ std::optional<SweepPlan> load_plan(const SweepRequest& request) {
   }
 }
 
+bool is_sweep_file(const std::string& file) {
+  try {
+    const Json doc = scenario::read_json_file(file, "file");
+    return doc.is_object() && doc.contains("axes") && doc.contains("base");
+  } catch (const scenario::ScenarioError&) {
+    return false;
+  }
+}
+
+int validate_sweep(const std::string& file) {
+  SweepRequest request;
+  request.sweep_file = file;
+  const auto plan = load_plan(request);
+  if (!plan) return 2;
+  std::vector<size_t> all(plan->runs().size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+  const PointCheck check = check_points(*plan, all, available_cpus());
+  const std::string name = scenario::readable(file, 2 * scenario::kQuotedChars);
+  if (check.problem) {
+    std::cerr << name << ": " << *check.problem << "\n";
+    return 2;
+  }
+  std::printf("%s: ok (sweep of %zu runs, %zu points)\n", name.c_str(), plan->runs().size(), plan->point_count());
+  return 0;
+}
+
 PointCheck check_points(const SweepPlan& plan, const std::vector<size_t>& run_indices, unsigned jobs) {
   const auto start = std::chrono::steady_clock::now();
   // One run per point stands for all its replications: they share the scenario.
@@ -74,7 +102,7 @@ PointCheck check_points(const SweepPlan& plan, const std::vector<size_t>& run_in
     } catch (const scenario::ScenarioError& e) {
       problems[i] = blame(plan, run, e);
     } catch (const std::exception& e) {
-      problems[i] = "/axes: at " + plan.describe(run) + ": " + e.what();
+      problems[i] = scenario::readable("/axes: at " + plan.describe(run) + ": " + e.what());
     }
   });
   PointCheck check;
@@ -94,6 +122,7 @@ RunSettings run_settings(const SweepRequest& request) {
   settings.command_line = {"latsim", "sweep", request.sweep_file, "--out", request.out_dir};
   if (request.write_samples) settings.command_line.push_back("--samples");
   if (request.write_ledger) settings.command_line.push_back("--ledger");
+  settings.stop = request.stop;
   return settings;
 }
 
@@ -120,7 +149,10 @@ void SweepTally::add(const SweepPlan& plan, const std::vector<size_t>& indices, 
         break;
       case RunAttempt::Result::failed:
         failures.push_back(run.run_id + " (" + plan.describe(run) + "): " + attempt.message);
+        if (attempt.storage_unusable && !storage_problem) storage_problem = attempt.message;
         break;
+      case RunAttempt::Result::stopped: ++stopped; break;
+      case RunAttempt::Result::not_started: ++not_started; break;
     }
   }
 }
@@ -130,6 +162,8 @@ std::string SweepTally::counts() const {
   int n = std::snprintf(text, sizeof text, "(%zu resumed, %zu run now, ", resumed, ran);
   if (finished_elsewhere) n += std::snprintf(text + n, sizeof text - n, "%zu finished by other processes, ", finished_elsewhere);
   if (busy) n += std::snprintf(text + n, sizeof text - n, "%zu left to other processes, ", busy);
+  if (stopped) n += std::snprintf(text + n, sizeof text - n, "%zu stopped midway, ", stopped);
+  if (not_started) n += std::snprintf(text + n, sizeof text - n, "%zu not started, ", not_started);
   std::snprintf(text + n, sizeof text - n, "%zu failed)", failures.size());
   return text;
 }
@@ -137,7 +171,14 @@ std::string SweepTally::counts() const {
 void SweepTally::print_notes(size_t temporaries_removed) const {
   if (temporaries_removed > 0)
     std::cerr << "sweep: removed " << temporaries_removed << " unfinished temporary file(s) of an interrupted sweep\n";
-  for (const auto& failure : failures) std::cerr << "sweep: run failed: " << failure << "\n";
+  // When the directory cannot be written every failure says the same: one line says it all.
+  if (storage_problem) {
+    std::cerr << "sweep: stopped: " << *storage_problem << "; " << finished() << " run(s) finished, " << failures.size()
+              << " failed, " << not_started << " not started; make room (or make the directory writable) and run "
+              << "the same command again to finish\n";
+  } else {
+    for (const auto& failure : failures) std::cerr << "sweep: run failed: " << failure << "\n";
+  }
   if (busy > 0) {
     std::cerr << "sweep: " << busy << " run(s) left to the processes that hold them:";
     for (const auto& holder : holders) std::cerr << " " << holder << (&holder == &holders.back() ? "" : ",");

@@ -2,6 +2,7 @@
 // the request, checking the plan's scenarios, and accounting for the runs.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -25,6 +26,7 @@ struct SweepRequest {
   bool mpi = false;           ///< --mpi: rank 0 hands runs out to the ranks of an MPI job
   bool timings = false;       ///< --timings: also print where the time per run went
   unsigned stale_after_s = 600;  ///< a claim from another host without a heartbeat this long is stale
+  const std::atomic<bool>* stop = nullptr;  ///< a stop signal's flag: runs end at their next event
 };
 
 /// The CPUs this process may run on (its affinity mask, which batch
@@ -33,6 +35,16 @@ unsigned available_cpus();
 
 /// Reads the sweep file; on bad input prints the one-line error and returns nothing.
 std::optional<SweepPlan> load_plan(const SweepRequest& request);
+
+/// Whether `file` holds a sweep (a JSON object with "axes" and "base") rather
+/// than a scenario; false when it is not readable JSON (the scenario reader
+/// then says why).
+bool is_sweep_file(const std::string& file);
+
+/// `latsim validate` of a sweep file: reads it and builds every distinct
+/// point without running or writing anything; prints "FILE: ok (sweep of N
+/// runs, M points)" or the first problem in one line. Returns the exit code.
+int validate_sweep(const std::string& file);
 
 /// The outcome of building the scenarios of some runs without running them.
 struct PointCheck {
@@ -69,7 +81,11 @@ struct SweepTally {
   size_t ran = 0;
   size_t finished_elsewhere = 0;  ///< finished by another process while we waited to claim it
   size_t busy = 0;                ///< held by another live process: left to it
+  size_t stopped = 0;             ///< ended midway by a stop signal (nothing of them kept)
+  size_t not_started = 0;         ///< not begun because the sweep was stopping
   std::vector<std::string> failures;  ///< one message per failed run, in plan order
+  /// Why the sweep directory could not be written, when that stopped the sweep.
+  std::optional<std::string> storage_problem;
   std::vector<std::string> holders;   ///< who held the busy runs, distinct
   RunTimes times;
 
@@ -77,6 +93,8 @@ struct SweepTally {
   void add(const SweepPlan& plan, const std::vector<size_t>& indices, const std::vector<RunAttempt>& attempts);
   /// "(3 resumed, 29 run now, 0 failed)", with the rarer counts only when not zero.
   std::string counts() const;
+  /// Runs finished now or before.
+  size_t finished() const { return resumed + ran + finished_elsewhere; }
   /// Prints the failures, the runs left to others and removed temporaries.
   void print_notes(size_t temporaries_removed) const;
 };

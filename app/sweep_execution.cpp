@@ -5,6 +5,7 @@
 
 #include "latsim/pipelines/runner.hpp"
 #include "latsim/scenario/config.hpp"
+#include "latsim/scenario/readable.hpp"
 
 namespace latsim::app {
 
@@ -32,14 +33,15 @@ RunTask RunTask::from_json(const Json& j) {
 }
 
 Json RunAttempt::to_json() const {
-  return {{"result", static_cast<int>(result)}, {"message", message}, {"resolve_s", resolve_s},
-          {"run_s", run_s}, {"simulate_s", simulate_s}, {"claim_s", claim_s}};
+  return {{"result", static_cast<int>(result)}, {"message", message}, {"storage_unusable", storage_unusable},
+          {"resolve_s", resolve_s}, {"run_s", run_s}, {"simulate_s", simulate_s}, {"claim_s", claim_s}};
 }
 
 RunAttempt RunAttempt::from_json(const Json& j) {
   RunAttempt a;
   a.result = static_cast<Result>(j.at("result").get<int>());
   a.message = j.at("message").get<std::string>();
+  a.storage_unusable = j.value("storage_unusable", false);
   a.resolve_s = j.at("resolve_s").get<double>();
   a.run_s = j.at("run_s").get<double>();
   a.simulate_s = j.at("simulate_s").get<double>();
@@ -58,6 +60,7 @@ RunAttempt RunExecutor::execute(const RunTask& task) {
     claims_.release(task.run_id, false);
     RunAttempt attempt;
     attempt.message = e.what();
+    attempt.storage_unusable = true;
     return attempt;
   }
 }
@@ -92,7 +95,8 @@ RunAttempt RunExecutor::claim_and_run(const RunTask& task) {
   attempt = run_claimed(task);
   const auto after_run = Clock::now();
   const bool ran = attempt.result == RunAttempt::Result::ran;
-  journal_.record(ran ? "finish" : "fail", task.run_id);
+  const bool stopped = attempt.result == RunAttempt::Result::stopped;
+  journal_.record(ran ? "finish" : stopped ? "stop" : "fail", task.run_id);
   claims_.release(task.run_id, ran);
   attempt.claim_s = before_run_s + seconds_since(after_run);
   return attempt;
@@ -104,9 +108,11 @@ RunAttempt RunExecutor::run_claimed(const RunTask& task) {
   options.seed = task.seed;
   options.replication = task.replication;
   options.out_dir = store_.run_dir(task.run_id);
+  options.staging_dir = store_.staging_dir(task.run_id);
   options.write_samples = settings_.write_samples;
   options.write_ledger = settings_.write_ledger;
   options.command_line = settings_.command_line;
+  options.stop = settings_.stop;
   try {
     auto t0 = Clock::now();
     const auto doc = scenario::ScenarioDocument::from_json(task.scenario, task.base_dir);
@@ -117,9 +123,15 @@ RunAttempt RunExecutor::run_claimed(const RunTask& task) {
     attempt.simulate_s = summary.value("wall_s", 0.0);
     attempt.result = RunAttempt::Result::ran;
   } catch (const scenario::ScenarioError& e) {
-    attempt.message = e.pointer() + ": " + e.message();
-  } catch (const std::exception& e) {
     attempt.message = e.what();
+  } catch (const pipelines::RunInterrupted& e) {
+    attempt.result = RunAttempt::Result::stopped;
+    attempt.message = e.what();
+  } catch (const pipelines::WriteError& e) {
+    attempt.message = e.what();
+    attempt.storage_unusable = e.storage_unusable();
+  } catch (const std::exception& e) {
+    attempt.message = scenario::readable(e.what());
   }
   return attempt;
 }

@@ -35,8 +35,13 @@ struct RunTask {
 
 /// How one attempt ended, and where its time went.
 struct RunAttempt {
-  enum class Result { ran, failed, finished_already, busy } result = Result::failed;
+  /// stopped: a stop signal ended the run midway (nothing of it kept);
+  /// not_started: the sweep was stopping before this run began.
+  enum class Result { ran, failed, finished_already, busy, stopped, not_started } result = Result::failed;
   std::string message;     ///< failed: what went wrong; busy: who holds the run
+  /// failed because the sweep directory cannot be written (full, read-only):
+  /// the runs after it would fail the same way.
+  bool storage_unusable = false;
   double resolve_s = 0.0;  ///< reading the scenario into a document
   double run_s = 0.0;      ///< run_scenario: building the models, simulating, writing the results
   double simulate_s = 0.0; ///< of which simulating (the run's own wall_s)
@@ -51,6 +56,7 @@ struct RunSettings {
   bool write_samples = false;
   bool write_ledger = false;
   std::vector<std::string> command_line;  ///< recorded in each summary: the same for every backend
+  const std::atomic<bool>* stop = nullptr;  ///< set by a stop signal: runs end at their next event
 };
 
 /// Runs runs in one sweep directory on behalf of one process; thread-safe.

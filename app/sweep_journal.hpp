@@ -7,7 +7,7 @@
 namespace latsim::app {
 
 /// DIR/journal/<host>.<pid>.log: one line per event, "<unix ms> <event>
-/// <run id>[ <detail>]", events start, finish, fail, skip (found finished after
+/// <run id>[ <detail>]", events start, finish, fail, stop (ended by a signal), skip (found finished after
 /// claiming), busy (claimed by a live process) and retake (a stale claim taken
 /// over). Each process appends only to its own file, so lines never interleave,
 /// even over NFS; counting start lines over all files tells how often each run

@@ -16,6 +16,8 @@ SweepStore::SweepStore(fs::path out_dir) : out_dir_(std::move(out_dir)) { fs::cr
 
 fs::path SweepStore::run_dir(const std::string& run_id) const { return out_dir_ / "runs" / run_id; }
 
+fs::path SweepStore::staging_dir(const std::string& run_id) const { return out_dir_ / "runs" / (run_id + ".tmp"); }
+
 fs::path SweepStore::summary_file(const std::string& run_id) const { return run_dir(run_id) / "summary.json"; }
 
 bool SweepStore::is_finished(const std::string& run_id) const { return fs::exists(summary_file(run_id)); }
@@ -40,7 +42,9 @@ size_t SweepStore::remove_run_temporaries(const std::string& run_id) const {
   for (fs::recursive_directory_iterator it(run_dir(run_id), ec), end; !ec && it != end; it.increment(ec))
     if (it->is_regular_file() && is_temporary_name(it->path().filename().string())) stale.push_back(it->path());
   for (const auto& file : stale) fs::remove(file);
-  return stale.size();
+  const bool staged = fs::exists(staging_dir(run_id), ec);
+  if (staged) fs::remove_all(staging_dir(run_id));
+  return stale.size() + (staged ? 1 : 0);
 }
 
 size_t SweepStore::remove_table_temporaries() const {

@@ -21,14 +21,18 @@ class SweepStore {
 
   const std::filesystem::path& out_dir() const { return out_dir_; }
   std::filesystem::path run_dir(const std::string& run_id) const;
+  /// Where a run's files wait until it commits them: "runs/<id>.tmp", safe to
+  /// share by name because only the holder of the run's claim writes there.
+  std::filesystem::path staging_dir(const std::string& run_id) const;
   std::filesystem::path summary_file(const std::string& run_id) const;
   std::filesystem::path claims_dir() const { return out_dir_ / "claims"; }
   bool is_finished(const std::string& run_id) const;
   /// The run's summary.json, or empty when the run is not finished.
   std::optional<nlohmann::json> load_summary(const std::string& run_id) const;
-  /// Removes the temporary files an interrupted writer left in one run's
-  /// directory. Only for the holder of the run's claim: nobody else can be
-  /// writing there. Returns how many.
+  /// Removes what an interrupted writer of one run left: its staging
+  /// directory and temporary files in its run directory. Only for the holder
+  /// of the run's claim: nobody else can be writing there. Returns how many
+  /// files and directories.
   size_t remove_run_temporaries(const std::string& run_id) const;
   /// Removes temporary files of the top-level tables (results.*, plan.json),
   /// for the process about to write them. Returns how many.

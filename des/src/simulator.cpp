@@ -88,6 +88,12 @@ bool Simulator::cancel(EventId id) {
   return true;
 }
 
+void Simulator::watch_progress(uint64_t every_events, std::function<void()> fn) {
+  progress_every_ = fn ? every_events : 0;
+  progress_fn_ = std::move(fn);
+  progress_countdown_ = progress_every_ == 0 ? UINT64_MAX : progress_every_;
+}
+
 void Simulator::run() { run_events(INT64_MAX); }
 
 void Simulator::run_until(Time end) {
@@ -103,6 +109,8 @@ void Simulator::run_events(int64_t limit_ticks) {
   running_ = true;
   RunningGuard guard{running_};
   stop_requested_ = false;
+  interrupted_ = false;
+  failed_kind_.reset();
   if (queue_kind_ == QueueKind::quaternary_heap) {
     profiling_ ? run_loop<decltype(quaternary_), true>(quaternary_, limit_ticks)
                : run_loop<decltype(quaternary_), false>(quaternary_, limit_ticks);
@@ -121,6 +129,14 @@ void Simulator::run_events(int64_t limit_ticks) {
 template <class Q, bool Profile>
 void Simulator::run_loop(Q& queue, int64_t limit_ticks) {
   while (!stop_requested_ && !queue.empty()) {
+    if (stop_flag_ != nullptr && stop_flag_->load(std::memory_order_relaxed)) [[unlikely]] {
+      interrupted_ = stop_requested_ = true;
+      break;
+    }
+    if (--progress_countdown_ == 0) [[unlikely]] {
+      progress_countdown_ = progress_every_;
+      progress_fn_();
+    }
     const QueueEntry e = queue.top();
     if (e.time_ticks > limit_ticks) break;
     Slot& slot = slots_[e.slot];
@@ -152,6 +168,7 @@ void Simulator::run_loop(Q& queue, int64_t limit_ticks) {
         fn();
       }
     } catch (...) {
+      failed_kind_ = k;
       if (top_consumed_) {
         queue.pop();
         top_consumed_ = false;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <stdexcept>
 
 #include "latsim/des/simulator.hpp"
 #include "latsim/params/shared.hpp"
@@ -97,13 +98,20 @@ struct Run {
 void resolve_clocks(Run& run, uint64_t replication) {
   params::SharedParams& p = run.shared;
   run.clocks = std::make_unique<RunClocks>(run.seed, replication);
-  run.clocks->resolve("tracker", "/tracker/phase_ms", p.tracker.period, p.tracker.clock);
+  // A rate error that leaves a period no 64-bit fraction holds is the scenario's problem, at its key.
+  auto resolve = [&run](const char* name, const std::string& prefix, des::RationalSeconds period,
+                        des::ClockSettings& settings) -> const des::Clock& {
+    try {
+      return run.clocks->resolve(name, prefix + "phase_ms", period, settings);
+    } catch (const std::invalid_argument& e) {
+      throw scenario::ScenarioError(prefix + "rate_error_ppm", e.what());
+    }
+  };
+  resolve("tracker", "/tracker/", p.tracker.period, p.tracker.clock);
   tracker::SerialLinkParams& serial = p.transport.serial;
   if (p.transport.type == tracker::TransportParams::Type::Serial && serial.host_mode == tracker::SerialLinkParams::Poll)
-    run.clocks->resolve("poll", "/transport/poll_phase_ms", tracker::exact_period(serial.poll_interval),
-                        serial.poll_clock);
-  const des::Clock& display = run.clocks->resolve("display", "/display/phase_ms", p.display.raster.field_period,
-                                                  p.display.clock);
+    resolve("poll", "/transport/poll_", tracker::exact_period(serial.poll_interval), serial.poll_clock);
+  const des::Clock& display = resolve("display", "/display/", p.display.raster.field_period, p.display.clock);
   p.display.raster.field_period = display.period;
 }
 
@@ -113,32 +121,64 @@ ProbeSet probes_of(const Run& run) {
   return ProbeSet{run.shared.probes->points_m, hfov_deg};
 }
 
+// Simulated seconds for a message, as a reader writes them ("2 s", "0.0166667 s").
+std::string format_seconds(des::Time t) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.6g s", t.to_seconds());
+  return buf;
+}
+
+// Builds one part of a run. Building depends on the scenario alone, so
+// anything it throws is a problem of the scenario at `pointer`: `validate`
+// reports it exactly as `run` does, exit 2, and never a library's raw text.
+template <class F>
+void built_from(const char* pointer, const char* what, F&& make) {
+  try {
+    make();
+  } catch (const scenario::ScenarioError&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw scenario::ScenarioError(pointer, std::string("not enough memory to build the ") + what);
+  } catch (const std::exception& e) {
+    throw scenario::ScenarioError(pointer, std::string("cannot build the ") + what + ": " + e.what());
+  }
+}
+
 // Reads every key first, so bad and unknown keys are reported before
 // anything is built; then builds every model and lets the pipeline schedule
 // its first events.
 void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& options) {
   const PipelineRegistry registry = builtin_pipelines();
-  scenario::Section root(doc.root());
-  const PipelineFactory make_pipeline = bind_scenario(root, run.shared, registry);
-  doc.check_unknown_keys(&scenario_schema(), &run.input_warnings);
+  PipelineFactory make_pipeline;
+  built_from("", "scenario", [&] {
+    scenario::Section root(doc.root());
+    make_pipeline = bind_scenario(root, run.shared, registry);
+    doc.check_unknown_keys(&scenario_schema(), &run.input_warnings);
+  });
 
   run.duration = des::Time::from_seconds(run.shared.duration_s);
   run.seed = options.seed ? *options.seed : static_cast<uint64_t>(run.shared.seed);
   resolve_clocks(run, options.replication);
   const params::SharedParams& p = run.shared;
-  run.motion = tracker::make_motion(p.motion);
-  run.tracker = std::make_unique<tracker::Tracker>(p.tracker, *run.motion,
-                                                   des::RandomStream(run.seed, "tracker", options.replication));
-  run.transport = tracker::make_transport(p.transport);
+  built_from("/motion", "head motion", [&] { run.motion = tracker::make_motion(p.motion); });
+  built_from("/tracker", "tracker", [&] {
+    run.tracker = std::make_unique<tracker::Tracker>(p.tracker, *run.motion,
+                                                     des::RandomStream(run.seed, "tracker", options.replication));
+  });
+  built_from("/transport", "transport", [&] { run.transport = tracker::make_transport(p.transport); });
   Timeline* timeline = p.output.timeline ? &run.timeline : nullptr;
   run.timeline.set_max_entries(static_cast<size_t>(p.output.timeline_max_entries));
   run.host = std::make_unique<TrackerHost>(run.sim, *run.tracker, *run.transport, timeline, p.host.prediction);
   const bool stereo = p.host.stereo;
-  run.display = std::make_unique<display::Display>(run.sim,
-                                                   display::RasterTiming(p.display.raster, *p.display.clock.phase),
-                                                   stereo ? 2 : 1, p.display.fidelity, p.display.pixel_stride);
-  run.recorder = std::make_unique<LatencyRecorder>(run.sim, *run.motion, *run.host, run.display->timing(),
-                                                   probes_of(run), p.host.ipd_m, stereo, p.output.keep_samples);
+  built_from("/display", "display", [&] {
+    run.display = std::make_unique<display::Display>(run.sim,
+                                                     display::RasterTiming(p.display.raster, *p.display.clock.phase),
+                                                     stereo ? 2 : 1, p.display.fidelity, p.display.pixel_stride);
+  });
+  built_from("/probes", "registration probes", [&] {
+    run.recorder = std::make_unique<LatencyRecorder>(run.sim, *run.motion, *run.host, run.display->timing(),
+                                                     probes_of(run), p.host.ipd_m, stereo, p.output.keep_samples);
+  });
   for (const auto& w : run.input_warnings) run.recorder->warn(w);
   run.recorder->enable_prediction(p.host.prediction.has_value());
   if (p.motion_phases) run.recorder->split_by_phase(*p.motion_phases);
@@ -151,13 +191,15 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
     run.smear = std::make_unique<SmearRecorder>(*run.recorder, *run.motion);
     run.display->add_listener(run.smear.get());
   }
-  run.files = RunFiles(options.out_dir);
+  run.files = RunFiles(options.out_dir, options.staging_dir);
   if (p.frames && p.frames->enabled) {
-    run.frames = std::make_unique<FrameCapture>(
-        *p.frames, p.scene ? p.scene->geometry : renderer::SceneSpec{},
-        FrameCaptureInputs{*run.recorder, *run.host, *run.motion, run.display->timing(), p.display.hfov_deg,
-                           p.host.ipd_m, stereo, run.files,
-                           p.display.persistence ? &run.display->persistence() : nullptr});
+    built_from("/frames", "frame capture", [&] {
+      run.frames = std::make_unique<FrameCapture>(
+          *p.frames, p.scene ? p.scene->geometry : renderer::SceneSpec{},
+          FrameCaptureInputs{*run.recorder, *run.host, *run.motion, run.display->timing(), p.display.hfov_deg,
+                             p.host.ipd_m, stereo, run.files,
+                             p.display.persistence ? &run.display->persistence() : nullptr});
+    });
     run.display->add_listener(run.frames.get());
   }
   LatencyRecorder* rec = run.recorder.get();
@@ -167,12 +209,14 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
     rec->record_carried(s, c, line);
   });
 
-  run.pipeline = make_pipeline();
-  run.ctx = std::unique_ptr<RunContext>(new RunContext{
-      run.sim, run.seed, options.replication, run.duration, *run.motion, p.tracker, *run.transport, *run.host,
-      *run.display, p.display, p.scene ? &*p.scene : nullptr, *run.recorder, run.files, *run.clocks, p.host.ipd_m, stereo,
-      timeline, run.frames.get()});
-  run.pipeline->start(*run.ctx);
+  built_from("/pipeline", "pipeline", [&] {
+    run.pipeline = make_pipeline();
+    run.ctx = std::unique_ptr<RunContext>(new RunContext{
+        run.sim, run.seed, options.replication, run.duration, *run.motion, p.tracker, *run.transport, *run.host,
+        *run.display, p.display, p.scene ? &*p.scene : nullptr, *run.recorder, run.files, *run.clocks, p.host.ipd_m,
+        stereo, timeline, run.frames.get()});
+    run.pipeline->start(*run.ctx);
+  });
   // The phases used, drawn or fixed, make the resolved scenario reproduce this run.
   for (const auto& [pointer, ms] : run.clocks->phases_ms()) doc.resolve(pointer, ms);
 }
@@ -197,13 +241,60 @@ RunTotals totals_of(const Run& run) {
   return t;
 }
 
+// Legal input whose run says little or nothing: the warnings channel tells
+// (stderr and summary.json "warnings") instead of an exit 0 in silence.
+void warn_about_outcome(Run& run, const Json& figures) {
+  LatencyRecorder& rec = *run.recorder;
+  const std::string span = format_seconds(run.duration);
+  // (A run that shows no image at all is warned of by the recorder.)
+  const Json* mtp = figures.contains("motion_to_photon_ms") ? &figures["motion_to_photon_ms"] : nullptr;
+  if (mtp == nullptr || mtp->value("count", int64_t{0}) == 0)
+    rec.warn("no motion-to-photon latency figure: no tracker sample reached a displayed pixel in the " + span +
+             " simulated");
+  // A sample jittered past the end of the run ends the tracker's chain of samples early.
+  const tracker::Tracker& tracker = *run.tracker;
+  const int64_t expected =
+      tracker.first_index_at_or_after(run.duration) - tracker.first_index_at_or_after(des::Time::zero());
+  const int64_t measured = run.host->samples_measured();
+  if (tracker.params().jitter > des::Time::zero() && measured < expected)
+    rec.warn("tracker jitter of " + format_seconds(tracker.params().jitter) + " dropped " +
+             std::to_string(expected - measured) + " of " + std::to_string(expected) +
+             " samples (a sample jittered past the end of the run, or reports held in order past it); keep "
+             "/tracker/jitter_ms below half the sampling period");
+}
+
 Json figures_of(Run& run) {
   LatencyRecorder& rec = *run.recorder;
   run.pipeline->finish(*run.ctx);
   if (run.frames) run.frames->finish();
   rec.finish(totals_of(run));
-  return rec.figures();
+  Json figures = rec.figures();
+  warn_about_outcome(run, figures);
+  return figures;
 }
+
+// Progress is reported this often; checking the clock costs a few ns per call.
+constexpr uint64_t kEventsPerProgress = 1 << 14;
+
+// Runs the simulation; a model that throws becomes a RunFailure naming it
+// and the simulated time, a stop request a RunInterrupted.
+void simulate(Run& run) {
+  try {
+    run.host->start(run.duration);
+    run.display->start(run.duration);
+    run.sim.run_until(run.duration);
+  } catch (const std::exception& e) {
+    const auto kind = run.sim.failed_kind();
+    const std::string name = kind ? run.sim.kind_name(*kind) : std::string("start");
+    throw RunFailure(name.substr(0, name.find('.')), run.sim.now(),
+                     dynamic_cast<const std::bad_alloc*>(&e) ? std::string("out of memory") : std::string(e.what()));
+  }
+  if (run.sim.interrupted()) throw RunInterrupted(run.sim.now(), run.duration);
+}
+
+// JSON for a result file: text that is not UTF-8 (a file name from the
+// command line) is replaced rather than stopping the run at its very end.
+std::string dump(const Json& j) { return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n"; }
 
 std::string csv_of_ledger(const std::vector<Json>& ledger) {
   std::ostringstream out;
@@ -242,6 +333,25 @@ std::string csv_of_samples(const std::vector<LatencyRecorder::LoggedSample>& sam
 }
 
 }  // namespace
+
+namespace {
+
+// Simulated seconds for a message, as precise as a picosecond needs.
+std::string seconds_text(des::Time t) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.12g s", t.to_seconds());
+  return buf;
+}
+
+}  // namespace
+
+RunFailure::RunFailure(std::string model, des::Time at, const std::string& cause)
+    : std::runtime_error("run failed in " + model + " at simulated t = " + seconds_text(at) + ": " + cause),
+      model_(std::move(model)),
+      at_(at) {}
+
+RunInterrupted::RunInterrupted(des::Time at, des::Time end)
+    : std::runtime_error("interrupted at simulated t = " + seconds_text(at) + " of " + seconds_text(end)), at_(at) {}
 
 std::string latsim_version() { return LATSIM_VERSION; }
 std::string latsim_git_revision() { return LATSIM_GIT_REVISION; }
@@ -283,11 +393,15 @@ Json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& optio
   const auto command_start = options.command_start.value_or(std::chrono::steady_clock::now());
   Run run;
   build(run, doc, options);
+  run.files.prepare();
   run.sim.set_profiling(true);
+  run.sim.watch_stop_flag(options.stop);
+  if (options.progress)
+    run.sim.watch_progress(kEventsPerProgress, [&run, &options] {
+      options.progress(RunProgress{run.sim.now(), run.duration, run.sim.events_executed()});
+    });
   const auto t0 = std::chrono::steady_clock::now();
-  run.host->start(run.duration);
-  run.display->start(run.duration);
-  run.sim.run_until(run.duration);
+  simulate(run);
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   Json figures = figures_of(run);
 
@@ -327,14 +441,17 @@ Json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& optio
       files.write_text("tracker.csv", csv_of_rows(LatencyRecorder::tracker_ledger_columns(), r.tracker_ledger()));
     }
     if (options.write_samples) files.write_text("samples.csv", csv_of_samples(run.recorder->sample_log()));
-    files.write_text("figures.json", deterministic.dump(2) + "\n");
+    files.write_text("figures.json", dump(deterministic));
   }
   // The whole command and the process's peak, taken after the analytic
   // figures and every other result file: wall_s is the simulation loop alone.
   summary["command_wall_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - command_start).count();
   summary["peak_rss_mb"] = peak_rss_mb();
   // Written last: a run directory is complete exactly when summary.json exists.
-  if (files.enabled()) files.write_text("summary.json", summary.dump(2) + "\n");
+  if (files.enabled()) {
+    files.write_text("summary.json", dump(summary));
+    files.commit("summary.json");
+  }
   return summary;
 }
 

@@ -2,6 +2,8 @@
 // and result files written atomically by the run.
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -21,7 +23,9 @@ std::string bytes_of(const std::filesystem::path& file) {
 }
 
 std::filesystem::path fresh(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("latsim_results_" + name);
+  // The process id keeps test runs of several build directories apart.
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("latsim_results_" + name + "." + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   return dir;
 }
@@ -77,15 +81,53 @@ TEST_CASE("run files are written atomically into the run directory, or not at al
   none.write_text("x.txt", "nothing");
   CHECK(none.written().empty());
   const auto dir = fresh("files");
-  pipelines::RunFiles files(dir);
-  files.write_text("a.csv", "a,b\n1,2\n");
-  files.write_text("sub/b.md", "# b\n");
+  const auto staging = pipelines::staging_dir_of(dir, 4242);
+  {
+    pipelines::RunFiles files(dir, staging);
+    files.write_text("a.csv", "a,b\n1,2\n");
+    files.write_text("sub/b.md", "# b\n");
+    // Until the run commits, its files wait beside the run directory.
+    CHECK_FALSE(std::filesystem::exists(dir));
+    CHECK(bytes_of(staging / "a.csv") == "a,b\n1,2\n");
+    files.write_text("summary.json", "{}\n");
+    files.commit("summary.json");
+    CHECK(files.written() == std::vector<std::string>{"a.csv", "sub/b.md", "summary.json"});
+  }
   CHECK(bytes_of(dir / "a.csv") == "a,b\n1,2\n");
   CHECK(bytes_of(dir / "sub/b.md") == "# b\n");
-  CHECK(files.written() == std::vector<std::string>{"a.csv", "sub/b.md"});
+  CHECK(bytes_of(dir / "summary.json") == "{}\n");
+  CHECK_FALSE(std::filesystem::exists(staging));
   for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
     CHECK(e.path().string().find(".tmp") == std::string::npos);
   std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("a run that does not commit leaves no run directory and no staging directory", "[results]") {
+  const auto dir = fresh("uncommitted");
+  const auto staging = pipelines::staging_dir_of(dir, 4243);
+  {
+    pipelines::RunFiles files(dir, staging);
+    files.write_text("timeline.csv", "t\n");
+    CHECK(std::filesystem::exists(staging));
+  }  // failed or interrupted: destroyed without commit
+  CHECK_FALSE(std::filesystem::exists(dir));
+  CHECK_FALSE(std::filesystem::exists(staging));
+}
+
+TEST_CASE("a write that fails names the file in the run directory and the system's reason", "[results]") {
+  // The run directory's parent is a file: nothing can be made there (ENOTDIR).
+  const auto blocker = fresh("unwritable");
+  { std::ofstream(blocker) << "in the way"; }
+  const auto dir = blocker / "run";
+  pipelines::RunFiles files(dir, pipelines::staging_dir_of(dir, 4244));
+  try {
+    files.write_text("figures.json", "{}");
+    FAIL("no error");
+  } catch (const pipelines::WriteError& e) {
+    CHECK(std::string(e.what()).find("cannot write") != std::string::npos);
+    CHECK(e.error_number() != 0);
+  }
+  std::filesystem::remove(blocker);
 }
 
 TEST_CASE("doubtful input is a warning in the summary, not an error", "[results]") {

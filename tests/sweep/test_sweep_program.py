@@ -98,7 +98,8 @@ with open(os.path.join(killed, "results.csv.tmp.99999"), "w") as f:
 proc = latsim("sweep", sweep, "--out", killed, "-j", "2")
 check(proc.returncode == 0, f"resumed sweep: exit {proc.returncode} {proc.stderr}")
 # At least the two planted files: a kill during a write legitimately leaves
-# another (every one must be gone afterwards, checked below).
+# another, and the staging directory of each run the kill caught midway
+# (every one must be gone afterwards, checked below).
 removed = re.search(r"removed (\d+) unfinished temporary file", proc.stderr)
 check(removed is not None and int(removed.group(1)) >= 2, f"resume did not report the stray files: {proc.stderr}")
 check(" resumed," in proc.stdout and "(0 resumed" not in proc.stdout, f"nothing was resumed: {proc.stdout}")

@@ -13,9 +13,12 @@
 // it reaches the front.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -115,6 +118,19 @@ class Simulator {
   void run_until(Time end);
   /// Ends the current run() / run_until() after the running event returns.
   void stop() { stop_requested_ = true; }
+
+  /// A flag set from outside the simulation (a signal handler, another
+  /// thread): while it is true, runs stop before the next event and
+  /// interrupted() says so. nullptr: none.
+  void watch_stop_flag(const std::atomic<bool>* flag) { stop_flag_ = flag; }
+  /// Whether the last run() / run_until() ended because the stop flag was set.
+  bool interrupted() const { return interrupted_; }
+  /// Calls `fn` after every `every_events` events (for progress reports;
+  /// it must not schedule or cancel). every_events 0: never.
+  void watch_progress(uint64_t every_events, std::function<void()> fn);
+  /// The kind of the event whose callback threw out of the last run() or
+  /// run_until(), if one did.
+  std::optional<KindId> failed_kind() const { return failed_kind_; }
 
   /// Pre-sizes storage for n simultaneously pending events (optional).
   void reserve(std::size_t n);
@@ -257,6 +273,13 @@ class Simulator {
   bool top_consumed_ = false;
   bool stop_requested_ = false;
   bool running_ = false;
+  bool interrupted_ = false;
+  const std::atomic<bool>* stop_flag_ = nullptr;
+  // Counts down to the next progress call; never reaches 0 without a watcher.
+  uint64_t progress_countdown_ = UINT64_MAX;
+  uint64_t progress_every_ = 0;
+  std::function<void()> progress_fn_;
+  std::optional<KindId> failed_kind_;
   bool profiling_ = false;
   uint64_t next_seq_ = 0;
   std::size_t live_ = 0;
