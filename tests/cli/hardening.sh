@@ -1,0 +1,140 @@
+#!/usr/bin/env bash
+# Regression tests for the defects a fuzzing campaign found (issue text:
+# "Hardening"): every input below once crashed, hung, ran out of memory or
+# answered with a library's raw text. Now `validate` and `run` both answer
+# with exit code 2 and one readable line naming the file and the JSON
+# pointer, and `run` leaves nothing behind.
+set -u
+LATSIM=$1
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail=0
+# Costs no simulated time worth speaking of; every case changes one thing.
+base='"duration_s": 1, "motion": {"type": "still"}, "tracker": {"rate_hz": 60}, "display": {"refresh_hz": 60}, "pipeline": {"type": "double_buffer", "render": {"fixed_ms": 1}}'
+# An error line longer than this is not readable (one defect printed 4 MB).
+max_line=600
+
+say_fail() { echo "FAIL $*"; fail=1; }
+
+# expect_bad NAME EXPECTED_TEXT FILE [extra args...]: validate and run alike.
+expect_bad() {
+  local name=$1 expect=$2 file=$3
+  shift 3
+  local out="$tmp/out_$name" cmd rc lines width
+  for cmd in validate run; do
+    if [ "$cmd" = run ]; then
+      "$LATSIM" run "$file" --out "$out" "$@" >"$tmp/stdout" 2>"$tmp/stderr"
+    else
+      "$LATSIM" validate "$file" "$@" >"$tmp/stdout" 2>"$tmp/stderr"
+    fi
+    rc=$?
+    lines=$(wc -l <"$tmp/stderr")
+    width=$(awk '{ if (length($0) > w) w = length($0) } END { print w + 0 }' "$tmp/stderr")
+    [ "$rc" -eq 2 ] || say_fail "$name ($cmd): exit code $rc, want 2"
+    [ "$lines" -eq 1 ] || { say_fail "$name ($cmd): $lines lines on stderr, want 1"; head -c 2000 "$tmp/stderr"; }
+    [ "$width" -le "$max_line" ] || say_fail "$name ($cmd): an error line of $width characters"
+    grep -qF -- "$expect" "$tmp/stderr" || { say_fail "$name ($cmd): stderr lacks '$expect':"; head -c 600 "$tmp/stderr"; }
+  done
+  [ -e "$out" ] && say_fail "$name: run left $out"
+  ls "$tmp" | grep -q "^out_$name\.tmp" && say_fail "$name: run left a staging directory"
+  [ "$fail" -eq 0 ] && echo "ok   $name: $(head -c 300 "$tmp/stderr")"
+}
+
+# scenario NAME JSON: writes a scenario file and prints its path.
+scenario() { printf '%s\n' "$2" >"$tmp/$1.json"; echo "$tmp/$1.json"; }
+
+# 1. Deep nesting (was SIGSEGV): objects 100,000 deep, arrays 1,000,000 deep.
+python3 -c 'import sys; sys.stdout.write("{\"x\":" + "{\"a\":" * 100000 + "1" + "}" * 100001)' >"$tmp/deep_object.json"
+expect_bad deep_object "nested more than" "$tmp/deep_object.json"
+python3 -c 'import sys; sys.stdout.write("{\"x\":" + "[" * 1000000 + "]" * 1000000 + "}")' >"$tmp/deep_array.json"
+expect_bad deep_array "nested more than" "$tmp/deep_array.json"
+
+# 2. An extreme pose (was SIGABRT inside Embree, and an empty directory left).
+expect_bad far_position "/motion/position_m/0" \
+  "$(scenario far_position '{"include": "'"$PWD"'/scenarios/frameless/side_by_side.json", "duration_s": 0.2,
+     "motion": {"type": "still", "position_m": [1e20, 0, 0]}}')"
+
+# 3. Rates finer than the time unit (never finished, or gigabytes of memory).
+expect_bad rate_int64 "/pipeline/max_update_rate_hz" \
+  "$(scenario rate_int64 '{"include": "'"$PWD"'/scenarios/arp/priority.json", "duration_s": 1,
+     "pipeline": {"max_update_rate_hz": "9223372036854775807/1"}}')"
+expect_bad tracker_rate "/tracker/rate_hz" "$(scenario tracker_rate "{$base}")" --set '/tracker/rate_hz="2000000000000/1"'
+expect_bad refresh_1e6 "/display/refresh_hz" "$(scenario refresh "{$base}")" --set /display/refresh_hz=1e6
+
+# 5. Errors while building models: a pointer and exit 2, not exit 1.
+expect_bad huge_axis "/motion" "$(scenario huge_axis "{$base}")" \
+  --set '/motion={"type": "constant", "rate_deg_s": 30, "axis": [1e308, 1e308, 1e308]}'
+expect_bad walk_far "/motion/points/1/0" "$(scenario walk_far "{$base}")" \
+  --set '/motion={"type": "walk", "points": [[0, 1.6, 0], [1e308, 1.6, -1e308]], "speed_m_s": 1}'
+expect_bad serial_baud "/transport/baud" "$(scenario serial_baud "{$base}")" \
+  --set '/transport={"type": "serial", "baud": 1e-9}'
+long_name=$(printf 'n%.0s' $(seq 300))
+expect_bad include_long_name "/include" "$(scenario include_long "{\"include\": \"$long_name.json\", $base}")"
+expect_bad number_overflow "number out of range" "$(scenario overflow "{$base, \"seed\": 1e999}")"
+grep -q "line 1" "$tmp/stderr" || say_fail "number_overflow: no line number"
+
+# 6. A run-sizing product overflowing int64 picoseconds (validated, then failed at run time).
+expect_bad binitize "/pipeline/binitize_us_per_bin" \
+  "$(scenario binitize '{"include": "'"$PWD"'/scenarios/pxpl5/rc_min_latency.json", "duration_s": 0.5,
+     "pipeline": {"binitize_us_per_bin": 1e12}}')"
+
+# 7. Includes that are not regular files; a directory given as the scenario.
+expect_bad include_dev_zero "/include" "$(scenario dev_zero "{\"include\": \"/dev/zero\", $base}")"
+expect_bad include_dot "/include" "$(scenario dot "{\"include\": \".\", $base}")"
+expect_bad scenario_dir "directory" "$tmp"
+
+# 9. Duplicate keys (last one used to win silently).
+expect_bad duplicate_key "/display/refresh_hz" "$(scenario dup '{"duration_s": 1, "motion": {"type": "still"},
+  "tracker": {"rate_hz": 60}, "display": {"refresh_hz": 60, "refresh_hz": 75},
+  "pipeline": {"type": "double_buffer", "render": {"fixed_ms": 1}}}')"
+grep -q "twice" "$tmp/stderr" || say_fail "duplicate_key: does not say the key is given twice"
+
+# Messages of a readable length: a key of a megabyte.
+python3 -c 'import sys; sys.stdout.write("{" + sys.argv[1] + ", \"" + "k" * 1000000 + "\": 1}")' "$base" >"$tmp/long_key.json"
+expect_bad long_key "bytes" "$tmp/long_key.json"
+
+# expect_ok NAME COMMAND...: exit 0 within a CPU-time bound (not wall time:
+# the machine may be loaded), its stderr kept in $tmp/stderr.
+expect_ok() {
+  local name=$1
+  shift
+  (ulimit -t 60; "$@") >"$tmp/stdout" 2>"$tmp/stderr"
+  local rc=$?
+  [ "$rc" -eq 0 ] || { say_fail "$name: exit code $rc, want 0"; head -c 600 "$tmp/stderr"; }
+}
+
+# 4. The analytic calculation costs what the run costs, not what the render
+# time or the hyperperiod would (a 1e8 ms render took over a minute of CPU).
+expect_ok analytic_long_render "$LATSIM" run scenarios/hmd_60hz_direct.json --out "$tmp/analytic1" -q \
+  --set /duration_s=2 --set /pipeline/render/fixed_ms=1e8
+expect_ok analytic_slow_tracker "$LATSIM" run scenarios/hmd_60hz_direct.json --out "$tmp/analytic2" -q \
+  --set /duration_s=2 --set '/tracker/rate_hz="1/1000000"'
+grep -q '"complete": false' "$tmp/analytic2/figures.json" || say_fail "analytic_slow_tracker: enumeration not marked incomplete"
+
+# 9. Legal nonsense is a warning on stderr and in summary.json.
+expect_ok slow_refresh "$LATSIM" run scenarios/hmd_60hz_direct.json --out "$tmp/slow_refresh" -q \
+  --set /duration_s=2 --set /display/refresh_hz=0.001
+grep -q "warning: no motion-to-photon latency figure" "$tmp/stderr" || say_fail "slow_refresh: no warning on stderr"
+grep -q "no motion-to-photon latency figure" "$tmp/slow_refresh/summary.json" || say_fail "slow_refresh: no warning in summary.json"
+# 2 s at 60 Hz: 120 samples are due; those not measured are the ones lost.
+expect_ok jitter "$LATSIM" run scenarios/hmd_60hz_direct.json --out "$tmp/jitter" -q \
+  --set /duration_s=2 --set /tracker/jitter_ms=1000
+measured=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["figures"]["tracker_samples"])' "$tmp/jitter/summary.json")
+grep -q "dropped $((120 - measured)) of 120 samples" "$tmp/stderr" || { say_fail "jitter: no warning of $((120 - measured)) of 120 lost"; cat "$tmp/stderr"; }
+grep -q "dropped $((120 - measured)) of 120 samples" "$tmp/jitter/summary.json" || say_fail "jitter: no warning in summary.json"
+[ "$measured" -lt 120 ] || say_fail "jitter: no sample was lost ($measured measured), the case tests nothing"
+
+# 12. validate takes sweep files; --set makes a missing optional section; a
+# pipeline change names the keys the new pipeline ignores, not whole sections.
+expect_ok validate_sweep "$LATSIM" validate scenarios/sweeps/tracker_rate.json
+grep -q "ok (sweep of 18 runs, 6 points)" "$tmp/stdout" || say_fail "validate_sweep: $(cat "$tmp/stdout")"
+expect_ok set_creates_section "$LATSIM" run "$(scenario no_output "{$base}")" --set /output/timeline=false \
+  --out "$tmp/no_output" -q
+grep -q '"timeline": false' "$tmp/no_output/summary.json" || say_fail "set_creates_section: /output/timeline not applied"
+expect_ok mode_keys "$LATSIM" validate scenarios/hmd_60hz_direct.json --set /pipeline/type=frameless
+grep -q "warning: /pipeline/render: ignored: read only when type=double_buffer" "$tmp/stderr" ||
+  say_fail "mode_keys: $(cat "$tmp/stderr")"
+grep -q "warning: /scene:" "$tmp/stderr" && say_fail "mode_keys: the whole /scene section is flagged"
+
+[ "$fail" -eq 0 ] && echo "ok   analytic, warnings, validate of sweeps, --set sections, per-mode keys"
+exit $fail
