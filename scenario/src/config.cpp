@@ -43,15 +43,6 @@ std::string join_pointer(std::string_view pointer, std::string_view key) {
 
 namespace {
 
-std::string type_name(const Json& v) {
-  if (v.is_number()) return "a number";
-  if (v.is_string()) return "a string";
-  if (v.is_boolean()) return "a boolean";
-  if (v.is_array()) return "an array";
-  if (v.is_object()) return "an object";
-  return "null";
-}
-
 std::string format_number(double x) {
   std::ostringstream s;
   s << x;
@@ -62,7 +53,7 @@ std::string format_number(double x) {
 
 ConfigNode::ConfigNode(const Json* node, std::string pointer, std::shared_ptr<ReadLog> log)
     : node_(node), pointer_(std::move(pointer)), log_(std::move(log)) {
-  if (!node_->is_object()) throw ScenarioError(pointer_, "expected an object, got " + type_name(*node_));
+  if (!node_->is_object()) throw ScenarioError(pointer_, "expected an object, got " + json_type_name(*node_));
   log_->read_pointers.insert(pointer_);
 }
 
@@ -106,7 +97,7 @@ void ConfigNode::mark_all_read() const {
 
 ConfigNode ConfigNode::child(std::string_view key) const {
   const Json& v = require(key);
-  if (!v.is_object()) fail(key, "expected an object, got " + type_name(v));
+  if (!v.is_object()) fail(key, "expected an object, got " + json_type_name(v));
   return ConfigNode(&v, join_pointer(pointer_, key), log_);
 }
 
@@ -117,7 +108,7 @@ std::optional<ConfigNode> ConfigNode::optional_child(std::string_view key) const
 
 std::vector<ConfigNode> ConfigNode::objects(std::string_view key) const {
   const Json& v = require(key);
-  if (!v.is_array()) fail(key, "expected an array of objects, got " + type_name(v));
+  if (!v.is_array()) fail(key, "expected an array of objects, got " + json_type_name(v));
   std::vector<ConfigNode> out;
   const std::string base = join_pointer(pointer_, key);
   for (size_t i = 0; i < v.size(); ++i) out.emplace_back(&v[i], join_pointer(base, std::to_string(i)), log_);
@@ -125,7 +116,7 @@ std::vector<ConfigNode> ConfigNode::objects(std::string_view key) const {
 }
 
 double ConfigNode::as_number(std::string_view key, const Json& v) const {
-  if (!v.is_number()) fail(key, "expected a number, got " + type_name(v));
+  if (!v.is_number()) fail(key, "expected a number, got " + json_type_name(v));
   const double x = v.get<double>();
   if (!std::isfinite(x)) fail(key, "expected a finite number");
   return x;
@@ -170,7 +161,7 @@ int64_t ConfigNode::integer(std::string_view key, int64_t lo, int64_t hi) const 
   const Json& v = require(key);
   if (!v.is_number_integer() && !(v.is_number_float() && std::floor(v.get<double>()) == v.get<double>() &&
                                   std::fabs(v.get<double>()) < 9e15))
-    fail(key, "expected an integer, got " + type_name(v));
+    fail(key, "expected an integer, got " + json_type_name(v));
   const int64_t x = v.is_number_integer() ? v.get<int64_t>() : static_cast<int64_t>(v.get<double>());
   if (x < lo || x > hi)
     fail(key, "must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + std::to_string(x));
@@ -191,13 +182,13 @@ bool ConfigNode::boolean(std::string_view key, bool def) const {
     return def;
   }
   const Json& v = require(key);
-  if (!v.is_boolean()) fail(key, "expected true or false, got " + type_name(v));
+  if (!v.is_boolean()) fail(key, "expected true or false, got " + json_type_name(v));
   return v.get<bool>();
 }
 
 std::string ConfigNode::string(std::string_view key) const {
   const Json& v = require(key);
-  if (!v.is_string()) fail(key, "expected a string, got " + type_name(v));
+  if (!v.is_string()) fail(key, "expected a string, got " + json_type_name(v));
   return v.get<std::string>();
 }
 
@@ -215,12 +206,12 @@ std::vector<std::string> ConfigNode::strings(std::string_view key, std::vector<s
     return def;
   }
   const Json& v = require(key);
-  if (!v.is_array()) fail(key, "expected an array of strings, got " + type_name(v));
+  if (!v.is_array()) fail(key, "expected an array of strings, got " + json_type_name(v));
   std::vector<std::string> out;
   for (size_t i = 0; i < v.size(); ++i) {
     if (!v[i].is_string())
       throw ScenarioError(join_pointer(join_pointer(pointer_, key), std::to_string(i)),
-                          "expected a string, got " + type_name(v[i]));
+                          "expected a string, got " + json_type_name(v[i]));
     out.push_back(v[i].get<std::string>());
   }
   return out;
@@ -238,12 +229,12 @@ std::string ConfigNode::choice(std::string_view key, std::string def,
 
 std::vector<double> ConfigNode::numbers(std::string_view key) const {
   const Json& v = require(key);
-  if (!v.is_array()) fail(key, "expected an array of numbers, got " + type_name(v));
+  if (!v.is_array()) fail(key, "expected an array of numbers, got " + json_type_name(v));
   std::vector<double> out;
   const std::string base = join_pointer(pointer_, key);
   for (size_t i = 0; i < v.size(); ++i) {
     if (!v[i].is_number() || !std::isfinite(v[i].get<double>()))
-      throw ScenarioError(join_pointer(base, std::to_string(i)), "expected a finite number, got " + type_name(v[i]));
+      throw ScenarioError(join_pointer(base, std::to_string(i)), "expected a finite number, got " + json_type_name(v[i]));
     out.push_back(v[i].get<double>());
   }
   return out;
@@ -259,12 +250,12 @@ std::vector<double> ConfigNode::numbers(std::string_view key, std::vector<double
 
 std::vector<std::vector<double>> ConfigNode::number_rows(std::string_view key) const {
   const Json& v = require(key);
-  if (!v.is_array()) fail(key, "expected an array of arrays of numbers, got " + type_name(v));
+  if (!v.is_array()) fail(key, "expected an array of arrays of numbers, got " + json_type_name(v));
   std::vector<std::vector<double>> out;
   const std::string base = join_pointer(pointer_, key);
   for (size_t i = 0; i < v.size(); ++i) {
     const std::string row_ptr = join_pointer(base, std::to_string(i));
-    if (!v[i].is_array()) throw ScenarioError(row_ptr, "expected an array of numbers, got " + type_name(v[i]));
+    if (!v[i].is_array()) throw ScenarioError(row_ptr, "expected an array of numbers, got " + json_type_name(v[i]));
     std::vector<double> row;
     for (size_t j = 0; j < v[i].size(); ++j) {
       if (!v[i][j].is_number() || !std::isfinite(v[i][j].get<double>()))
@@ -314,7 +305,7 @@ des::RationalSeconds ConfigNode::rate_as_period(std::string_view key, std::strin
       fail(key, "expected a frequency in Hz: a number or a positive fraction like \"60000/1001\", got \"" + s + "\"");
     }
   }
-  fail(key, "expected a frequency in Hz (a number or \"num/den\"), got " + type_name(v));
+  fail(key, "expected a frequency in Hz (a number or \"num/den\"), got " + json_type_name(v));
 }
 
 des::Time ConfigNode::duration_ms(std::string_view key) const {

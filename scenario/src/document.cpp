@@ -19,15 +19,6 @@ namespace {
 // Cycles are caught separately; a chain of distinct files this long is a mistake.
 constexpr size_t kMaxIncludeDepth = 16;
 
-std::string type_name(const Json& v) {
-  if (v.is_number()) return "a number";
-  if (v.is_string()) return "a string";
-  if (v.is_boolean()) return "a boolean";
-  if (v.is_array()) return "an array";
-  if (v.is_object()) return "an object";
-  return "null";
-}
-
 // Objects merge key by key; anything else in `over` replaces `base`. An
 // object whose "type" differs from the base's is a different thing altogether
 // (a trace instead of a sinusoid) and replaces it whole. Recursion is bounded
@@ -51,7 +42,7 @@ std::vector<std::pair<std::string, fs::path>> includes_of(const Json& doc, const
   const Json& inc = doc["include"];
   const auto add = [&](const std::string& where, const Json& name) {
     if (!name.is_string() || name.get<std::string>().empty())
-      throw ScenarioError(where, "expected a file name, got " + (name.is_string() ? std::string("\"\"") : type_name(name)), file);
+      throw ScenarioError(where, "expected a file name, got " + (name.is_string() ? std::string("\"\"") : json_type_name(name)), file);
     fs::path p = name.get<std::string>();
     out.emplace_back(where, p.is_relative() ? file.parent_path() / p : p);
   };
@@ -60,7 +51,7 @@ std::vector<std::pair<std::string, fs::path>> includes_of(const Json& doc, const
   } else if (inc.is_string()) {
     add("/include", inc);
   } else {
-    throw ScenarioError("/include", "expected a file name or an array of file names, got " + type_name(inc), file);
+    throw ScenarioError("/include", "expected a file name or an array of file names, got " + json_type_name(inc), file);
   }
   return out;
 }
@@ -71,7 +62,7 @@ Json load_with_includes(const fs::path& file, std::vector<fs::path>& chain) {
   if (ec) canon = file.lexically_normal();
   chain.push_back(canon);
   Json doc = read_json_file(file, chain.size() == 1 ? "scenario file" : "included file");
-  if (!doc.is_object()) throw ScenarioError("", "a scenario must be a JSON object, not " + type_name(doc), file);
+  if (!doc.is_object()) throw ScenarioError("", "a scenario must be a JSON object, not " + json_type_name(doc), file);
   Json result = Json::object();
   if (doc.contains("include")) {
     for (const auto& [where, included] : includes_of(doc, file)) {
@@ -174,7 +165,7 @@ void apply_override(Json& doc, const std::string& assignment, const ObjectSchema
       }
       node = &(*node)[segment];
     } else {
-      throw ScenarioError(ptr, "cannot set a key inside " + readable_pointer(walked) + ", which is " + type_name(*node));
+      throw ScenarioError(ptr, "cannot set a key inside " + readable_pointer(walked) + ", which is " + json_type_name(*node));
     }
     walked = here;
   }

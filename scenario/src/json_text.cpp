@@ -211,6 +211,15 @@ std::optional<Json> parse_json_value(std::string_view text, const std::string& s
   return builder.take();
 }
 
+std::string json_type_name(const Json& v) {
+  if (v.is_number()) return "a number";
+  if (v.is_string()) return "a string";
+  if (v.is_boolean()) return "a boolean";
+  if (v.is_array()) return "an array";
+  if (v.is_object()) return "an object";
+  return "null";
+}
+
 Json read_json_file(const std::filesystem::path& file, std::string_view what, const JsonLimits& limits) {
   return parse_json(read_text_file(file, what, limits.max_bytes), file.string(), limits);
 }

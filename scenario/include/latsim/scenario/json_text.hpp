@@ -42,6 +42,10 @@ nlohmann::json parse_json(std::string_view text, const std::string& source, cons
 std::optional<nlohmann::json> parse_json_value(std::string_view text, const std::string& source,
                                                const JsonLimits& limits = {});
 
+/// What a value is, for a message: "a number", "a string", "a boolean",
+/// "an array", "an object" or "null".
+std::string json_type_name(const nlohmann::json& v);
+
 /// read_text_file, then parse_json.
 nlohmann::json read_json_file(const std::filesystem::path& file, std::string_view what, const JsonLimits& limits = {});
 
