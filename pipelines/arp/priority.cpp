@@ -15,6 +15,7 @@
 #include "latsim/des/periodic.hpp"
 #include "latsim/pipelines/latency_recorder.hpp"
 #include "latsim/renderer/scene_spec.hpp"
+#include "latsim/scenario/params.hpp"
 
 namespace latsim::pipelines {
 namespace {
@@ -53,6 +54,9 @@ class PriorityPipeline final : public Pipeline {
       }
     }
     object_count_ = static_cast<int64_t>(objects.size());
+    // One update may draw every object of the scene.
+    scenario::check_span_at("/pipeline/render_per_object_us", p_.cost.per_segment.to_seconds(),
+                            static_cast<double>(object_count_), "the scene's objects");
     system_.emplace(ctx.sim, ctx.sim.kind("arp.priority_render"), scene_, std::move(objects),
                     arp::PrioritySystemParams{p_.model, p_.cost, p_.renderers, p_.face_px});
     system_->memories().on_present([this](const std::vector<const arp::MemoryImage*>& batch) { present(batch); });

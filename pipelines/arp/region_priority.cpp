@@ -3,6 +3,8 @@
 // the configurations named in `compare` run beside it on the same walk, with
 // renderers of their own, and are reported as variants.
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <memory>
 #include <optional>
 #include <string>
@@ -18,11 +20,27 @@
 #include "latsim/pipelines/latency_recorder.hpp"
 #include "latsim/pipelines/run_files.hpp"
 #include "latsim/renderer/scene_spec.hpp"
+#include "latsim/scenario/params.hpp"
 
 namespace latsim::pipelines {
 namespace {
 
 constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+// Warping looks at every region within its falloff from each warped vertex.
+constexpr double kMaxWarpRegions = 16.0;
+// Every region is tracked and segmented: a floor cut into more than this is
+// a slip in region_size_m, not a scene.
+constexpr double kMaxRegions = 1e6;
+
+void check_region_count(const renderer::Aabb& bounds, double region_size_m) {
+  const double nx = std::max(1.0, std::ceil((bounds.max_m.x - bounds.min_m.x) / region_size_m));
+  const double nz = std::max(1.0, std::ceil((bounds.max_m.z - bounds.min_m.z) / region_size_m));
+  if (nx * nz <= kMaxRegions) return;
+  char count[32];
+  std::snprintf(count, sizeof count, "%.3g", nx * nz);
+  throw scenario::ScenarioError("/pipeline/region_size_m",
+                                std::string("cuts the scene's floor into ") + count + " regions (at most 1e6)");
+}
 
 /// Drives region priority systems from the host's samples and shows the primary one.
 class RegionPriorityPipeline final : public Pipeline {
@@ -44,6 +62,7 @@ class RegionPriorityPipeline final : public Pipeline {
   void start(RunContext& ctx) override {
     ctx_ = &ctx;
     scene_ = renderer::make_scene(ctx.scene->geometry);
+    check_region_count(scene_.bounds(), p_.region_size_m);
     grid_.emplace(scene_.bounds(), p_.region_size_m);
     occluder_ = std::make_unique<renderer::RayCaster>(scene_);
     const des::KindId kind_render = ctx.sim.kind("arp.region_render");
@@ -58,6 +77,11 @@ class RegionPriorityPipeline final : public Pipeline {
       }
       runs_.push_back(make_run(segmented, warped, kind_variant));
     }
+    // One update may draw every segment of the scene (whole objects count as one segment each).
+    const size_t segments = std::max(segmented_ ? segmented_->segments.size() : size_t{0},
+                                     whole_ ? whole_->segments.size() : size_t{0});
+    scenario::check_span_at("/pipeline/render_per_segment_us", p_.cost.per_segment.to_seconds(),
+                            static_cast<double>(segments), "the scene's segments");
     runs_[0]->on_present([this](const std::vector<const arp::MemoryImage*>& batch) { present(batch); });
 
     const auto& raster = ctx.display.timing().params();
@@ -201,6 +225,8 @@ void bind(scenario::Section& s, RegionPriorityPipeline::Params& p, const params:
   m.warp_falloff_m = 0.5 * p.region_size_m;
   s.number("warp_falloff_m", m.warp_falloff_m,
            {.unit = "m", .min = 0.0, .doc = "distance over which warping fades", .default_doc = "region_size_m / 2"});
+  s.check("warp_falloff_m", m.warp_falloff_m <= kMaxWarpRegions * p.region_size_m,
+          "warping may fade over at most 16 regions (16 × region_size_m)");
   std::vector<double> rings(m.outer_rings.begin(), m.outer_rings.end());
   s.numbers("outer_rings", rings, {.doc = "ring limits, one per display memory after the first"});
   m.outer_rings.assign(rings.begin(), rings.end());

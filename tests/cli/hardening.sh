@@ -60,6 +60,10 @@ expect_bad rate_int64 "/pipeline/max_update_rate_hz" \
      "pipeline": {"max_update_rate_hz": "9223372036854775807/1"}}')"
 expect_bad tracker_rate "/tracker/rate_hz" "$(scenario tracker_rate "{$base}")" --set '/tracker/rate_hz="2000000000000/1"'
 expect_bad refresh_1e6 "/display/refresh_hz" "$(scenario refresh "{$base}")" --set /display/refresh_hz=1e6
+# A rate error whose exact period no 64-bit fraction holds (a period of
+# 9223372036854775807/9223372036854775806 s times 1e9 / (1e9 + 1000)).
+expect_bad rate_error_exact "/tracker/rate_error_ppm" "$(scenario rate_error "{$base}")" \
+  --set '/tracker/rate_hz="9223372036854775806/9223372036854775807"' --set /tracker/rate_error_ppm=1
 
 # 5. Errors while building models: a pointer and exit 2, not exit 1.
 expect_bad huge_axis "/motion" "$(scenario huge_axis "{$base}")" \
@@ -77,6 +81,22 @@ grep -q "line 1" "$tmp/stderr" || say_fail "number_overflow: no line number"
 expect_bad binitize "/pipeline/binitize_us_per_bin" \
   "$(scenario binitize '{"include": "'"$PWD"'/scenarios/pxpl5/rc_min_latency.json", "duration_s": 0.5,
      "pipeline": {"binitize_us_per_bin": 1e12}}')"
+
+# Address recalculation: a render cost times the scene's items beyond what a
+# run may last, a floor cut into billions of regions, a warp falloff that
+# would have every vertex look at millions of regions.
+expect_bad arp_per_object "/pipeline/render_per_object_us" \
+  "$(scenario arp_per_object '{"include": "'"$PWD"'/scenarios/arp/priority.json", "duration_s": 0.5,
+     "pipeline": {"render_per_object_us": 1e12}}')"
+expect_bad arp_per_segment "/pipeline/render_per_segment_us" \
+  "$(scenario arp_per_segment '{"include": "'"$PWD"'/scenarios/arp/gallery.json", "duration_s": 0.5,
+     "pipeline": {"render_per_segment_us": 1e12}}')"
+expect_bad arp_regions "/pipeline/region_size_m" \
+  "$(scenario arp_regions '{"include": "'"$PWD"'/scenarios/arp/gallery.json", "duration_s": 0.5,
+     "pipeline": {"region_size_m": 1e-6, "warp_falloff_m": 1e-6, "swap_margin_m": 1e-7}}')"
+expect_bad arp_falloff "/pipeline/warp_falloff_m" \
+  "$(scenario arp_falloff '{"include": "'"$PWD"'/scenarios/arp/gallery.json", "duration_s": 0.5,
+     "pipeline": {"warp_falloff_m": 1e9}}')"
 
 # 7. Includes that are not regular files; a directory given as the scenario.
 expect_bad include_dev_zero "/include" "$(scenario dev_zero "{\"include\": \"/dev/zero\", $base}")"
@@ -104,12 +124,18 @@ expect_ok() {
 }
 
 # 4. The analytic calculation costs what the run costs, not what the render
-# time or the hyperperiod would (a 1e8 ms render took over a minute of CPU).
+# time or the repeat cycle would (a 1e8 ms render took over a minute of CPU).
+# One frame of a 1e8 ms render spans 6e6 fields at 60 Hz, more than a 2 s run
+# affords (4e6 fields at least), whether the phases are drawn (integrated)
+# or fixed (enumerated): the figures say the calculation stopped short.
 expect_ok analytic_long_render "$LATSIM" run scenarios/hmd_60hz_direct.json --out "$tmp/analytic1" -q \
   --set /duration_s=2 --set /pipeline/render/fixed_ms=1e8
+grep -q '"complete": false' "$tmp/analytic1/figures.json" || say_fail "analytic_long_render: not marked incomplete"
+expect_ok analytic_long_render_fixed "$LATSIM" run scenarios/hmd_60hz_direct.json --out "$tmp/analytic3" -q \
+  --set /duration_s=2 --set /pipeline/render/fixed_ms=1e8 --set /display/phase_ms=0 --set /tracker/phase_ms=0
+grep -q '"complete": false' "$tmp/analytic3/figures.json" || say_fail "analytic_long_render_fixed: not marked incomplete"
 expect_ok analytic_slow_tracker "$LATSIM" run scenarios/hmd_60hz_direct.json --out "$tmp/analytic2" -q \
   --set /duration_s=2 --set '/tracker/rate_hz="1/1000000"'
-grep -q '"complete": false' "$tmp/analytic2/figures.json" || say_fail "analytic_slow_tracker: enumeration not marked incomplete"
 
 # 9. Legal nonsense is a warning on stderr and in summary.json.
 expect_ok slow_refresh "$LATSIM" run scenarios/hmd_60hz_direct.json --out "$tmp/slow_refresh" -q \
