@@ -6,7 +6,8 @@ LATSIM=$1
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fail=0
-base='"duration_s": 1, "motion": {"type": "still"}, "tracker": {"rate_hz": 60}, "display": {"refresh_hz": 60}, "pipeline": {"type": "double_buffer", "render": {"fixed_ms": 1}}'
+shared='"duration_s": 1, "motion": {"type": "still"}, "tracker": {"rate_hz": 60}, "display": {"refresh_hz": 60}'
+base="$shared"', "pipeline": {"type": "double_buffer", "render": {"fixed_ms": 1}}'
 
 # check NAME EXPECTED_TEXT JSON_TEXT [extra args...]
 check() {
@@ -45,7 +46,8 @@ check malformed_trace "bad_trace.csv:3:" "{$base}" --set /motion='{"type": "trac
 check include_missing "/include" "{\"include\": \"no_such_base.json\", $base}"
 
 # The staged frame pipeline's cross-field rules and the display's persistence.
-fs="$base"', "pipeline": {"type": "frame_stages", "processors": [{"name": "cpu"}, {"name": "gpu"}], "stages": [{"name": "I", "on": "cpu", "samples_pose": true, "cost": {"fixed_ms": 1}}, {"name": "G", "on": "gpu", "cost": {"fixed_ms": 1}}]}'
+# (A key given twice is refused, so the pipeline is given once.)
+fs="$shared"', "pipeline": {"type": "frame_stages", "processors": [{"name": "cpu"}, {"name": "gpu"}], "stages": [{"name": "I", "on": "cpu", "samples_pose": true, "cost": {"fixed_ms": 1}}, {"name": "G", "on": "gpu", "cost": {"fixed_ms": 1}}]}'
 warp='{"stages": [{"name": "W", "on": "gpu", "samples_pose": true, "cost": {"fixed_ms": 1}}]}'
 check fs_unknown_processor "/pipeline/stages/1/on" "{$fs}" --set /pipeline/stages/1/on='"gpu2"'
 check fs_duplicate_processor "/pipeline/processors/1/name" "{$fs}" --set /pipeline/processors/1/name='"cpu"'
