@@ -64,7 +64,8 @@ Json FigureTable::to_json(const std::map<std::string, des::Distribution>& distri
     if (c.is_null()) c = is_list ? Json::array() : Json::object();
   }
   for (const auto& [name, d] : published_) at_name(f, name) = distribution_json(d);
-  for (const auto& [name, v] : values_) std::visit([&](const auto& x) { at_name(f, name) = x; }, v);
+  // A named pair, not a structured binding: clang before 16 cannot capture bindings in a lambda.
+  for (const auto& entry : values_) std::visit([&](const auto& x) { at_name(f, entry.first) = x; }, entry.second);
   return f;
 }
 

@@ -57,8 +57,12 @@ PipelineFactory bind_scenario(scenario::Section& root, params::SharedParams& sha
   params::bind(root, shared);
   PipelineFactory factory;
   std::vector<scenario::ModeDecl> modes;
-  for (const auto& [name, entry] : registry.entries())
-    modes.push_back({name, entry.doc, [&factory, &shared, &entry](scenario::Section& p) { factory = entry.bind(p, shared); }});
+  for (const auto& named : registry.entries()) {
+    // A reference, not a structured binding: clang before 16 cannot capture bindings in a lambda.
+    const auto& entry = named.second;
+    modes.push_back(
+        {named.first, entry.doc, [&factory, &shared, &entry](scenario::Section& p) { factory = entry.bind(p, shared); }});
+  }
   int unused = 0;
   root.object("pipeline", unused,
               [&modes](scenario::Section& p, int&) {
