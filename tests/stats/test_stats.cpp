@@ -197,9 +197,11 @@ TEST_CASE("LogHistogram memory is bounded by the value range, not the count", "[
   const double log_lo = std::log(1e-3), log_hi = std::log(1e3);
   for (int i = 0; i < 10'000'000; ++i) h.add(std::exp(rng.uniform(log_lo, log_hi)));
   CHECK(h.count() == 10'000'000);
-  // ln(1e6) / ln(1.005/0.995) = 1382 buckets span the range.
-  CHECK(h.buckets().size() <= 1384);
-  CHECK(h.allocated_buckets() <= 1384 * 4 / 3 + 2);
+  // S = 100 buckets per binade (1/201 < 0.005 <= 1/199); six decades are
+  // log2(1e6) = 19.93 binades, so at most 1994 buckets plus one partial at each end.
+  CHECK(h.buckets_per_binade() == 100);
+  CHECK(h.buckets().size() <= 1996);
+  CHECK(h.allocated_buckets() <= 1996 * 4 / 3 + 2);
 }
 
 TEST_CASE("LogHistogram handles zero, tiny and negative values", "[stats]") {

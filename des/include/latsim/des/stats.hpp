@@ -4,6 +4,11 @@
 // such a sample is a model bug, and it would silently poison every moment.
 // Empty containers report 0 for every statistic, so summaries are NaN-free.
 //
+// Moments are kept as exact sums, so they do not depend on the order in which
+// values arrive or on how they are grouped: a run of values added in closed
+// form (all lines of a field, all pixels of a line) gives the same bits as the
+// same values added one by one, and a merge gives the same bits as one stream.
+//
 // Quantile definition used throughout (nearest rank): for q in [0, 1] and n
 // values sorted ascending x_0 <= ... <= x_{n-1}, quantile(q) = x_k with
 // k = nearest_rank_index(q, n) = max(0, ceil(q * n) - 1); q = 0 gives the
@@ -15,6 +20,10 @@
 #include <utility>
 #include <vector>
 
+#include "latsim/des/exact_sum.hpp"
+#include "latsim/des/tick_run.hpp"
+#include "latsim/des/time.hpp"
+
 namespace latsim::des {
 
 /// The 0-based index of the nearest-rank q-quantile among n sorted values;
@@ -23,61 +32,85 @@ uint64_t nearest_rank_index(double q, uint64_t n);
 
 /// Count, mean, variance, min and max of a stream of values in O(1) memory.
 ///
-/// Welford's update keeps the variance accurate even for values with a large
-/// common offset (1e9 + small), where sum-of-squares formulas cancel; it runs
-/// on values shifted by the first one, which keeps the mean's rounding error
-/// from growing with the offset too. merge() uses the pairwise combination of
-/// Chan, Golub and LeVeque.
+/// The sums of x and of x^2 are exact (fixed-point integers wide enough for
+/// any double), so mean() and variance() are the exact results rounded once:
+/// no cancellation for values with a large common offset (1e9 + small), no
+/// drift over billions of values, and bit-identical results whatever the
+/// order, grouping or merging of the same values.
 class RunningStats {
  public:
   void add(double x);
+  /// Adds an integer exactly (picoseconds, say), also beyond 2^53.
+  void add_integer(int64_t v);
+  /// Adds every value of a tick run, in closed form.
+  void add_run(const TickRun& run);
+  /// Adds the n exact values first + i * step (i in [0, n)) in closed form;
+  /// min and max are the end values rounded to double. n is at most 2^32.
+  void add_arithmetic_run(double first, double step, uint64_t n);
   uint64_t count() const { return count_; }
-  double mean() const { return shift_ + mean_; }
+  double mean() const;
   /// Sample variance (divisor n - 1); 0 for fewer than two values.
   double variance() const;
   double stddev() const;
   /// Exact extremes; 0 when empty.
   double min() const { return count_ == 0 ? 0.0 : min_; }
   double max() const { return count_ == 0 ? 0.0 : max_; }
-  /// Sum of all values (mean * count).
-  double sum() const { return mean() * static_cast<double>(count_); }
+  /// Sum of all values, rounded once.
+  double sum() const;
   /// Afterwards this equals the stats of both inputs' values together.
   void merge(const RunningStats& other);
 
  private:
+  // Sum of x in units of 2^-1074 (the smallest subnormal), of x^2 in units of
+  // 2^-2148, each with room for 2^64 values of the largest double.
+  using Sum = FixedPointSum<-1074, 72>;
+  using SumOfSquares = FixedPointSum<-2148, 138>;
+
+  void add_square(u128 magnitude_squared, int exponent) {
+    sum_sq_.add(static_cast<uint64_t>(magnitude_squared), exponent, false);
+    if (const auto high = static_cast<uint64_t>(magnitude_squared >> 64); high != 0)
+      sum_sq_.add(high, exponent + 64, false);
+  }
+  void note_extremes(double lo, double hi, uint64_t n);
+
   uint64_t count_ = 0;
-  double shift_ = 0.0;  // the first value; moments are kept relative to it
-  double mean_ = 0.0;   // mean of (x - shift_)
-  double m2_ = 0.0;     // sum of squared deviations from the running mean
   double min_ = 0.0;
   double max_ = 0.0;
+  Sum sum_;
+  SumOfSquares sum_sq_;
 };
 
 /// Quantiles with bounded relative error in memory bounded by the value range.
 ///
-/// Bucket i (i an integer) holds magnitudes in (gamma^(i-1), gamma^i] with
-/// gamma = (1 + a) / (1 - a), a = relative_error; its representative value
-/// 2 * gamma^i / (gamma + 1) is within relative error a of every magnitude in
-/// the bucket. Magnitudes below min_positive share one zero bucket
+/// Buckets split every binade [2^e, 2^(e+1)) into S equal parts, S the
+/// smallest count with 1 / (2 S + 1) < relative_error; the bucket of a value
+/// comes straight from the exponent and mantissa bits of the double (one
+/// multiply, no logarithm), and the representative 2 lo hi / (lo + hi) of a
+/// bucket [lo, hi) is within (hi - lo) / (hi + lo) <= 1 / (2 S + 1) of every
+/// magnitude in it. Magnitudes below min_positive share one zero bucket
 /// (represented by 0); negative values use mirrored buckets. Counts live in
-/// dense arrays indexed by bucket, so memory grows with log(max/min) of the
-/// magnitudes seen (about 1400 buckets per six decades at a = 0.005, plus at
-/// most a third for growth slack), never
-/// with the number of values. The bound holds up to floating-point rounding
-/// of the logarithm at bucket edges (a few ulps).
+/// dense arrays indexed by bucket, so memory grows with the number of binades
+/// the magnitudes span (S per binade, 100 at the default 0.005, plus at most
+/// a third for growth slack), never with the number of values.
 class LogHistogram {
  public:
   /// relative_error in [1e-4, 0.5] (smaller would make the bucket arrays
-  /// huge); min_positive finite and > 0. Throws std::invalid_argument otherwise.
+  /// huge); min_positive finite and >= DBL_MIN (the smallest normal double).
+  /// Throws std::invalid_argument otherwise.
   explicit LogHistogram(double relative_error = 0.005, double min_positive = 1e-9);
 
   void add(double x) { add(x, 1); }
   /// Adds x as if it were added `weight` times (weight 0 does nothing).
   void add(double x, uint64_t weight);
+  /// Adds every value of a tick run (as doubles), one bucket at a time.
+  void add_run(const TickRun& run);
+  /// Adds first + i * step for i in [0, n), each rounded to double as a loop
+  /// of add() would, one bucket at a time.
+  void add_arithmetic_run(double first, double step, uint64_t n);
   uint64_t count() const { return count_; }
   /// Nearest-rank quantile (see file comment), clamped to the exact [min, max]
-  /// seen and exactly min / max at the extreme ranks; 0 when empty. Relative error <= relative_error() for values whose
-  /// magnitude is >= min_positive.
+  /// seen and exactly min / max at the extreme ranks; 0 when empty. Relative
+  /// error <= relative_error() for values whose magnitude is >= min_positive.
   double quantile(double q) const;
   /// Exact extremes of the values added; 0 when empty.
   double min() const { return count_ == 0 ? 0.0 : min_; }
@@ -89,6 +122,8 @@ class LogHistogram {
   std::vector<std::pair<double, uint64_t>> buckets() const;
   double relative_error() const { return relative_error_; }
   double min_positive() const { return min_positive_; }
+  /// Buckets per binade (S above).
+  int buckets_per_binade() const { return per_binade_; }
   /// Bucket slots currently allocated (the memory footprint, in counters).
   size_t allocated_buckets() const { return positive_.slots() + negative_.slots(); }
 
@@ -107,15 +142,22 @@ class LogHistogram {
     std::vector<uint64_t> counts_;
   };
 
+  // Bucket of a magnitude >= min_positive (a normal double).
   int32_t bucket_index(double magnitude) const;
+  // Smallest magnitude in bucket `index`.
+  double bucket_lower(int32_t index) const;
   double representative(int32_t index) const;
   // Bucket value at a 0-based rank in the ascending order of all values.
   double value_at_rank(uint64_t rank) const;
+  // Adds n copies of x's bucket without touching min/max/count.
+  void add_to_bucket(double x, uint64_t n);
+  void note_extremes(double lo, double hi, uint64_t n);
+  // The smallest value above x whose bucket differs from x's bucket.
+  double next_bucket_start(double x) const;
 
   double relative_error_;
   double min_positive_;
-  double gamma_;
-  double log_gamma_;
+  int32_t per_binade_;
   DenseCounts positive_;
   DenseCounts negative_;  // indexed by the bucket of |x|
   uint64_t zero_count_ = 0;
@@ -127,6 +169,12 @@ class LogHistogram {
 /// A model's output channel for one quantity: RunningStats for moments, a
 /// LogHistogram for quantiles, and optionally every exact sample.
 ///
+/// A distribution holds plain numbers or durations, decided by its first
+/// sample: durations (add(Time), add_run) are stored as exact picoseconds and
+/// reported in milliseconds (unit() = 1e-9); mixing the two throws
+/// std::logic_error. stats(), histogram() and samples() are in stored units,
+/// summary(), quantile() and plot_histogram() in reported units.
+///
 /// With keep_samples, up to max_samples values are kept and quantiles are
 /// exact; once more than max_samples arrive the samples are released (to
 /// bound memory) and keeps_samples() turns false, quantiles then come from
@@ -137,7 +185,16 @@ class Distribution {
                         size_t max_samples = 10'000'000);
 
   void add(double x);
+  /// A duration, kept exactly in picoseconds.
+  void add(Time t);
+  /// Every duration of a tick run (picoseconds), moments in closed form.
+  void add_run(const TickRun& run);
+  /// The plain values first + i * step, i in [0, n) (see RunningStats).
+  void add_arithmetic_run(double first, double step, uint64_t n);
   uint64_t count() const { return stats_.count(); }
+  bool holds_durations() const { return kind_ == Kind::durations; }
+  /// Reported value per stored value: 1e-9 (ps to ms) for durations, else 1.
+  double unit() const { return kind_ == Kind::durations ? 1e-9 : 1.0; }
   const RunningStats& stats() const { return stats_; }
   const LogHistogram& histogram() const { return histogram_; }
   /// Nearest-rank quantile (see file comment): exact while samples are kept,
@@ -172,10 +229,15 @@ class Distribution {
   std::vector<std::pair<double, uint64_t>> plot_histogram(int bins = 50) const;
 
  private:
+  enum class Kind : uint8_t { empty, plain, durations };
+  // Throws std::logic_error if values of `kind` cannot join this distribution.
+  void check_kind(Kind kind) const;
+  void keep(double stored_value);
   void release_samples();
 
   RunningStats stats_;
   LogHistogram histogram_;
+  Kind kind_ = Kind::empty;
   bool keep_samples_;
   size_t max_samples_;
   std::vector<double> samples_;

@@ -1,0 +1,81 @@
+// Evenly spaced instants on the picosecond grid, and stepping through them.
+//
+// The photon times of the pixels of a line, or of the lines of a field, are
+// t_i = base + floor((offset + i * step) / den) ticks: an arithmetic run whose
+// exact rational step (for example 1/(60 * 502 * 800) s per pixel) is floored
+// to whole picoseconds. TickRun describes such a run so that statistics can be
+// taken over it in closed form; TickStepper walks it one index at a time with
+// an exact remainder instead of a division per step.
+#pragma once
+
+#include <cstdint>
+
+#include "latsim/des/exact_sum.hpp"
+#include "latsim/des/time.hpp"
+
+namespace latsim::des {
+
+using i128 = __int128;
+
+/// count values v_i = base + floor((offset + i * step) / den), i in [0, count),
+/// with den > 0, step >= 0 and (after make()) 0 <= offset < den.
+struct TickRun {
+  int64_t base = 0;
+  i128 offset = 0;
+  i128 step = 0;
+  i128 den = 1;
+  uint64_t count = 0;
+
+  /// A normalised run; throws std::invalid_argument unless den > 0, step >= 0
+  /// and offset >= 0, TimeOverflow if base moves out of the int64 range.
+  static TickRun make(int64_t base, i128 offset, i128 step, i128 den, uint64_t count);
+  /// A single value.
+  static TickRun single(int64_t value) { return TickRun{value, 0, 0, 1, 1}; }
+
+  /// v_i (one division).
+  int64_t at(uint64_t i) const;
+  int64_t first() const { return base; }
+  int64_t last() const { return at(count - 1); }
+  /// The smallest i with v_i >= threshold, or count if there is none.
+  uint64_t first_index_at_or_above(int64_t threshold) const;
+  /// The same run with every value moved by delta ticks.
+  TickRun shifted(int64_t delta) const;
+  /// Values [begin, begin + n) as a run of their own.
+  TickRun slice(uint64_t begin, uint64_t n) const;
+};
+
+/// Walks the instants of a TickRun in order: each step adds the whole ticks
+/// of the step and carries the exact remainder, so index i lands exactly on
+/// TickRun::at(i) however far it goes, without dividing.
+class TickStepper {
+ public:
+  TickStepper() = default;
+  explicit TickStepper(const TickRun& run);
+  Time time() const { return Time::ps(ticks_); }
+  int64_t ticks() const { return ticks_; }
+  void step() {
+    ticks_ += whole_;
+    remainder_ += fraction_;
+    if (remainder_ >= den_) {
+      remainder_ -= den_;
+      ++ticks_;
+    }
+  }
+
+ private:
+  int64_t ticks_ = 0;
+  int64_t whole_ = 0;
+  i128 fraction_ = 0;
+  i128 remainder_ = 0;
+  i128 den_ = 1;
+};
+
+/// Exact sums over a TickRun: sum of (v_i - base) and of (v_i - base)^2.
+struct TickRunSums {
+  u128 sum = 0;  ///< sum of w_i = v_i - base
+  U256 sum_sq;   ///< sum of w_i^2
+};
+/// Closed form in O(log den) (a floor-sum recursion); count must be at most 2^20.
+TickRunSums tick_run_sums(const TickRun& run);
+
+}  // namespace latsim::des

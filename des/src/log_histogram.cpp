@@ -1,0 +1,245 @@
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "latsim/des/stats.hpp"
+
+namespace latsim::des {
+
+namespace {
+
+constexpr uint64_t kFractionMask = (uint64_t{1} << 52) - 1;
+constexpr uint64_t kHidden = uint64_t{1} << 52;
+
+void require_finite(double x, const char* where) {
+  if (!std::isfinite(x)) {
+    throw std::invalid_argument(std::string(where) + ": sample is " + std::to_string(x) +
+                                "; a model emitted a non-finite value, which is a bug in that model");
+  }
+}
+
+// The first 52-bit fraction of sub-bucket k of S in a binade: ceil(k 2^52 / S),
+// so that floor(fraction S / 2^52) = k exactly from there to the next one.
+uint64_t lower_fraction(int32_t k, int32_t per_binade) {
+  return static_cast<uint64_t>(((static_cast<u128>(k) << 52) + static_cast<u128>(per_binade) - 1) /
+                               static_cast<u128>(per_binade));
+}
+
+}  // namespace
+
+void LogHistogram::DenseCounts::add(int32_t index, uint64_t weight) {
+  if (counts_.empty()) {
+    offset_ = index;
+    counts_.assign(1, 0);
+  }
+  // Each growth adds an eighth of the current span as slack, so growth is
+  // amortised O(1); unused slack can sit at both ends, which still keeps the
+  // allocation within 4/3 of the range of buckets seen (c = 1 + 2c/8).
+  const auto slack = static_cast<int32_t>(counts_.size() / 8);
+  if (index < offset_) {
+    const int32_t new_offset = index - slack;
+    counts_.insert(counts_.begin(), static_cast<size_t>(offset_ - new_offset), 0);
+    offset_ = new_offset;
+  } else if (index >= end_index()) {
+    counts_.resize(static_cast<size_t>(index - offset_ + 1 + slack), 0);
+  }
+  counts_[static_cast<size_t>(index - offset_)] += weight;
+}
+
+uint64_t LogHistogram::DenseCounts::at(int32_t index) const {
+  if (index < offset_ || index >= end_index()) return 0;
+  return counts_[static_cast<size_t>(index - offset_)];
+}
+
+LogHistogram::LogHistogram(double relative_error, double min_positive)
+    : relative_error_(relative_error), min_positive_(min_positive) {
+  if (!(relative_error >= 1e-4 && relative_error <= 0.5)) {
+    throw std::invalid_argument("LogHistogram: relative_error must be in [1e-4, 0.5], got " +
+                                std::to_string(relative_error));
+  }
+  if (!(std::isfinite(min_positive) && min_positive >= std::numeric_limits<double>::min())) {
+    throw std::invalid_argument("LogHistogram: min_positive must be finite and at least 2.2e-308 (DBL_MIN)");
+  }
+  // The smallest S with 1 / (2 S + 1) < relative_error.
+  per_binade_ = static_cast<int32_t>(std::floor((1.0 / relative_error - 1.0) / 2.0)) + 1;
+}
+
+int32_t LogHistogram::bucket_index(double magnitude) const {
+  const auto bits = std::bit_cast<uint64_t>(magnitude);
+  const auto exponent = static_cast<int32_t>(bits >> 52);
+  const auto sub = static_cast<int32_t>((static_cast<u128>(bits & kFractionMask) * static_cast<u128>(per_binade_)) >> 52);
+  return exponent * per_binade_ + sub;
+}
+
+double LogHistogram::bucket_lower(int32_t index) const {
+  const int32_t exponent = index / per_binade_, sub = index % per_binade_;
+  return std::bit_cast<double>((static_cast<uint64_t>(exponent) << 52) | lower_fraction(sub, per_binade_));
+}
+
+double LogHistogram::representative(int32_t index) const {
+  // 2 lo hi / (lo + hi) on the bucket's integer mantissas, scaled at the end
+  // so that the topmost bucket (hi = 2^1024) needs no infinity.
+  const int32_t exponent = index / per_binade_, sub = index % per_binade_;
+  const auto lo = static_cast<double>(kHidden + lower_fraction(sub, per_binade_));
+  const double hi = sub + 1 < per_binade_ ? static_cast<double>(kHidden + lower_fraction(sub + 1, per_binade_))
+                                          : static_cast<double>(2 * kHidden);
+  return std::ldexp(2.0 * lo * hi / (lo + hi), exponent - 1075);
+}
+
+double LogHistogram::next_bucket_start(double x) const {
+  const double magnitude = std::fabs(x);
+  if (magnitude < min_positive_) return min_positive_;
+  if (x > 0.0) {
+    const int32_t next = bucket_index(magnitude) + 1;
+    if (next / per_binade_ >= 2047) return std::numeric_limits<double>::infinity();
+    return bucket_lower(next);
+  }
+  // Negative: the bucket holds on while |v| >= its lower edge (and min_positive).
+  const double edge = std::max(bucket_lower(bucket_index(magnitude)), min_positive_);
+  return std::nextafter(-edge, 0.0);
+}
+
+void LogHistogram::add_to_bucket(double x, uint64_t n) {
+  const double magnitude = std::fabs(x);
+  if (magnitude < min_positive_) {
+    zero_count_ += n;
+  } else if (x > 0.0) {
+    positive_.add(bucket_index(magnitude), n);
+  } else {
+    negative_.add(bucket_index(magnitude), n);
+  }
+}
+
+void LogHistogram::note_extremes(double lo, double hi, uint64_t n) {
+  if (count_ == 0) {
+    min_ = lo;
+    max_ = hi;
+  } else {
+    min_ = std::min(min_, lo);
+    max_ = std::max(max_, hi);
+  }
+  count_ += n;
+}
+
+void LogHistogram::add(double x, uint64_t weight) {
+  require_finite(x, "LogHistogram::add");
+  if (weight == 0) return;
+  add_to_bucket(x, weight);
+  note_extremes(x, x, weight);
+}
+
+void LogHistogram::add_run(const TickRun& run) {
+  if (run.count == 0) return;
+  const double first = static_cast<double>(run.first()), last = static_cast<double>(run.last());
+  constexpr double kExact = 9007199254740992.0;  // 2^53: beyond it, ticks round as doubles
+  if (std::fabs(first) >= kExact || std::fabs(last) >= kExact) {
+    for (uint64_t i = 0; i < run.count; ++i) add_to_bucket(static_cast<double>(run.at(i)), 1);
+  } else {
+    // Values never decrease: each bucket holds a contiguous block of indices,
+    // and the block ends where the run first reaches the next bucket's start.
+    for (uint64_t i = 0; i < run.count;) {
+      const double x = static_cast<double>(run.at(i));
+      const double next = next_bucket_start(x);
+      uint64_t j = run.count;
+      if (next < kExact) j = std::max(i + 1, run.first_index_at_or_above(static_cast<int64_t>(std::ceil(next))));
+      add_to_bucket(x, j - i);
+      i = j;
+    }
+  }
+  note_extremes(first, last, run.count);
+}
+
+void LogHistogram::add_arithmetic_run(double first, double step, uint64_t n) {
+  require_finite(first, "LogHistogram::add_arithmetic_run (first)");
+  require_finite(step, "LogHistogram::add_arithmetic_run (step)");
+  if (n == 0) return;
+  const auto value = [&](uint64_t i) { return first + static_cast<double>(i) * step; };
+  require_finite(value(n - 1), "LogHistogram::add_arithmetic_run (last value)");
+  // Rounded values are monotone in i, so buckets come in contiguous blocks:
+  // find each block's end by galloping, then bisecting.
+  const auto key = [&](double x) -> int64_t {
+    const double m = std::fabs(x);
+    if (m < min_positive_) return 0;
+    return (x > 0.0 ? 1 : -1) * (static_cast<int64_t>(bucket_index(m)) + 1);
+  };
+  for (uint64_t i = 0; i < n;) {
+    const double x = value(i);
+    const int64_t k = key(x);
+    uint64_t good = i, span = 1;
+    while (good + span < n && key(value(good + span)) == k) {
+      good += span;
+      span *= 2;
+    }
+    uint64_t bad = std::min(n, good + span);  // first index known or assumed outside
+    while (bad - good > 1) {
+      const uint64_t mid = good + (bad - good) / 2;
+      (key(value(mid)) == k ? good : bad) = mid;
+    }
+    add_to_bucket(x, good + 1 - i);
+    i = good + 1;
+  }
+  const double last = value(n - 1);
+  note_extremes(std::min(first, last), std::max(first, last), n);
+}
+
+double LogHistogram::value_at_rank(uint64_t rank) const {
+  uint64_t seen = 0;
+  // Ascending value order: most negative (largest |x| bucket) first.
+  for (int32_t i = negative_.end_index() - 1; i >= negative_.first_index(); --i) {
+    seen += negative_.at(i);
+    if (seen > rank) return -representative(i);
+  }
+  seen += zero_count_;
+  if (seen > rank) return 0.0;
+  for (int32_t i = positive_.first_index(); i < positive_.end_index(); ++i) {
+    seen += positive_.at(i);
+    if (seen > rank) return representative(i);
+  }
+  return max_;  // unreachable while counts add up to count_
+}
+
+double LogHistogram::quantile(double q) const {
+  if (count_ == 0) {
+    nearest_rank_index(q, 1);  // still reject a bad q loudly
+    return 0.0;
+  }
+  // The extreme ranks are the tracked extremes, so q = 0 and q = 1 are exact.
+  const uint64_t rank = nearest_rank_index(q, count_);
+  if (rank == 0) return min_;
+  if (rank == count_ - 1) return max_;
+  return std::clamp(value_at_rank(rank), min_, max_);
+}
+
+void LogHistogram::merge(const LogHistogram& other) {
+  if (other.relative_error_ != relative_error_ || other.min_positive_ != min_positive_) {
+    throw std::invalid_argument(
+        "LogHistogram::merge: histograms differ in relative_error or min_positive; "
+        "build both with the same parameters");
+  }
+  if (other.count_ == 0) return;
+  for (int32_t i = other.positive_.first_index(); i < other.positive_.end_index(); ++i) {
+    if (const uint64_t c = other.positive_.at(i); c > 0) positive_.add(i, c);
+  }
+  for (int32_t i = other.negative_.first_index(); i < other.negative_.end_index(); ++i) {
+    if (const uint64_t c = other.negative_.at(i); c > 0) negative_.add(i, c);
+  }
+  zero_count_ += other.zero_count_;
+  note_extremes(other.min_, other.max_, other.count_);
+}
+
+std::vector<std::pair<double, uint64_t>> LogHistogram::buckets() const {
+  std::vector<std::pair<double, uint64_t>> out;
+  for (int32_t i = negative_.end_index() - 1; i >= negative_.first_index(); --i) {
+    if (const uint64_t c = negative_.at(i); c > 0) out.emplace_back(-representative(i), c);
+  }
+  if (zero_count_ > 0) out.emplace_back(0.0, zero_count_);
+  for (int32_t i = positive_.first_index(); i < positive_.end_index(); ++i) {
+    if (const uint64_t c = positive_.at(i); c > 0) out.emplace_back(representative(i), c);
+  }
+  return out;
+}
+
+}  // namespace latsim::des

@@ -1,0 +1,114 @@
+#include "latsim/des/tick_run.hpp"
+
+#include <stdexcept>
+
+namespace latsim::des {
+
+namespace {
+
+int64_t to_ticks(i128 v) {
+  if (v > static_cast<i128>(INT64_MAX) || v < static_cast<i128>(INT64_MIN))
+    throw TimeOverflow("tick run value out of the int64 picosecond range");
+  return static_cast<int64_t>(v);
+}
+
+i128 checked_mul(i128 a, i128 b) {
+  i128 r = 0;
+  if (__builtin_mul_overflow(a, b, &r)) throw TimeOverflow("tick run arithmetic exceeds 128 bits");
+  return r;
+}
+
+// Sums over i = 0..n of f_i = floor((a i + b) / c), of i f_i and of f_i^2, for
+// a, b >= 0, c > 0, n >= 0: the classic floor-sum recursion, which swaps the
+// roles of a and c like Euclid's algorithm and so takes O(log c) steps. The
+// intermediate terms stay within a small power of the final sums (<= n^3 when
+// a, b < c), far inside 128 bits for the run lengths allowed here.
+struct FloorSums {
+  i128 f = 0, g = 0, h = 0;
+};
+
+FloorSums floor_sums(i128 a, i128 b, i128 c, i128 n) {
+  const i128 s1 = n * (n + 1) / 2;               // sum of i
+  const i128 s2 = n * (n + 1) * (2 * n + 1) / 6;  // sum of i^2
+  if (a == 0) {
+    const i128 t = b / c;
+    return {(n + 1) * t, t * s1, (n + 1) * t * t};
+  }
+  if (a >= c || b >= c) {
+    const i128 qa = a / c, qb = b / c;
+    const FloorSums r = floor_sums(a % c, b % c, c, n);
+    return {r.f + qa * s1 + qb * (n + 1), r.g + qa * s2 + qb * s1,
+            r.h + 2 * qb * r.f + 2 * qa * r.g + qa * qa * s2 + qb * qb * (n + 1) + 2 * qa * qb * s1};
+  }
+  const i128 m = (a * n + b) / c;
+  if (m == 0) return {};
+  const FloorSums r = floor_sums(c, c - b - 1, a, m - 1);
+  FloorSums out;
+  out.f = n * m - r.f;
+  out.g = (m * n * (n + 1) - r.h - r.f) / 2;
+  out.h = n * m * (m + 1) - 2 * r.g - 2 * r.f - out.f;
+  return out;
+}
+
+}  // namespace
+
+TickRun TickRun::make(int64_t base, i128 offset, i128 step, i128 den, uint64_t count) {
+  if (den <= 0 || step < 0 || offset < 0)
+    throw std::invalid_argument("TickRun: needs den > 0, step >= 0 and offset >= 0");
+  TickRun r;
+  r.base = to_ticks(static_cast<i128>(base) + offset / den);
+  r.offset = offset % den;
+  r.step = step;
+  r.den = den;
+  r.count = count;
+  return r;
+}
+
+int64_t TickRun::at(uint64_t i) const {
+  return to_ticks(static_cast<i128>(base) + (offset + checked_mul(static_cast<i128>(i), step)) / den);
+}
+
+uint64_t TickRun::first_index_at_or_above(int64_t threshold) const {
+  const i128 d = static_cast<i128>(threshold) - base;
+  if (d <= 0 || count == 0) return 0;  // v_0 = base already reaches it
+  if (step == 0) return count;
+  // v_i >= threshold  <=>  offset + i step >= d den  <=>  i >= (d den - offset) / step.
+  const i128 need = checked_mul(d, den) - offset;
+  const i128 i = (need + step - 1) / step;
+  return i >= static_cast<i128>(count) ? count : static_cast<uint64_t>(i);
+}
+
+TickRun TickRun::shifted(int64_t delta) const {
+  TickRun r = *this;
+  r.base = to_ticks(static_cast<i128>(base) + delta);
+  return r;
+}
+
+TickRun TickRun::slice(uint64_t begin, uint64_t n) const {
+  return make(base, offset + checked_mul(static_cast<i128>(begin), step), step, den, n);
+}
+
+TickStepper::TickStepper(const TickRun& run)
+    : ticks_(run.base),
+      whole_(to_ticks(run.step / run.den)),
+      fraction_(run.step % run.den),
+      remainder_(run.offset),
+      den_(run.den) {}
+
+TickRunSums tick_run_sums(const TickRun& run) {
+  if (run.count > (uint64_t{1} << 20)) throw std::invalid_argument("tick_run_sums: at most 2^20 values at a time");
+  TickRunSums out;
+  if (run.count == 0) return out;
+  // w_i = q i + floor((r i + offset) / den) with 0 <= r, offset < den.
+  const i128 q = run.step / run.den, r = run.step % run.den;
+  const i128 n = static_cast<i128>(run.count) - 1;
+  const FloorSums fs = floor_sums(r, run.offset, run.den, n);
+  const i128 sum_i = n * (n + 1) / 2, sum_i2 = n * (n + 1) * (2 * n + 1) / 6;
+  out.sum = static_cast<u128>(checked_mul(q, sum_i) + fs.f);
+  out.sum_sq = U256::product(static_cast<u128>(q) * static_cast<u128>(q), static_cast<u128>(sum_i2))
+                   .plus(U256::product(static_cast<u128>(2 * q), static_cast<u128>(fs.g)))
+                   .plus(U256::of(static_cast<u128>(fs.h)));
+  return out;
+}
+
+}  // namespace latsim::des
