@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cstring>
 #include <set>
+#include <utility>
 
 #include "latsim/renderer/png_writer.hpp"
 
@@ -106,6 +107,65 @@ void RunFiles::prepare() {
   fs::remove_all(staging_, ec);
   make_directories(staging_);
   staged_ = true;
+}
+
+StreamedFile::StreamedFile(fs::path staged, fs::path shown_as)
+    : staged_(std::move(staged)), shown_as_(std::move(shown_as)) {
+  out_ = std::fopen(staged_.c_str(), "wb");
+  if (out_ == nullptr) throw WriteError(shown_as_, errno);
+}
+
+StreamedFile::StreamedFile(StreamedFile&& o) noexcept
+    : staged_(std::move(o.staged_)), shown_as_(std::move(o.shown_as_)), out_(std::exchange(o.out_, nullptr)) {}
+
+StreamedFile& StreamedFile::operator=(StreamedFile&& o) noexcept {
+  if (this != &o) {
+    discard();
+    staged_ = std::move(o.staged_);
+    shown_as_ = std::move(o.shown_as_);
+    out_ = std::exchange(o.out_, nullptr);
+  }
+  return *this;
+}
+
+StreamedFile::~StreamedFile() { discard(); }
+
+void StreamedFile::write(std::string_view bytes) {
+  if (out_ == nullptr) return;
+  if (std::fwrite(bytes.data(), 1, bytes.size(), out_) != bytes.size()) {
+    const int e = errno;
+    discard();
+    throw WriteError(shown_as_, e);
+  }
+}
+
+void StreamedFile::close() {
+  if (out_ == nullptr) return;
+  const bool flushed = std::fflush(out_) == 0;
+  const int e = errno;
+  // fclose() reports what a network file system could not store.
+  const bool closed = std::fclose(std::exchange(out_, nullptr)) == 0;
+  if (!flushed || !closed) throw WriteError(shown_as_, flushed ? errno : e);
+}
+
+void StreamedFile::discard() noexcept {
+  if (out_ == nullptr) return;
+  std::fclose(std::exchange(out_, nullptr));
+  ::unlink(staged_.c_str());
+}
+
+StreamedFile RunFiles::stream(const std::string& name) {
+  if (!enabled()) return StreamedFile{};
+  prepare();
+  const fs::path file = staging_ / name;
+  make_directories(file.parent_path());
+  return StreamedFile(file, dir_ / name);
+}
+
+void RunFiles::commit(StreamedFile& file, const std::string& name) {
+  if (!file.is_open()) return;
+  file.close();
+  written_.push_back(name);
 }
 
 void RunFiles::write_text(const std::string& name, std::string_view text) {

@@ -398,7 +398,10 @@ Json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& optio
   Run run;
   build(run, doc, options);
   run.files.prepare();
-  run.sim.set_profiling(true);
+  // Written as it is produced: memory does not grow with the run's length.
+  if (run.files.enabled()) run.timeline.stream_to(run.files);
+  // Per-event timing costs two clock reads per event: only when asked.
+  run.sim.set_profiling(options.profile);
   run.sim.watch_stop_flag(options.stop);
   if (options.progress)
     run.sim.watch_progress(kEventsPerProgress, [&run, &options] {
@@ -411,7 +414,8 @@ Json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& optio
 
   Json models = Json::object(), events_per_model = Json::object();
   for (const auto& m : run.sim.model_stats()) {
-    models[m.model] = {{"events", m.events}, {"wall_s", m.wall_s}};
+    models[m.model] = {{"events", m.events}};
+    if (options.profile) models[m.model]["wall_s"] = m.wall_s;
     events_per_model[m.model] = m.events;
   }
   // figures.json holds only what the scenario and seed determine: byte-identical
@@ -430,14 +434,11 @@ Json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& optio
   summary["exit_status"] = 0;
   summary["models"] = models;
   summary["wall_s"] = wall_s;
-  if (!run.timeline.entries().empty()) summary["timeline_entries"] = run.timeline.entries().size();
+  if (run.timeline.size() > 0) summary["timeline_entries"] = run.timeline.size();
 
   RunFiles& files = run.files;
   if (files.enabled()) {
-    if (!run.timeline.entries().empty()) {
-      files.write_text("timeline.csv", run.timeline.csv());
-      files.write_text("timeline.json", run.timeline.trace_json());
-    }
+    run.timeline.finish(files);
     if (options.write_ledger) {
       const LatencyRecorder& r = *run.recorder;
       files.write_text("frames.csv", csv_of_ledger(r.ledger()));

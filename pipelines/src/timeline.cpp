@@ -1,11 +1,8 @@
 #include "latsim/pipelines/timeline.hpp"
 
+#include <charconv>
 #include <cstdio>
-#include <map>
-#include <sstream>
-
-#include <nlohmann/json.hpp>
-
+#include <stdexcept>
 
 namespace latsim::pipelines {
 
@@ -20,69 +17,141 @@ uint64_t fnv1a(uint64_t h, const void* data, size_t n) {
   return h;
 }
 
-std::string ms_text(des::Time t) {
-  // Nanosecond resolution, fixed format: identical bytes on every platform.
-  char buf[40];
-  const int64_t ns = t.ticks() / 1000;
-  const int64_t whole = ns / 1'000'000, frac = ns % 1'000'000;
-  std::snprintf(buf, sizeof buf, "%s%lld.%06lld", (ns < 0 ? "-" : ""), static_cast<long long>(whole < 0 ? -whole : whole),
-                static_cast<long long>(frac < 0 ? -frac : frac));
-  return buf;
+void append_int(std::string& out, int64_t v) {
+  char buf[24];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, r.ptr);
+}
+
+// ticks / per_unit as a decimal with six digits after the point, from
+// integers: identical bytes on every platform, no rounding.
+void append_fixed6(std::string& out, int64_t ticks, int64_t per_unit) {
+  const uint64_t mag = ticks < 0 ? uint64_t{0} - static_cast<uint64_t>(ticks) : static_cast<uint64_t>(ticks);
+  if (ticks < 0) out += '-';
+  char buf[24];
+  const auto r = std::to_chars(buf, buf + sizeof buf, mag / static_cast<uint64_t>(per_unit));
+  out.append(buf, r.ptr);
+  out += '.';
+  uint64_t frac = mag % static_cast<uint64_t>(per_unit);
+  char digits[6];
+  for (int i = 5; i >= 0; --i, frac /= 10) digits[i] = static_cast<char>('0' + frac % 10);
+  out.append(digits, 6);
+}
+
+// Milliseconds with nanosecond resolution (the CSV's established format).
+void append_ms(std::string& out, des::Time t) { append_fixed6(out, t.ticks() / 1000, 1'000'000); }
+// Microseconds with picosecond resolution: exact.
+void append_us(std::string& out, des::Time t) { append_fixed6(out, t.ticks(), 1'000'000); }
+
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
 }
 
 }  // namespace
 
+void Timeline::Writer::open(RunFiles& files) {
+  csv_ = files.stream("timeline.csv");
+  json_ = files.stream("timeline.json");
+  csv_.write("stage,frame,eye,unit,start_ms,end_ms\n");
+  // Chrome trace-event format: one complete ("X") event per stage interval,
+  // one thread per unit (named when it first appears), timestamps in microseconds.
+  json_.write("{\"displayTimeUnit\":\"ms\",\"traceEvents\":[");
+}
+
+void Timeline::Writer::write(const Entry& e) {
+  std::string& b = buffer_;
+  b.clear();
+  b += e.stage;
+  b += ',';
+  append_int(b, e.frame);
+  b += ',';
+  append_int(b, e.eye);
+  b += ',';
+  b += e.unit;
+  b += ',';
+  append_ms(b, e.start);
+  b += ',';
+  append_ms(b, e.end);
+  b += '\n';
+  csv_.write(b);
+
+  b.clear();
+  auto it = tids_.find(e.unit);
+  if (it == tids_.end()) {
+    it = tids_.emplace(e.unit, static_cast<int>(tids_.size()) + 1).first;
+    b += first_event_ ? "\n" : ",\n";
+    b += "{\"args\":{\"name\":" + json_string(e.unit) + "},\"name\":\"thread_name\",\"ph\":\"M\",\"pid\":1,\"tid\":";
+    append_int(b, it->second);
+    b += '}';
+    first_event_ = false;
+  }
+  b += first_event_ ? "\n" : ",\n";
+  b += "{\"args\":{\"eye\":";
+  append_int(b, e.eye);
+  b += ",\"frame\":";
+  append_int(b, e.frame);
+  b += "},\"cat\":" + json_string(e.stage) + ",\"dur\":";
+  append_us(b, e.end - e.start);
+  std::string name = e.stage + " ";
+  append_int(name, e.frame);
+  if (e.eye >= 0) name += e.eye == 0 ? " L" : " R";
+  b += ",\"name\":" + json_string(name) + ",\"ph\":\"X\",\"pid\":1,\"tid\":";
+  append_int(b, it->second);
+  b += ",\"ts\":";
+  append_us(b, e.start);
+  b += '}';
+  json_.write(b);
+  first_event_ = false;
+}
+
+void Timeline::Writer::finish(RunFiles& files) {
+  json_.write("\n]}\n");
+  files.commit(csv_, "timeline.csv");
+  files.commit(json_, "timeline.json");
+}
+
 void Timeline::add(std::string stage, int64_t frame, int eye, std::string unit, des::Time start, des::Time end) {
-  if (max_entries_ > 0 && entries_.size() >= max_entries_) {
+  if (max_entries_ > 0 && accepted_ >= max_entries_) {
     ++dropped_;
     return;
   }
-  entries_.push_back(Entry{std::move(stage), frame, eye, std::move(unit), start, end});
-}
-
-uint64_t Timeline::fingerprint() const {
-  uint64_t h = 1469598103934665603ull;
-  for (const auto& e : entries_) {
-    h = fnv1a(h, e.stage.data(), e.stage.size());
-    h = fnv1a(h, e.unit.data(), e.unit.size());
-    const int64_t v[4] = {e.frame, e.eye, e.start.ticks(), e.end.ticks()};
-    h = fnv1a(h, v, sizeof v);
+  ++accepted_;
+  fingerprint_ = fnv1a(fingerprint_, stage.data(), stage.size());
+  fingerprint_ = fnv1a(fingerprint_, unit.data(), unit.size());
+  const int64_t v[4] = {frame, eye, start.ticks(), end.ticks()};
+  fingerprint_ = fnv1a(fingerprint_, v, sizeof v);
+  Entry e{std::move(stage), frame, eye, std::move(unit), start, end};
+  if (files_ == nullptr) {
+    entries_.push_back(std::move(e));
+    return;
   }
-  return h;
+  if (!stream_.is_open()) stream_.open(*files_);
+  stream_.write(e);
 }
 
-std::string Timeline::csv() const {
-  std::ostringstream out;
-  out << "stage,frame,eye,unit,start_ms,end_ms\n";
-  for (const auto& e : entries_)
-    out << e.stage << ',' << e.frame << ',' << e.eye << ',' << e.unit << ',' << ms_text(e.start) << ','
-        << ms_text(e.end) << '\n';
-  return out.str();
+void Timeline::stream_to(RunFiles& files) {
+  files_ = &files;
+  if (entries_.empty()) return;
+  stream_.open(files);
+  for (const Entry& e : entries_) stream_.write(e);
+  std::vector<Entry>().swap(entries_);
 }
 
-std::string Timeline::trace_json() const {
-  // Chrome trace-event format: one complete ("X") event per stage interval,
-  // one thread per unit, timestamps in microseconds.
-  std::map<std::string, int> tids;
-  for (const auto& e : entries_) tids.emplace(e.unit, 0);
-  int next = 1;
-  for (auto& [unit, tid] : tids) tid = next++;
-  nlohmann::json events = nlohmann::json::array();
-  for (const auto& [unit, tid] : tids)
-    events.push_back({{"name", "thread_name"}, {"ph", "M"}, {"pid", 1}, {"tid", tid}, {"args", {{"name", unit}}}});
-  for (const auto& e : entries_) {
-    const std::string name = e.stage + " " + std::to_string(e.frame) + (e.eye >= 0 ? (e.eye == 0 ? " L" : " R") : "");
-    events.push_back({{"name", name},
-                      {"cat", e.stage},
-                      {"ph", "X"},
-                      {"pid", 1},
-                      {"tid", tids[e.unit]},
-                      {"ts", e.start.to_us()},
-                      {"dur", (e.end - e.start).to_us()},
-                      {"args", {{"frame", e.frame}, {"eye", e.eye}}}});
-  }
-  nlohmann::json doc{{"traceEvents", events}, {"displayTimeUnit", "ms"}};
-  return doc.dump() + "\n";
+void Timeline::finish(RunFiles& files) {
+  if (stream_.is_open()) stream_.finish(files);
 }
 
 }  // namespace latsim::pipelines

@@ -2,6 +2,7 @@
 // directory, which appears whole or not at all.
 #pragma once
 
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -38,6 +39,36 @@ void write_file_atomically(const std::filesystem::path& file, std::string_view b
 /// it (so that the final rename stays on one file system).
 std::filesystem::path staging_dir_of(const std::filesystem::path& dir, long pid);
 
+/// A result file written piece by piece while the run produces it, into the
+/// run's staging directory: it reaches the run directory with the other
+/// files at RunFiles::commit() once RunFiles::commit(StreamedFile&) has
+/// completed it, and is removed with the staging directory otherwise. A
+/// default (closed) one ignores writes.
+class StreamedFile {
+ public:
+  StreamedFile() = default;
+  StreamedFile(std::filesystem::path staged, std::filesystem::path shown_as);
+  StreamedFile(StreamedFile&& o) noexcept;
+  StreamedFile& operator=(StreamedFile&& o) noexcept;
+  StreamedFile(const StreamedFile&) = delete;
+  StreamedFile& operator=(const StreamedFile&) = delete;
+  ~StreamedFile();
+
+  bool is_open() const { return out_ != nullptr; }
+  /// Throws WriteError (naming the file as the user will look for it).
+  void write(std::string_view bytes);
+
+ private:
+  friend class RunFiles;
+  // Flushes and closes; throws WriteError on failure.
+  void close();
+  void discard() noexcept;
+
+  std::filesystem::path staged_;    // where it is written
+  std::filesystem::path shown_as_;  // its place in the run directory (for messages)
+  std::FILE* out_ = nullptr;
+};
+
 /// A run's result files, owned by the run. Names are relative to the run
 /// directory (subdirectories are made). Files go to a staging directory
 /// beside it and reach the run directory only at commit(): a run that fails,
@@ -64,6 +95,10 @@ class RunFiles {
   void write_text(const std::string& name, std::string_view text);
   /// An 8-bit sRGB PNG of a linear image.
   void write_png(const std::string& name, const renderer::ImageRGB& image);
+  /// A file to write as the run goes (a closed one when the run keeps no files).
+  StreamedFile stream(const std::string& name);
+  /// Completes a streamed file; it is committed with the others.
+  void commit(StreamedFile& file, const std::string& name);
   /// Names written so far, in order.
   const std::vector<std::string>& written() const { return written_; }
   /// Moves every file written into the run directory: one rename when the

@@ -2,15 +2,21 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "latsim/des/time.hpp"
+#include "latsim/pipelines/run_files.hpp"
 
 namespace latsim::pipelines {
 
 /// Stage intervals of a pipeline, written as timeline.csv and as Chrome
 /// trace-event JSON (timeline.json, opens in Perfetto / chrome://tracing).
+///
+/// Entries are kept in memory until stream_to() is given the run's files;
+/// from then on each entry goes straight to both files (under temporary names
+/// until finish() renames them), so a run's memory does not grow with its length.
 class Timeline {
  public:
   struct Entry {
@@ -22,22 +28,48 @@ class Timeline {
     des::Time end;
   };
 
-  /// Keeps at most `max_entries` (0 = no limit); later entries are counted, not kept.
+
+  /// Accepts at most `max_entries` (0 = no limit); later entries are counted, not kept.
   void set_max_entries(size_t max_entries) { max_entries_ = max_entries; }
   size_t dropped() const { return dropped_; }
   void add(std::string stage, int64_t frame, int eye, std::string unit, des::Time start, des::Time end);
+  /// Entries accepted so far (kept or streamed).
+  size_t size() const { return accepted_; }
+  /// The entries held in memory (those added before stream_to(), none after).
   const std::vector<Entry>& entries() const { return entries_; }
-  /// Hash of all entries in order (for fingerprint tests).
-  uint64_t fingerprint() const;
-  /// timeline.csv: one row per interval.
-  std::string csv() const;
-  /// timeline.json: Chrome trace events.
-  std::string trace_json() const;
+  /// Hash of all accepted entries in order (for fingerprint tests).
+  uint64_t fingerprint() const { return fingerprint_; }
+
+  /// From now on write every entry to timeline.csv and timeline.json of
+  /// `files` (temporary names until finish()); entries held so far go first.
+  void stream_to(RunFiles& files);
+  /// Completes the streamed files and renames them into place; nothing is
+  /// written when no entry was accepted.
+  void finish(RunFiles& files);
 
  private:
+  // The two output formats, written one entry at a time.
+  class Writer {
+   public:
+    void open(RunFiles& files);
+    void write(const Entry& e);
+    void finish(RunFiles& files);
+    bool is_open() const { return csv_.is_open(); }
+
+   private:
+    StreamedFile csv_, json_;
+    std::map<std::string, int, std::less<>> tids_;  // thread id per unit, in order of appearance
+    bool first_event_ = true;
+    std::string buffer_;  // one formatted line, reused
+  };
+
   std::vector<Entry> entries_;
   size_t max_entries_ = 0;
   size_t dropped_ = 0;
+  size_t accepted_ = 0;
+  uint64_t fingerprint_ = 1469598103934665603ull;
+  RunFiles* files_ = nullptr;  // set by stream_to()
+  Writer stream_;
 };
 
 }  // namespace latsim::pipelines
