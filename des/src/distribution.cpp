@@ -34,20 +34,23 @@ void Distribution::add(double x) {
   if (keep_samples_) keep(x);
 }
 
-void Distribution::add(Time t) {
-  check_kind(Kind::durations);
-  kind_ = Kind::durations;
-  stats_.add_integer(t.ticks());
-  const auto x = static_cast<double>(t.ticks());
-  histogram_.add(x);
-  if (keep_samples_) keep(x);
-}
-
 void Distribution::add_run(const TickRun& run) {
   if (run.count == 0) return;
   check_kind(Kind::durations);
   kind_ = Kind::durations;
   stats_.add_run(run);
+  add_run_samples(run);
+}
+
+void Distribution::add_run(const TickRun& run, const TickRunSums& sums) {
+  if (run.count == 0) return;
+  check_kind(Kind::durations);
+  kind_ = Kind::durations;
+  stats_.add_run(run, sums);
+  add_run_samples(run);
+}
+
+void Distribution::add_run_samples(const TickRun& run) {
   histogram_.add_run(run);
   if (!keep_samples_) return;
   TickStepper t(run);

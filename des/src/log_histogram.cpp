@@ -11,7 +11,6 @@ namespace latsim::des {
 
 namespace {
 
-constexpr uint64_t kFractionMask = (uint64_t{1} << 52) - 1;
 constexpr uint64_t kHidden = uint64_t{1} << 52;
 
 void require_finite(double x, const char* where) {
@@ -30,7 +29,12 @@ uint64_t lower_fraction(int32_t k, int32_t per_binade) {
 
 }  // namespace
 
-void LogHistogram::DenseCounts::add(int32_t index, uint64_t weight) {
+void LogHistogram::reject_non_finite(double x) {
+  throw std::invalid_argument("LogHistogram::add: sample is " + std::to_string(x) +
+                              "; a model emitted a non-finite value, which is a bug in that model");
+}
+
+void LogHistogram::DenseCounts::grow_and_add(int32_t index, uint64_t weight) {
   if (counts_.empty()) {
     offset_ = index;
     counts_.assign(1, 0);
@@ -65,27 +69,20 @@ LogHistogram::LogHistogram(double relative_error, double min_positive)
   }
   // The smallest S with 1 / (2 S + 1) < relative_error.
   per_binade_ = static_cast<int32_t>(std::floor((1.0 / relative_error - 1.0) / 2.0)) + 1;
-}
-
-int32_t LogHistogram::bucket_index(double magnitude) const {
-  const auto bits = std::bit_cast<uint64_t>(magnitude);
-  const auto exponent = static_cast<int32_t>(bits >> 52);
-  const auto sub = static_cast<int32_t>((static_cast<u128>(bits & kFractionMask) * static_cast<u128>(per_binade_)) >> 52);
-  return exponent * per_binade_ + sub;
+  for (int32_t k = 0; k <= per_binade_; ++k) lower_fraction_.push_back(lower_fraction(k, per_binade_));
 }
 
 double LogHistogram::bucket_lower(int32_t index) const {
   const int32_t exponent = index / per_binade_, sub = index % per_binade_;
-  return std::bit_cast<double>((static_cast<uint64_t>(exponent) << 52) | lower_fraction(sub, per_binade_));
+  return std::bit_cast<double>((static_cast<uint64_t>(exponent) << 52) | lower_fraction_[static_cast<size_t>(sub)]);
 }
 
 double LogHistogram::representative(int32_t index) const {
   // 2 lo hi / (lo + hi) on the bucket's integer mantissas, scaled at the end
   // so that the topmost bucket (hi = 2^1024) needs no infinity.
   const int32_t exponent = index / per_binade_, sub = index % per_binade_;
-  const auto lo = static_cast<double>(kHidden + lower_fraction(sub, per_binade_));
-  const double hi = sub + 1 < per_binade_ ? static_cast<double>(kHidden + lower_fraction(sub + 1, per_binade_))
-                                          : static_cast<double>(2 * kHidden);
+  const auto lo = static_cast<double>(kHidden + lower_fraction_[static_cast<size_t>(sub)]);
+  const auto hi = static_cast<double>(kHidden + lower_fraction_[static_cast<size_t>(sub) + 1]);
   return std::ldexp(2.0 * lo * hi / (lo + hi), exponent - 1075);
 }
 
@@ -93,35 +90,18 @@ double LogHistogram::next_bucket_start(double x) const {
   const double magnitude = std::fabs(x);
   if (magnitude < min_positive_) return min_positive_;
   if (x > 0.0) {
-    const int32_t next = bucket_index(magnitude) + 1;
-    if (next / per_binade_ >= 2047) return std::numeric_limits<double>::infinity();
-    return bucket_lower(next);
+    // The next sub-bucket's first fraction in the same binade, or the next binade.
+    const auto bits = std::bit_cast<uint64_t>(magnitude);
+    const uint64_t exponent = bits >> 52;
+    const auto sub = static_cast<size_t>((static_cast<u128>(bits & (kHidden - 1)) * static_cast<u128>(per_binade_)) >> 52);
+    if (sub + 1 < static_cast<size_t>(per_binade_))
+      return std::bit_cast<double>((exponent << 52) | lower_fraction_[sub + 1]);
+    if (exponent + 1 >= 2047) return std::numeric_limits<double>::infinity();
+    return std::bit_cast<double>((exponent + 1) << 52);
   }
   // Negative: the bucket holds on while |v| >= its lower edge (and min_positive).
   const double edge = std::max(bucket_lower(bucket_index(magnitude)), min_positive_);
   return std::nextafter(-edge, 0.0);
-}
-
-void LogHistogram::add_to_bucket(double x, uint64_t n) {
-  const double magnitude = std::fabs(x);
-  if (magnitude < min_positive_) {
-    zero_count_ += n;
-  } else if (x > 0.0) {
-    positive_.add(bucket_index(magnitude), n);
-  } else {
-    negative_.add(bucket_index(magnitude), n);
-  }
-}
-
-void LogHistogram::note_extremes(double lo, double hi, uint64_t n) {
-  if (count_ == 0) {
-    min_ = lo;
-    max_ = hi;
-  } else {
-    min_ = std::min(min_, lo);
-    max_ = std::max(max_, hi);
-  }
-  count_ += n;
 }
 
 void LogHistogram::add(double x, uint64_t weight) {
@@ -139,12 +119,28 @@ void LogHistogram::add_run(const TickRun& run) {
     for (uint64_t i = 0; i < run.count; ++i) add_to_bucket(static_cast<double>(run.at(i)), 1);
   } else {
     // Values never decrease: each bucket holds a contiguous block of indices,
-    // and the block ends where the run first reaches the next bucket's start.
+    // ending where the run first reaches the next bucket's start. A block of
+    // a few values is walked with the stepper; a longer one is jumped over in
+    // closed form (two divisions).
+    const double ticks_per_value = static_cast<double>(run.step) / static_cast<double>(run.den);
+    TickStepper t(run);
     for (uint64_t i = 0; i < run.count;) {
-      const double x = static_cast<double>(run.at(i));
+      const int64_t v = t.ticks();
+      const auto x = static_cast<double>(v);
       const double next = next_bucket_start(x);
-      uint64_t j = run.count;
-      if (next < kExact) j = std::max(i + 1, run.first_index_at_or_above(static_cast<int64_t>(std::ceil(next))));
+      uint64_t j = i;
+      const int64_t limit = next < kExact ? static_cast<int64_t>(std::ceil(next)) : INT64_MAX;
+      if (limit == INT64_MAX) {
+        j = run.count;  // every later value (all below 2^53) stays in this bucket
+      } else if (next - x <= 16.0 * ticks_per_value) {
+        do {
+          ++j;
+          t.step();
+        } while (j < run.count && t.ticks() < limit);
+      } else {
+        j = std::max(i + 1, run.first_index_at_or_above(limit));
+        if (j < run.count) t = TickStepper(run, j);
+      }
       add_to_bucket(x, j - i);
       i = j;
     }

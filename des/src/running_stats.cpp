@@ -48,15 +48,31 @@ uint64_t nearest_rank_index(double q, uint64_t n) {
   return std::min(k, n - 1);
 }
 
-void RunningStats::note_extremes(double lo, double hi, uint64_t n) {
-  if (count_ == 0) {
-    min_ = lo;
-    max_ = hi;
-  } else {
-    min_ = std::min(min_, lo);
-    max_ = std::max(max_, hi);
-  }
-  count_ += n;
+void RunningStats::fold(__int128 int_sum, u128 int_sum_sq, Sum& sum, SumOfSquares& sum_sq) {
+  const bool negative = int_sum < 0;
+  const u128 magnitude = negative ? u128{0} - static_cast<u128>(int_sum) : static_cast<u128>(int_sum);
+  sum.add(U256::of(magnitude), 0, negative);
+  sum_sq.add(U256::of(int_sum_sq), 0, false);
+}
+
+void RunningStats::spill_integers() {
+  fold(int_sum_, int_sum_sq_, sum_, sum_sq_);
+  int_sum_ = 0;
+  int_sum_sq_ = 0;
+}
+
+RunningStats::Sum RunningStats::total_sum() const {
+  Sum s = sum_;
+  SumOfSquares unused;
+  fold(int_sum_, 0, s, unused);
+  return s;
+}
+
+RunningStats::SumOfSquares RunningStats::total_sum_sq() const {
+  Sum unused;
+  SumOfSquares s = sum_sq_;
+  fold(0, int_sum_sq_, unused, s);
+  return s;
 }
 
 void RunningStats::add(double x) {
@@ -68,29 +84,25 @@ void RunningStats::add(double x) {
   add_square(static_cast<u128>(d.mantissa) * d.mantissa, 2 * d.exponent);
 }
 
-void RunningStats::add_integer(int64_t v) {
-  const double x = static_cast<double>(v);
-  note_extremes(x, x, 1);
-  const uint64_t m = magnitude_of(v);
-  sum_.add(m, 0, v < 0);
-  add_square(static_cast<u128>(m) * m, 0);
-}
-
 void RunningStats::add_run(const TickRun& run) {
   constexpr uint64_t kChunk = uint64_t{1} << 20;
   for (uint64_t begin = 0; begin < run.count; begin += kChunk) {
     const TickRun part = run.count <= kChunk ? run : run.slice(begin, std::min(kChunk, run.count - begin));
-    const TickRunSums s = tick_run_sums(part);
-    // v_i = base + w_i: sum = n base + sum w, sum of squares = n base^2 + 2 base sum w + sum w^2.
-    const uint64_t n = part.count, b = magnitude_of(part.base);
-    const bool negative = part.base < 0;
-    sum_.add(U256::of(static_cast<u128>(b) * n), 0, negative);
-    sum_.add(U256::of(s.sum), 0, false);
-    sum_sq_.add(U256::product(static_cast<u128>(b) * b, n), 0, false);
-    sum_sq_.add(U256::product(static_cast<u128>(b) * 2, s.sum), 0, negative);
-    sum_sq_.add(s.sum_sq, 0, false);
-    note_extremes(static_cast<double>(part.first()), static_cast<double>(part.last()), n);
+    add_run(part, tick_run_sums(part));
   }
+}
+
+void RunningStats::add_run(const TickRun& run, const TickRunSums& s) {
+  if (run.count == 0) return;
+  // v_i = base + w_i: sum = n base + sum w, sum of squares = n base^2 + 2 base sum w + sum w^2.
+  const uint64_t n = run.count, b = magnitude_of(run.base);
+  const bool negative = run.base < 0;
+  sum_.add(U256::of(static_cast<u128>(b) * n), 0, negative);
+  sum_.add(U256::of(s.sum), 0, false);
+  sum_sq_.add(U256::product(static_cast<u128>(b) * b, n), 0, false);
+  sum_sq_.add(U256::product(static_cast<u128>(b) * 2, s.sum), 0, negative);
+  sum_sq_.add(s.sum_sq, 0, false);
+  note_extremes(static_cast<double>(run.base), static_cast<double>(run.last()), n);
 }
 
 void RunningStats::add_arithmetic_run(double first, double step, uint64_t n) {
@@ -118,7 +130,7 @@ void RunningStats::add_arithmetic_run(double first, double step, uint64_t n) {
 double RunningStats::mean() const {
   if (count_ == 0) return 0.0;
   bool negative = false;
-  BigUint total = sum_.magnitude(negative);
+  BigUint total = total_sum().magnitude(negative);
   const uint64_t remainder = total.divide(count_);
   return total.to_double(Sum::min_exponent(), negative, remainder != 0);
 }
@@ -128,8 +140,8 @@ double RunningStats::variance() const {
   // (n sum x^2 - (sum x)^2) / (n (n - 1)), exactly, then rounded once. Both
   // terms are in units of 2^-2148 (the square of sum x's unit).
   bool negative = false, ignored = false;
-  const BigUint s = sum_.magnitude(negative);
-  const BigUint scaled_squares = sum_sq_.magnitude(ignored).times(count_);
+  const BigUint s = total_sum().magnitude(negative);
+  const BigUint scaled_squares = total_sum_sq().magnitude(ignored).times(count_);
   const BigUint square_of_sum = s.times(s);
   if (!square_of_sum.less_than(scaled_squares)) return 0.0;  // all values equal
   BigUint numerator = scaled_squares.minus(square_of_sum);
@@ -142,14 +154,14 @@ double RunningStats::stddev() const { return std::sqrt(variance()); }
 
 double RunningStats::sum() const {
   bool negative = false;
-  return sum_.magnitude(negative).to_double(Sum::min_exponent(), negative, false);
+  return total_sum().magnitude(negative).to_double(Sum::min_exponent(), negative, false);
 }
 
 void RunningStats::merge(const RunningStats& other) {
   if (other.count_ == 0) return;
   note_extremes(other.min_, other.max_, other.count_);
-  sum_.merge(other.sum_);
-  sum_sq_.merge(other.sum_sq_);
+  sum_.merge(other.total_sum());
+  sum_sq_.merge(other.total_sum_sq());
 }
 
 }  // namespace latsim::des

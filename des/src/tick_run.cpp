@@ -6,6 +6,13 @@ namespace latsim::des {
 
 namespace {
 
+// a / b for a >= 0, b > 0: a 64-bit division when both fit (the usual case),
+// instead of a call into the 128-bit division routine.
+inline i128 quotient(i128 a, i128 b) {
+  if (((a | b) >> 63) == 0) return static_cast<i128>(static_cast<uint64_t>(a) / static_cast<uint64_t>(b));
+  return a / b;
+}
+
 int64_t to_ticks(i128 v) {
   if (v > static_cast<i128>(INT64_MAX) || v < static_cast<i128>(INT64_MIN))
     throw TimeOverflow("tick run value out of the int64 picosecond range");
@@ -18,6 +25,9 @@ i128 checked_mul(i128 a, i128 b) {
   return r;
 }
 
+// offset + i * step, the numerator of value i.
+i128 offset_at(const TickRun& run, uint64_t i) { return run.offset + checked_mul(static_cast<i128>(i), run.step); }
+
 // Sums over i = 0..n of f_i = floor((a i + b) / c), of i f_i and of f_i^2, for
 // a, b >= 0, c > 0, n >= 0: the classic floor-sum recursion, which swaps the
 // roles of a and c like Euclid's algorithm and so takes O(log c) steps. The
@@ -28,24 +38,26 @@ struct FloorSums {
 };
 
 FloorSums floor_sums(i128 a, i128 b, i128 c, i128 n) {
-  const i128 s1 = n * (n + 1) / 2;               // sum of i
-  const i128 s2 = n * (n + 1) * (2 * n + 1) / 6;  // sum of i^2
+  // n <= 2^20 throughout (each swap only shrinks it), so these fit 64 bits.
+  const auto n64 = static_cast<uint64_t>(n);
+  const auto s1 = static_cast<i128>(n64 * (n64 + 1) / 2);                // sum of i
+  const auto s2 = static_cast<i128>(n64 * (n64 + 1) * (2 * n64 + 1) / 6);  // sum of i^2
   if (a == 0) {
-    const i128 t = b / c;
+    const i128 t = quotient(b, c);
     return {(n + 1) * t, t * s1, (n + 1) * t * t};
   }
   if (a >= c || b >= c) {
-    const i128 qa = a / c, qb = b / c;
-    const FloorSums r = floor_sums(a % c, b % c, c, n);
+    const i128 qa = quotient(a, c), qb = quotient(b, c);
+    const FloorSums r = floor_sums(a - qa * c, b - qb * c, c, n);
     return {r.f + qa * s1 + qb * (n + 1), r.g + qa * s2 + qb * s1,
             r.h + 2 * qb * r.f + 2 * qa * r.g + qa * qa * s2 + qb * qb * (n + 1) + 2 * qa * qb * s1};
   }
-  const i128 m = (a * n + b) / c;
+  const i128 m = quotient(a * n + b, c);
   if (m == 0) return {};
   const FloorSums r = floor_sums(c, c - b - 1, a, m - 1);
   FloorSums out;
   out.f = n * m - r.f;
-  out.g = (m * n * (n + 1) - r.h - r.f) / 2;
+  out.g = (m * n * (n + 1) - r.h - r.f) >> 1;  // even by construction
   out.h = n * m * (m + 1) - 2 * r.g - 2 * r.f - out.f;
   return out;
 }
@@ -65,7 +77,7 @@ TickRun TickRun::make(int64_t base, i128 offset, i128 step, i128 den, uint64_t c
 }
 
 int64_t TickRun::at(uint64_t i) const {
-  return to_ticks(static_cast<i128>(base) + (offset + checked_mul(static_cast<i128>(i), step)) / den);
+  return to_ticks(static_cast<i128>(base) + quotient(offset_at(*this, i), den));
 }
 
 uint64_t TickRun::first_index_at_or_above(int64_t threshold) const {
@@ -74,7 +86,7 @@ uint64_t TickRun::first_index_at_or_above(int64_t threshold) const {
   if (step == 0) return count;
   // v_i >= threshold  <=>  offset + i step >= d den  <=>  i >= (d den - offset) / step.
   const i128 need = checked_mul(d, den) - offset;
-  const i128 i = (need + step - 1) / step;
+  const i128 i = quotient(need + step - 1, step);
   return i >= static_cast<i128>(count) ? count : static_cast<uint64_t>(i);
 }
 
@@ -95,15 +107,35 @@ TickStepper::TickStepper(const TickRun& run)
       remainder_(run.offset),
       den_(run.den) {}
 
+TickStepper::TickStepper(const TickRun& run, uint64_t i) : TickStepper(run) {
+  const i128 position = offset_at(run, i);
+  const i128 whole = quotient(position, run.den);
+  ticks_ = to_ticks(static_cast<i128>(run.base) + whole);
+  remainder_ = position - whole * run.den;
+}
+
+const TickRunSums& TickRunSumsCache::sums(const TickRun& run) {
+  const auto key = static_cast<uint64_t>(run.offset) * 0x9E3779B97F4A7C15ull ^ run.count;
+  Entry& e = table_[(key >> 20) % kSize];
+  if (e.offset != run.offset || e.step != run.step || e.den != run.den || e.count != run.count) {
+    e.sums = tick_run_sums(run);
+    e.offset = run.offset;
+    e.step = run.step;
+    e.den = run.den;
+    e.count = run.count;
+  }
+  return e.sums;
+}
+
 TickRunSums tick_run_sums(const TickRun& run) {
   if (run.count > (uint64_t{1} << 20)) throw std::invalid_argument("tick_run_sums: at most 2^20 values at a time");
   TickRunSums out;
   if (run.count == 0) return out;
   // w_i = q i + floor((r i + offset) / den) with 0 <= r, offset < den.
-  const i128 q = run.step / run.den, r = run.step % run.den;
-  const i128 n = static_cast<i128>(run.count) - 1;
-  const FloorSums fs = floor_sums(r, run.offset, run.den, n);
-  const i128 sum_i = n * (n + 1) / 2, sum_i2 = n * (n + 1) * (2 * n + 1) / 6;
+  const i128 q = quotient(run.step, run.den), r = run.step - q * run.den;
+  const uint64_t n = run.count - 1;
+  const FloorSums fs = floor_sums(r, run.offset, run.den, static_cast<i128>(n));
+  const auto sum_i = static_cast<i128>(n * (n + 1) / 2), sum_i2 = static_cast<i128>(n * (n + 1) * (2 * n + 1) / 6);
   out.sum = static_cast<u128>(checked_mul(q, sum_i) + fs.f);
   out.sum_sq = U256::product(static_cast<u128>(q) * static_cast<u128>(q), static_cast<u128>(sum_i2))
                    .plus(U256::product(static_cast<u128>(2 * q), static_cast<u128>(fs.g)))

@@ -71,9 +71,14 @@ void bind(Section& s, display::DisplayParams& p) {
            {{"field", display::ScanoutFidelity::Field},
             {"line", display::ScanoutFidelity::Line},
             {"pixel", display::ScanoutFidelity::Pixel}},
-           {.doc = "fidelity: one event per field, per line (sees mid-field swaps) or per pixel"});
+           {.doc = "fidelity: latency sampled per field, per line (sees mid-field swaps) or per pixel (one event per "
+                   "line, split where the image changes mid-line)"});
   clock(s, "", p.clock, "display (its first retrace)");
-  s.integer("pixel_stride", p.pixel_stride, {.unit = "px", .min = 1.0, .max = 16384.0, .doc = "pixel fidelity: pixels per event"});
+  s.integer("pixel_stride", p.pixel_stride,
+            {.unit = "px", .min = 1.0, .max = 16384.0, .doc = "pixel fidelity: pixels per latency sample"});
+  s.flag("pixel_events", p.pixel_events,
+         {.doc = "pixel fidelity: one event per sample (the reference path) instead of one per line, split where "
+                 "the image changes; the figures are the same"});
   s.optional_object("persistence", p.persistence, [&r](Section& o, display::PersistenceParams& v) { persistence(o, v, r); },
                     {.doc = "how long a written pixel stays lit (absent: lit at its scanout instant, as a CRT); "
                             "motion-to-photon latency is taken at the middle of the lit interval"});

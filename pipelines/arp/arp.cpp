@@ -32,6 +32,7 @@ class ArpPipeline final : public Pipeline {
 
   void start(RunContext& ctx) override {
     ctx_ = &ctx;
+    ctx.fetch_orientation_at_scanout();
     if (ctx.scene) object_count_ = renderer::make_scene(ctx.scene->geometry).object_count();
     ctx.recorder.expects_images();
     const des::KindId kind_render = ctx.sim.kind("arp.render");

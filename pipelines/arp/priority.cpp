@@ -43,6 +43,7 @@ class PriorityPipeline final : public Pipeline {
 
   void start(RunContext& ctx) override {
     ctx_ = &ctx;
+    ctx.fetch_orientation_at_scanout();
     scene_ = renderer::make_scene(ctx.scene->geometry);
     std::vector<arp::PriorityObject> objects;
     for (const auto& obj : scene_.objects()) objects.push_back({obj.bounds, 0.0, glm::dvec3(0.0)});

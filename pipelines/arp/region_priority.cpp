@@ -61,6 +61,7 @@ class RegionPriorityPipeline final : public Pipeline {
 
   void start(RunContext& ctx) override {
     ctx_ = &ctx;
+    ctx.fetch_orientation_at_scanout();
     scene_ = renderer::make_scene(ctx.scene->geometry);
     check_region_count(scene_.bounds(), p_.region_size_m);
     grid_.emplace(scene_.bounds(), p_.region_size_m);

@@ -110,13 +110,12 @@ void FrameStagesPipeline::finish(RunContext& ctx) {
   int row = 0;
   for (size_t k = 0; k < residuals_->by_rewarps().size(); ++k) {
     const ResidualErrors::Bucket& b = residuals_->by_rewarps()[k];
-    if (b.spans == 0) continue;
+    if (b.samples() == 0) continue;
     const std::string at = "residual_by_rewarps." + std::to_string(row++) + ".";
-    const double n = static_cast<double>(b.spans);
     r.set(at + "rewarps", static_cast<int64_t>(k));
-    r.set(at + "spans", b.spans);
-    r.set(at + "orientation_deg_mean", b.orientation_deg_sum / n);
-    r.set(at + "position_mm_mean", b.position_mm_sum / n);
+    r.set(at + "spans", b.samples());  // latency samples: one per line, or per pixel_stride pixels
+    r.set(at + "orientation_deg_mean", b.orientation_deg.mean());
+    r.set(at + "position_mm_mean", b.position_mm.mean());
   }
 }
 

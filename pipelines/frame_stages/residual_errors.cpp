@@ -19,19 +19,22 @@ void ResidualErrors::on_scanout(const display::ScanoutSpan& span) {
   if (rewarps < 0) return;
   const ImageRecord* img = recorder_.image(span.image_id);
   if (img == nullptr) return;
-  const tracker::Pose truth = eye_pose_of(motion_.pose_at(span.photon_time), span.eye, ipd_m_, stereo_);
-  const double deg = tracker::angle_between(img->eye_pose.orientation, truth.orientation) * kDegPerRad;
-  const double mm = glm::length(img->eye_pose.position_m - truth.position_m) * 1e3;
   if (!orientation_) {
     orientation_ = &recorder_.distribution_ref("residual_orientation_error_deg");
     position_ = &recorder_.distribution_ref("residual_position_error_mm");
   }
-  orientation_->add(deg);
-  position_->add(mm);
   Bucket& b = buckets_[static_cast<size_t>(std::min(rewarps, kBuckets - 1))];
-  ++b.spans;
-  b.orientation_deg_sum += deg;
-  b.position_mm_sum += mm;
+  // One value per sample of the span, each against the truth at its photon time.
+  des::TickStepper t(span.photons);
+  for (uint64_t i = 0; i < span.photons.count; ++i, t.step()) {
+    const tracker::Pose truth = eye_pose_of(motion_.pose_at(t.time()), span.eye, ipd_m_, stereo_);
+    const double deg = tracker::angle_between(img->eye_pose.orientation, truth.orientation) * kDegPerRad;
+    const double mm = glm::length(img->eye_pose.position_m - truth.position_m) * 1e3;
+    orientation_->add(deg);
+    position_->add(mm);
+    b.orientation_deg.add(deg);
+    b.position_mm.add(mm);
+  }
 }
 
 }  // namespace latsim::pipelines::frame_stages

@@ -22,10 +22,11 @@ namespace latsim::pipelines::frame_stages {
 class ResidualErrors final : public display::ScanoutListener {
  public:
   static constexpr int kBuckets = 8;  ///< rewarps 0 .. 6, and 7 or more
+  /// Exact sums: the means do not depend on how the display groups samples into spans.
   struct Bucket {
-    int64_t spans = 0;
-    double orientation_deg_sum = 0.0;
-    double position_mm_sum = 0.0;
+    des::RunningStats orientation_deg;
+    des::RunningStats position_mm;
+    int64_t samples() const { return static_cast<int64_t>(orientation_deg.count()); }
   };
 
   ResidualErrors(const Compositor& compositor, LatencyRecorder& recorder, const tracker::MotionSource& motion,

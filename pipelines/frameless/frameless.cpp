@@ -134,21 +134,26 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
   }
 
   void on_scanout(const display::ScanoutSpan& span) override {
-    const auto& xs = sampled_[static_cast<size_t>(span.eye) * static_cast<size_t>(height_) + static_cast<size_t>(span.row)];
-    if (xs.empty()) return;
     const ImageRecord* image = double_buffer_ ? ctx_->recorder.image(span.image_id) : nullptr;
     if (double_buffer_ && image == nullptr) return;
+    for (int line = span.line; line < span.line_end; ++line) sample_line(span, line, image);
+  }
+
+  // Ages (and registration) of the sampled pixels of one line of a span.
+  void sample_line(const display::ScanoutSpan& span, int line, const ImageRecord* image) {
+    const int row = ctx_->display.timing().row_of(span.field, line);
+    const auto& xs = sampled_[static_cast<size_t>(span.eye) * static_cast<size_t>(height_) + static_cast<size_t>(row)];
     for (auto it = std::lower_bound(xs.begin(), xs.end(), span.x_begin); it != xs.end() && *it < span.x_end; ++it) {
-      const des::Time photon = ctx_->display.timing().pixel_time(span.field, span.line, *it);
+      const des::Time photon = ctx_->display.timing().pixel_time(span.field, line, *it);
       if (image != nullptr) {
         ctx_->recorder.pixel_age(image->sample, photon);
         continue;
       }
-      const PixelState& st = visible_[pixel_id(span.eye, *it, span.row)];
+      const PixelState& st = visible_[pixel_id(span.eye, *it, row)];
       if (st.slot < 0) continue;
-      const auto [first_field, pose] = pixel_pose(st, *it, span.row);
+      const auto [first_field, pose] = pixel_pose(st, *it, row);
       ctx_->recorder.pixel_lit(pose.sample, photon);
-      registration(span.eye, *it, span.row, st, pose.pose, photon);
+      registration(span.eye, *it, row, st, pose.pose, photon);
       // Each pixel's own prediction, judged once: where it was first shown.
       if (ctx_->host.predicts() && span.eye == 0 && span.field == first_field)
         ctx_->recorder.add_prediction_error(pose, true, true);

@@ -114,11 +114,20 @@ struct FrameCapture::Impl {
   }
 
   void collect(const display::ScanoutSpan& span) {
+    // Spans of several lines (field fidelity) carry one write and photon time per line.
+    for (int line = span.line; line < span.line_end; ++line) {
+      const auto i = static_cast<uint64_t>(line - span.line);
+      const des::Time written = i == 0 ? span.written_at : des::Time::ps(span.written.at(i));
+      const des::Time photon = i == 0 ? span.photon_time : des::Time::ps(span.photons.at(i));
+      collect_line(span, line, written, photon);
+    }
+  }
+
+  void collect_line(const display::ScanoutSpan& span, int line, des::Time written, des::Time photon) {
     Collection& c = *current;
     if (c.pixel_mode) {
-      const size_t offset = static_cast<size_t>(span.line) * static_cast<size_t>(width()) +
-                            static_cast<size_t>(span.x_begin);
-      source->shown_pixels(span.eye, span.row, span.x_begin,
+      const size_t offset = static_cast<size_t>(line) * static_cast<size_t>(width()) + static_cast<size_t>(span.x_begin);
+      source->shown_pixels(span.eye, in.timing.row_of(span.field, line), span.x_begin,
                            std::span<ShownPixel>(c.pixels).subspan(offset, static_cast<size_t>(span.x_end - span.x_begin)));
       return;
     }
@@ -131,10 +140,10 @@ struct FrameCapture::Impl {
       s.source_pose = img->source_pose;
       s.orientation_at_scanout = img->orientation_at_scanout;
       s.eye = span.eye;
-      s.written_at = span.written_at;
-      s.photon_time = span.photon_time;
+      s.written_at = written;
+      s.photon_time = photon;
     }
-    c.lines[static_cast<size_t>(span.line)].push_back(s);
+    c.lines[static_cast<size_t>(line)].push_back(s);
   }
 
   void ensure_renderer() {

@@ -1,6 +1,7 @@
 #include "latsim/pipelines/latency_recorder.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 #include "latsim/pipelines/timeline.hpp"
@@ -85,8 +86,42 @@ void LatencyRecorder::record(des::Distribution*& d, const char* name, double val
   if (sample_log_on_) sample_log_.push_back({sim_.now().to_ms(), name, value});
 }
 
+void LatencyRecorder::record(des::Distribution*& d, const char* name, des::Time value) {
+  if (!d) d = &dists_.try_emplace(name, 0.005, keep_samples_).first->second;
+  d->add(value);
+  if (sample_log_on_) sample_log_.push_back({sim_.now().to_ms(), name, value.to_ms()});
+}
+
+void LatencyRecorder::record_run(des::Distribution*& d, const char* name, const display::ScanoutSpan& span,
+                                 des::Time origin) {
+  if (!d) d = &dists_.try_emplace(name, 0.005, keep_samples_).first->second;
+  const des::TickRun& photons = span.photons;
+  if (photons.count == 1) {
+    d->add(des::Time::ps(photons.base) - origin);
+  } else if (photons.count <= (uint64_t{1} << 20)) {
+    // Every distribution of a span shares the run's shape, hence its sums.
+    d->add_run(photons.shifted(-origin.ticks()), run_sums_.sums(photons));
+  } else {
+    d->add_run(photons.shifted(-origin.ticks()));
+  }
+  if (!sample_log_on_) return;
+  des::TickStepper photon(photons), written(span.written);
+  for (uint64_t i = 0; i < photons.count; ++i, photon.step(), written.step())
+    sample_log_.push_back({std::min(written.time(), sim_.now()).to_ms(), name, (photon.time() - origin).to_ms()});
+}
+
 void LatencyRecorder::prune(int64_t below_id) {
   while (!images_.empty() && images_.begin()->first < below_id) images_.erase(images_.begin());
+  last_held_ = nullptr;
+}
+
+LatencyRecorder::Held* LatencyRecorder::held(int64_t id) {
+  // Consecutive spans nearly always show the same image.
+  if (last_held_ != nullptr && last_id_ == id) return last_held_;
+  const auto it = images_.find(id);
+  if (it == images_.end()) return nullptr;
+  last_id_ = id;
+  return last_held_ = &it->second;
 }
 
 void LatencyRecorder::on_field_start(int eye, int64_t field, des::Time retrace) {
@@ -112,17 +147,18 @@ void LatencyRecorder::close_field() {
 }
 
 void LatencyRecorder::on_scanout(const display::ScanoutSpan& span) {
-  auto it = images_.find(span.image_id);
-  if (it == images_.end()) {
-    counters_["unlit_spans"] += 1;
+  Held* shown = held(span.image_id);
+  if (shown == nullptr) {
+    // One per sample, however the display groups samples into spans.
+    counters_["unlit_spans"] += static_cast<int64_t>(span.photons.count);
     return;
   }
-  Held& held = it->second;
-  const ImageRecord& img = held.record;  // prune() below keeps the image shown now
-  if (!held.shown) {
-    held.shown = true;
+  const ImageRecord& img = shown->record;  // prune() below keeps the image shown now
+  if (!shown->shown) {
+    shown->shown = true;
     first_shown(img, span);
-    // Images older than one shown now (same eye) will not be shown again.
+    // Images older than one shown now (same eye) will not be shown again
+    // (erasing them leaves this one where it is).
     prune(span.image_id - 64);
   }
   if (ledger_on_) ledger_span(span.image_id, img, span);
@@ -131,11 +167,35 @@ void LatencyRecorder::on_scanout(const display::ScanoutSpan& span) {
   // takes its orientation from the newest sample when each line is fetched
   // (written), so such lines wait for the next retrace: the same rule at
   // every fidelity.
-  if (img.orientation_at_scanout && span.written_at > sim_.now()) {
-    pending_.push_back(Pending{img, span});
+  if (img.orientation_at_scanout && des::Time::ps(span.written.last()) > sim_.now()) {
+    const uint64_t written_by_now = span.written.first_index_at_or_above(sim_.now().ticks() + 1);
+    if (written_by_now > 0) record_span(img, samples_of(span, 0, written_by_now));
+    pending_.push_back(Pending{img, samples_of(span, written_by_now, span.written.count - written_by_now)});
     return;
   }
   record_span(img, span);
+}
+
+display::ScanoutSpan LatencyRecorder::samples_of(const display::ScanoutSpan& span, uint64_t begin,
+                                                uint64_t n) const {
+  if (begin == 0 && n == span.written.count) return span;
+  display::ScanoutSpan part = span;
+  if (span.line_end - span.line > 1) {
+    // Several lines (field fidelity): one sample per line.
+    part.line = span.line + static_cast<int>(begin);
+    part.line_end = part.line + static_cast<int>(n);
+    part.row = timing_.row_of(span.field, part.line);
+  } else {
+    // One line of batched pixels: one sample per x_step columns, the last
+    // one cut at the span's end.
+    part.x_begin = span.x_begin + static_cast<int>(begin) * span.x_step;
+    part.x_end = begin + n == span.written.count ? span.x_end : part.x_begin + static_cast<int>(n) * span.x_step;
+  }
+  part.written = span.written.slice(begin, n);
+  part.photons = span.photons.slice(begin, n);
+  part.written_at = des::Time::ps(part.written.base);
+  part.photon_time = des::Time::ps(part.photons.base);
+  return part;
 }
 
 void LatencyRecorder::flush_pending() {
@@ -144,37 +204,72 @@ void LatencyRecorder::flush_pending() {
 }
 
 void LatencyRecorder::record_span(const ImageRecord& img, const display::ScanoutSpan& span) {
-  const des::Time photon = span.photon_time;
+  if (!img.orientation_at_scanout) {
+    record_uniform(img, span, std::nullopt);
+    return;
+  }
+  // Address recalculation looks up the newest orientation as each pixel is
+  // fetched (written), predicted by the host to the pixel's photon time. A
+  // span of several samples goes in pieces that share that pose.
+  const uint64_t n = span.written.count;
+  const bool predicts = predicting_ || host_.predicts();
+  if (n == 1 || (!predicts && span.line_end - span.line == 1)) {
+    // One sample, or one line of batched pixels that the display cuts
+    // wherever a sample arrives.
+    record_uniform(img, span, host_.pose_for(span.written_at, span.photon_time));
+    return;
+  }
+  if (predicts) {
+    // Each sample has a pose of its own, predicted for its own photon time.
+    for (uint64_t i = 0; i < n; ++i) {
+      const display::ScanoutSpan one = samples_of(span, i, 1);
+      record_uniform(img, one, host_.pose_for(one.written_at, one.photon_time));
+    }
+    return;
+  }
+  // Several lines (field fidelity): runs of lines that share the newest sample.
+  uint64_t begin = 0;
+  auto pose = host_.pose_for(span.written_at, span.photon_time);
+  for (uint64_t i = 1; i <= n; ++i) {
+    std::optional<tracker::PosePrediction> next;
+    if (i < n) {
+      next = host_.pose_for(des::Time::ps(span.written.at(i)), des::Time::ps(span.photons.at(i)));
+      if (next.has_value() == pose.has_value() && (!next || next->sample.index == pose->sample.index)) continue;
+    }
+    record_uniform(img, samples_of(span, begin, i - begin), pose);
+    pose = next;
+    begin = i;
+  }
+}
+
+void LatencyRecorder::record_uniform(const ImageRecord& img, const display::ScanoutSpan& span,
+                                     const std::optional<tracker::PosePrediction>& newest) {
   tracker::Pose drawn = img.eye_pose;
   int64_t orientation_index = img.sample.index;
   des::Time orientation_measured = img.sample.measured_at;
-  if (img.orientation_at_scanout) {
-    // Address recalculation looks up the newest orientation as the pixel is
-    // fetched, predicted by the host to the pixel's photon time.
-    if (const auto newest = host_.pose_for(span.written_at, photon)) {
-      drawn.orientation = eye_pose_of(newest->pose, span.eye, ipd_m_, stereo_).orientation;
-      orientation_index = newest->sample.index;
-      orientation_measured = newest->sample.measured_at;
-      if (predicting_ && span.eye == 0 && span.line == timing_.lines_per_field() / 2 && span.x_begin == 0)
-        add_prediction_error(*newest, true, false);
-    }
-  } else if (img.warp == ImageRecord::Warp::rotation) [[unlikely]] {
+  if (newest) {
+    drawn.orientation = eye_pose_of(newest->pose, span.eye, ipd_m_, stereo_).orientation;
+    orientation_index = newest->sample.index;
+    orientation_measured = newest->sample.measured_at;
+    if (predicting_ && span.eye == 0 && span.line == timing_.lines_per_field() / 2 && span.x_begin == 0)
+      add_prediction_error(*newest, true, false);
+  } else if (!img.orientation_at_scanout && img.warp == ImageRecord::Warp::rotation) [[unlikely]] {
     // Time warp re-projected the image to a newer orientation (eye_pose has
     // it); the position is the rendered one.
     orientation_measured = img.orientation_measured_at;
   }
   const des::Time position_measured = img.sample.measured_at;
   const des::Time origin = std::min(orientation_measured, position_measured);
-  record(mtp_, "motion_to_photon_ms", (photon - origin).to_ms());
-  record(rotation_, "rotation_latency_ms", (photon - orientation_measured).to_ms());
-  record(translation_, "translation_latency_ms", (photon - position_measured).to_ms());
+  record_run(mtp_, "motion_to_photon_ms", span, origin);
+  record_run(rotation_, "rotation_latency_ms", span, orientation_measured);
+  record_run(translation_, "translation_latency_ms", span, position_measured);
   if (span.field != scan_field_) {
     scan_field_ = span.field;
     scan_start_ = timing_.scanout_start(span.field);
   }
-  record(display_ms_, "display_ms", (photon - scan_start_).to_ms());
+  record_run(display_ms_, "display_ms", span, scan_start_);
   // The age of the shown image's pose as the field starts to light up.
-  if (span.line == 0 && span.x_begin == 0) record(image_age_, "image_age_ms", (photon - origin).to_ms());
+  if (span.line == 0 && span.x_begin == 0) record(image_age_, "image_age_ms", span.photon_time - origin);
   if (!probes_.points_m.empty()) record_probes(span, drawn, orientation_index, span.image_id);
 }
 
@@ -227,11 +322,14 @@ void LatencyRecorder::first_shown(const ImageRecord& img, const display::Scanout
 
 // One row per run of consecutive spans of a field and eye that show one image.
 void LatencyRecorder::ledger_span(int64_t image_id, const ImageRecord& img, const display::ScanoutSpan& span) {
+  // The span's last sample: its last line, or the last sample of its one line.
+  const bool one_line = span.line_end - span.line == 1;
+  const int64_t last_x = one_line ? span.x_begin + static_cast<int64_t>(span.written.count - 1) * span.x_step : 0;
   for (auto it = field_rows_.rbegin(); it != field_rows_.rend() && (*it)[kField] == span.field; ++it) {
     if ((*it)[kEye] != span.eye) continue;
     if ((*it)[kImage] == image_id) {
-      (*it)[kLastLine] = span.line;
-      (*it)[kLastX] = span.x_begin;
+      (*it)[kLastLine] = span.line_end - 1;
+      (*it)[kLastX] = last_x;
       return;
     }
     break;
@@ -248,23 +346,25 @@ void LatencyRecorder::ledger_span(int64_t image_id, const ImageRecord& img, cons
   row[kOrientationMeasured] = img.orientation_at_scanout               ? -1
                               : img.warp == ImageRecord::Warp::rotation ? img.orientation_measured_at.ticks()
                                                                         : img.sample.measured_at.ticks();
-  row[kFirstLine] = row[kLastLine] = span.line;
-  row[kFirstX] = row[kLastX] = span.x_begin;
+  row[kFirstLine] = span.line;
+  row[kLastLine] = span.line_end - 1;
+  row[kFirstX] = span.x_begin;
+  row[kLastX] = one_line ? last_x : span.x_begin;
   row[kRetrace] = timing_.field_start(span.field).ticks();
   row[kScanoutStart] = timing_.scanout_start(span.field).ticks();
   field_rows_.push_back(std::move(row));
 }
 
 void LatencyRecorder::pixel_lit(const tracker::TrackerSample& s, des::Time photon) {
-  const double age_ms = (photon - s.measured_at).to_ms();
-  record(mtp_, "motion_to_photon_ms", age_ms);
-  record(rotation_, "rotation_latency_ms", age_ms);
-  record(translation_, "translation_latency_ms", age_ms);
-  record(pixel_age_, "pixel_age_ms", age_ms);
+  const des::Time age = photon - s.measured_at;
+  record(mtp_, "motion_to_photon_ms", age);
+  record(rotation_, "rotation_latency_ms", age);
+  record(translation_, "translation_latency_ms", age);
+  record(pixel_age_, "pixel_age_ms", age);
 }
 
 void LatencyRecorder::pixel_age(const tracker::TrackerSample& s, des::Time photon) {
-  record(pixel_age_, "pixel_age_ms", (photon - s.measured_at).to_ms());
+  record(pixel_age_, "pixel_age_ms", photon - s.measured_at);
 }
 
 void LatencyRecorder::registration(int eye, const glm::dvec3& point_m, const glm::dvec3& drawn_head_dir,
@@ -321,14 +421,16 @@ void LatencyRecorder::record_probes(const display::ScanoutSpan& span, const trac
     }
     std::stable_sort(cache.hits.begin(), cache.hits.end());
   }
-  const auto [first, last] = std::equal_range(cache.hits.begin(), cache.hits.end(), ProbeHit{span.line, 0.0, 0});
+  // The hits on the span's lines (several at field fidelity).
+  const auto first = std::lower_bound(cache.hits.begin(), cache.hits.end(), ProbeHit{span.line, 0.0, 0});
+  const auto last = std::lower_bound(first, cache.hits.end(), ProbeHit{span.line_end, 0.0, 0});
   for (auto h = first; h != last; ++h) {
     const int xi = static_cast<int>(h->x_px);
     if (xi < span.x_begin || xi >= span.x_end) continue;
     const glm::dvec3 p = probes_.points_m[h->probe];
     const glm::dvec3 drawn_head_dir = glm::conjugate(drawn.orientation) * glm::normalize(p - drawn.position_m);
     // Judged at the middle of the pixel's lit interval on a display with persistence.
-    des::Time t = timing_.pixel_time(span.field, span.line, xi);
+    des::Time t = timing_.pixel_time(span.field, h->line, xi);
     if (persistence_) t = persistence_->lit(span.field, t).middle();
     registration(span.eye, p, drawn_head_dir, t);
   }

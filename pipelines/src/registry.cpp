@@ -104,4 +104,9 @@ des::Time RunContext::next_middle_line_time(des::Time t) const {
   return lit >= t ? lit : frame_photon_time(field + 1);
 }
 
+void RunContext::fetch_orientation_at_scanout() {
+  if (!display.batches_pixels()) return;
+  host.on_delivery([d = &display](const tracker::TrackerSample&, des::Time) { d->split_scanout(); });
+}
+
 }  // namespace latsim::pipelines

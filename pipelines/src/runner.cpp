@@ -177,7 +177,8 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
   built_from("/display", "display", [&] {
     run.display = std::make_unique<display::Display>(run.sim,
                                                      display::RasterTiming(p.display.raster, *p.display.clock.phase),
-                                                     stereo ? 2 : 1, p.display.fidelity, p.display.pixel_stride);
+                                                     stereo ? 2 : 1, p.display.fidelity, p.display.pixel_stride,
+                                                     p.display.pixel_events);
   });
   built_from("/probes", "registration probes", [&] {
     run.recorder = std::make_unique<LatencyRecorder>(run.sim, *run.motion, *run.host, run.display->timing(),

@@ -17,8 +17,12 @@ SmearRecorder::SmearRecorder(LatencyRecorder& recorder, const tracker::MotionSou
     : smear_(recorder.distribution_ref("smear_arcmin")), motion_(motion), still_(motion.is_still()) {}
 
 void SmearRecorder::on_scanout(const display::ScanoutSpan& span) {
-  const double speed = still_ ? 0.0 : head_angular_speed_rad_s(motion_, span.photon_time);
-  smear_.add(speed * span.lit_duration.to_seconds() * kArcminPerRad);
+  // One value per sample of the span, each at its own photon time.
+  des::TickStepper t(span.photons);
+  for (uint64_t i = 0; i < span.photons.count; ++i, t.step()) {
+    const double speed = still_ ? 0.0 : head_angular_speed_rad_s(motion_, t.time());
+    smear_.add(speed * span.lit_duration.to_seconds() * kArcminPerRad);
+  }
 }
 
 }  // namespace latsim::pipelines

@@ -9,13 +9,18 @@ namespace {
 // Retraces run after other events at the same instant, so a frame that
 // completes exactly at a retrace is swapped in by it.
 constexpr des::Priority kRetracePriority = 10;
+// Pixel scanout runs after the other events of its instant (swaps, arrivals),
+// so that both pixel paths agree on what a pixel lit at that instant shows.
+constexpr des::Priority kPixelPriority = 5;
 }  // namespace
 
-Display::Display(des::Simulator& sim, RasterTiming timing, int eyes, ScanoutFidelity fidelity, int pixel_stride)
+Display::Display(des::Simulator& sim, RasterTiming timing, int eyes, ScanoutFidelity fidelity, int pixel_stride,
+                 bool pixel_events)
     : sim_(sim),
       timing_(timing),
       fidelity_(fidelity),
       pixel_stride_(pixel_stride),
+      pixel_events_(pixel_events),
       front_(static_cast<size_t>(eyes), -1),
       pending_(static_cast<size_t>(eyes), -1),
       written_(static_cast<size_t>(eyes)) {
@@ -23,10 +28,16 @@ Display::Display(des::Simulator& sim, RasterTiming timing, int eyes, ScanoutFide
   if (pixel_stride < 1) throw std::invalid_argument("pixel stride must be at least 1");
   kind_retrace_ = sim_.kind("display.retrace");
   if (fidelity_ == ScanoutFidelity::Line) kind_line_ = sim_.kind("display.line");
-  if (fidelity_ == ScanoutFidelity::Pixel) kind_pixel_ = sim_.kind("display.pixel");
+  if (fidelity_ == ScanoutFidelity::Pixel) kind_pixel_ = sim_.kind(pixel_events_ ? "display.pixel" : "display.pixels");
+  const int64_t ppl = timing_.pixels_per_line();
+  line_pace_ = des::TickStepper(timing_.photon_run(0, 0, 0, ppl, 1));
+  unit_pace_ = des::TickStepper(timing_.photon_run(0, 0, 0, pixel_stride_, 1));
+  unit_step_ = static_cast<des::i128>(pixel_stride_) * timing_.ticks_per_slot_num();
+  line_step_ = static_cast<des::i128>(ppl) * timing_.ticks_per_slot_num();
 }
 
 void Display::present_now(int eye, int64_t image_id) {
+  if (batches_pixels()) split_scanout();
   front_.at(eye) = image_id;
   written_.at(eye).clear();
 }
@@ -34,6 +45,7 @@ void Display::present_now(int eye, int64_t image_id) {
 void Display::write_region_now(int eye, const BufferRegion& region, int64_t image_id) {
   if (region.x_begin >= region.x_end || region.row_begin >= region.row_end || region.row_step < 1)
     throw std::invalid_argument("an empty frame-buffer region");
+  if (batches_pixels()) split_scanout();
   for (WrittenRegion& w : written_.at(eye)) {
     if (w.region == region) {
       w.image_id = image_id;
@@ -82,22 +94,34 @@ void Display::retrace(int64_t field) {
   for (auto* l : listeners_)
     for (int eye = 0; eye < eyes(); ++eye) l->on_field_start(eye, field, now);
 
+  const int lines = timing_.lines_per_field();
+  const int width = timing_.params().width_px;
+  // The field's first line, and its last sample, in exact steppers.
+  line_start_ = des::TickStepper(timing_.photon_run(field, 0, 0, timing_.pixels_per_line(), 1)).at_pace_of(line_pace_);
   switch (fidelity_) {
     case ScanoutFidelity::Field:
       // The whole field is computed now from the content at the retrace:
       // cheap, but a swap during scanout (tearing) is not seen. Lines lit
       // after the end of the run are left out, as the other levels leave them.
-      for (int j = 0; j < timing_.lines_per_field(); ++j) {
-        const des::Time t = timing_.line_time(field, j);
-        if (t > end_) break;
-        for (int eye = 0; eye < eyes(); ++eye) emit(eye, field, j, 0, timing_.params().width_px, t);
+      {
+        const des::TickRun run = line_start_.run_from_here(line_step_, static_cast<uint64_t>(lines));
+        const uint64_t lit = run.first_index_at_or_above(end_.ticks() + 1);
+        if (lit > 0) emit(field, 0, static_cast<int>(lit), 0, width, run.slice(0, lit));
       }
       break;
     case ScanoutFidelity::Line:
-      sim_.at(timing_.line_time(field, 0), kind_line_, [this, field] { scan_line(field, 0); });
+      sim_.at(line_start_.time(), kind_line_, [this, field] { scan_line(field, 0); });
       break;
     case ScanoutFidelity::Pixel:
-      sim_.at(timing_.pixel_time(field, 0, 0), kind_pixel_, [this, field] { scan_pixel(field, 0, 0); });
+      if (pixel_events_) {
+        pixel_ = line_start_.at_pace_of(unit_pace_);
+        sim_.at(pixel_.time(), kind_pixel_, [this, field] { scan_pixel(field, 0, 0); }, kPixelPriority);
+      } else {
+        const int last_x = (units_per_line() - 1) * pixel_stride_;
+        line_last_ = des::TickStepper(timing_.photon_run(field, 0, last_x, timing_.pixels_per_line(), 1))
+                         .at_pace_of(line_pace_);
+        open_line(field, 0);
+      }
       break;
   }
 
@@ -107,44 +131,130 @@ void Display::retrace(int64_t field) {
 }
 
 void Display::scan_line(int64_t field, int line) {
-  for (int eye = 0; eye < eyes(); ++eye) emit(eye, field, line, 0, timing_.params().width_px, sim_.now());
+  const des::TickRun photon = des::TickRun::single(sim_.now().ticks());
+  emit(field, line, line + 1, 0, timing_.params().width_px, photon);
   const int next = line + 1;
-  if (next < timing_.lines_per_field())
-    sim_.at(timing_.line_time(field, next), kind_line_, [this, field, next] { scan_line(field, next); });
+  if (next >= timing_.lines_per_field()) return;
+  line_start_.step();
+  sim_.at(line_start_.time(), kind_line_, [this, field, next] { scan_line(field, next); });
 }
 
-void Display::scan_pixel(int64_t field, int line, int x) {
+void Display::scan_pixel(int64_t field, int line, int unit) {
   const int width = timing_.params().width_px;
-  const int x_end = std::min(width, x + pixel_stride_);
-  for (int eye = 0; eye < eyes(); ++eye) emit(eye, field, line, x, x_end, sim_.now());
-  int nx = x_end, nl = line;
-  if (nx >= width) {
-    nx = 0;
-    ++nl;
+  const int x = unit * pixel_stride_;
+  const des::TickRun photon = des::TickRun::single(sim_.now().ticks());
+  emit(field, line, line + 1, x, std::min(width, x + pixel_stride_), photon);
+  int next_unit = unit + 1, next_line = line;
+  if (next_unit < units_per_line()) {
+    pixel_.step();
+  } else {
+    next_unit = 0;
+    if (++next_line >= timing_.lines_per_field()) return;
+    line_start_.step();
+    pixel_ = line_start_.at_pace_of(unit_pace_);
   }
-  if (nl < timing_.lines_per_field())
-    sim_.at(timing_.pixel_time(field, nl, nx), kind_pixel_, [this, field, nl, nx] { scan_pixel(field, nl, nx); });
+  sim_.at(pixel_.time(), kind_pixel_, [this, field, next_line, next_unit] { scan_pixel(field, next_line, next_unit); },
+          kPixelPriority);
 }
 
-void Display::emit(int eye, int64_t field, int line, int x_begin, int x_end, des::Time t) {
+void Display::open_line(int64_t field, int line) {
+  open_ = OpenLine{field, line, 0, line_start_.at_pace_of(unit_pace_)};
+  // Samples lit at or before the end of the run are scanned, later ones not.
+  if (line_start_.time() > end_) {
+    open_.line = -1;
+    return;
+  }
+  const des::Time due = std::min(line_last_.time(), end_);
+  sim_.at(due, kind_pixel_, [this, field, line] { finish_line(field, line); }, kPixelPriority);
+}
+
+void Display::finish_line(int64_t field, int line) {
+  // Normally every sample of the line is lit by now; at the end of the run
+  // only those at or before it.
+  const des::TickRun rest = open_.at.run_from_here(unit_step_, static_cast<uint64_t>(units_per_line() - open_.next_unit));
+  const auto lit = static_cast<int>(rest.first_index_at_or_above(sim_.now().ticks() + 1));
+  emit_open(open_.next_unit + lit);
+  if (line + 1 >= timing_.lines_per_field() || sim_.now() >= end_) {
+    open_.line = -1;
+    return;
+  }
+  line_start_.step();
+  line_last_.step();
+  open_line(field, line + 1);
+}
+
+void Display::split_scanout() {
+  if (open_.line < 0) return;
+  // Samples lit strictly before now keep what was shown until now.
+  const des::TickRun rest = open_.at.run_from_here(unit_step_, static_cast<uint64_t>(units_per_line() - open_.next_unit));
+  const auto lit = static_cast<int>(rest.first_index_at_or_above(sim_.now().ticks()));
+  if (lit > 0) emit_open(open_.next_unit + lit);
+}
+
+void Display::emit_open(int end_unit) {
+  const int n = end_unit - open_.next_unit;
+  if (n <= 0) return;
+  const int width = timing_.params().width_px;
+  const des::TickRun written = open_.at.run_from_here(unit_step_, static_cast<uint64_t>(n));
+  emit(open_.field, open_.line, open_.line + 1, open_.next_unit * pixel_stride_,
+       std::min(width, end_unit * pixel_stride_), written);
+  if (end_unit < units_per_line()) {
+    // Where the next sample is written: one division, only when a line is split.
+    open_.at = des::TickStepper(written.slice(static_cast<uint64_t>(n), 1));
+  }
+  open_.next_unit = end_unit;
+}
+
+void Display::emit(int64_t field, int line, int line_end, int x_begin, int x_end, const des::TickRun& written) {
   ScanoutSpan span;
-  span.eye = eye;
   span.field = field;
   span.line = line;
+  span.line_end = line_end;
   span.row = timing_.row_of(field, line);
   span.x_begin = x_begin;
   span.x_end = x_end;
-  span.written_at = t;
+  span.x_step = pixel_stride_;
+  span.written = written;
+  span.written_at = des::Time::ps(written.base);
   if (persistence_.configured()) {
-    const LitInterval lit = persistence_.lit(field, t);
-    span.photon_time = lit.middle();
-    span.lit_duration = lit.duration;
+    span.photons = persistence_.photons(field, written);
+    span.lit_duration = persistence_.lit(field, span.written_at).duration;
   } else {
-    span.photon_time = t;
+    span.photons = written;
   }
-  span.image_id = front_[static_cast<size_t>(eye)];
-  if (!written_[static_cast<size_t>(eye)].empty()) return emit_regions(span);
-  for (auto* l : listeners_) l->on_scanout(span);
+  span.photon_time = des::Time::ps(span.photons.base);
+  for (int eye = 0; eye < eyes(); ++eye) {
+    span.eye = eye;
+    span.image_id = front_[static_cast<size_t>(eye)];
+    if (!written_[static_cast<size_t>(eye)].empty()) {
+      emit_samples_by_region(span);
+      continue;
+    }
+    for (auto* l : listeners_) l->on_scanout(span);
+  }
+}
+
+void Display::emit_samples_by_region(const ScanoutSpan& span) {
+  // Regions are rare (a frame buffer filled while it is scanned): the span
+  // goes out as the one-sample spans the per-line and per-pixel paths make.
+  const bool by_line = span.line_end - span.line > 1;
+  for (uint64_t i = 0; i < span.written.count; ++i) {
+    ScanoutSpan one = span;
+    one.written = span.written.slice(i, 1);
+    one.photons = span.photons.slice(i, 1);
+    one.written_at = des::Time::ps(one.written.base);
+    one.photon_time = des::Time::ps(one.photons.base);
+    const int k = static_cast<int>(i);
+    if (by_line) {
+      one.line = span.line + k;
+      one.line_end = one.line + 1;
+      one.row = timing_.row_of(span.field, one.line);
+    } else if (span.written.count > 1) {
+      one.x_begin = span.x_begin + k * pixel_stride_;
+      one.x_end = std::min(span.x_end, one.x_begin + pixel_stride_);
+    }
+    emit_regions(one);
+  }
 }
 
 void Display::emit_regions(ScanoutSpan span) {

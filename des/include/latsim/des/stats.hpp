@@ -15,6 +15,8 @@
 // minimum, q = 1 the maximum.
 #pragma once
 
+#include <bit>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <utility>
@@ -41,9 +43,30 @@ class RunningStats {
  public:
   void add(double x);
   /// Adds an integer exactly (picoseconds, say), also beyond 2^53.
-  void add_integer(int64_t v);
+  void add_integer(int64_t v) {
+    const double x = static_cast<double>(v);
+    note_extremes(x, x, 1);
+    // Integers go to 128-bit sums first (a multiply and two adds); the wide
+    // sums take them over only when those would overflow, and when read.
+    const u128 square = static_cast<u128>(static_cast<__int128>(v) * v);
+    u128 sum_sq = 0;
+    __int128 sum = 0;
+    const bool overflow = __builtin_add_overflow(int_sum_sq_, square, &sum_sq) |
+                          __builtin_add_overflow(int_sum_, static_cast<__int128>(v), &sum);
+    if (overflow) [[unlikely]] {
+      spill_integers();
+      int_sum_sq_ = square;
+      int_sum_ = v;
+    } else {
+      int_sum_sq_ = sum_sq;
+      int_sum_ = sum;
+    }
+  }
   /// Adds every value of a tick run, in closed form.
   void add_run(const TickRun& run);
+  /// The same with the run's sums already at hand (tick_run_sums(run), e.g.
+  /// from a TickRunSumsCache; run.count <= 2^20).
+  void add_run(const TickRun& run, const TickRunSums& sums);
   /// Adds the n exact values first + i * step (i in [0, n)) in closed form;
   /// min and max are the end values rounded to double. n is at most 2^32.
   void add_arithmetic_run(double first, double step, uint64_t n);
@@ -71,11 +94,28 @@ class RunningStats {
     if (const auto high = static_cast<uint64_t>(magnitude_squared >> 64); high != 0)
       sum_sq_.add(high, exponent + 64, false);
   }
-  void note_extremes(double lo, double hi, uint64_t n);
+  void note_extremes(double lo, double hi, uint64_t n) {
+    if (count_ == 0) [[unlikely]] {
+      min_ = lo;
+      max_ = hi;
+    } else {
+      min_ = lo < min_ ? lo : min_;
+      max_ = hi > max_ ? hi : max_;
+    }
+    count_ += n;
+  }
+  // Moves the 128-bit integer sums into the wide ones.
+  void spill_integers();
+  static void fold(__int128 int_sum, u128 int_sum_sq, Sum& sum, SumOfSquares& sum_sq);
+  // The wide sums with the integer sums folded in (for reading).
+  Sum total_sum() const;
+  SumOfSquares total_sum_sq() const;
 
   uint64_t count_ = 0;
   double min_ = 0.0;
   double max_ = 0.0;
+  __int128 int_sum_ = 0;  // sum of integers added since the last spill
+  u128 int_sum_sq_ = 0;   // and of their squares
   Sum sum_;
   SumOfSquares sum_sq_;
 };
@@ -99,7 +139,11 @@ class LogHistogram {
   /// Throws std::invalid_argument otherwise.
   explicit LogHistogram(double relative_error = 0.005, double min_positive = 1e-9);
 
-  void add(double x) { add(x, 1); }
+  void add(double x) {
+    if (!std::isfinite(x)) [[unlikely]] reject_non_finite(x);
+    add_to_bucket(x, 1);
+    note_extremes(x, x, 1);
+  }
   /// Adds x as if it were added `weight` times (weight 0 does nothing).
   void add(double x, uint64_t weight);
   /// Adds every value of a tick run (as doubles), one bucket at a time.
@@ -131,33 +175,68 @@ class LogHistogram {
   // Counts for a contiguous run of bucket indices, grown at either end.
   class DenseCounts {
    public:
-    void add(int32_t index, uint64_t weight);
+    void add(int32_t index, uint64_t weight) {
+      const auto slot = static_cast<size_t>(static_cast<int64_t>(index) - offset_);
+      if (slot < counts_.size()) [[likely]] {
+        counts_[slot] += weight;
+        return;
+      }
+      grow_and_add(index, weight);
+    }
     uint64_t at(int32_t index) const;
     int32_t first_index() const { return offset_; }
     int32_t end_index() const { return offset_ + static_cast<int32_t>(counts_.size()); }
     size_t slots() const { return counts_.size(); }
 
    private:
+    void grow_and_add(int32_t index, uint64_t weight);
     int32_t offset_ = 0;  // bucket index of counts_[0]
     std::vector<uint64_t> counts_;
   };
 
-  // Bucket of a magnitude >= min_positive (a normal double).
-  int32_t bucket_index(double magnitude) const;
+  // Bucket of a magnitude >= min_positive (a normal double): S sub-buckets
+  // of the binade from the top bits of the fraction, by one multiply.
+  int32_t bucket_index(double magnitude) const {
+    const auto bits = std::bit_cast<uint64_t>(magnitude);
+    const auto exponent = static_cast<int32_t>(bits >> 52);
+    const auto sub = static_cast<int32_t>(
+        (static_cast<u128>(bits & ((uint64_t{1} << 52) - 1)) * static_cast<u128>(per_binade_)) >> 52);
+    return exponent * per_binade_ + sub;
+  }
+  [[noreturn]] static void reject_non_finite(double x);
   // Smallest magnitude in bucket `index`.
   double bucket_lower(int32_t index) const;
   double representative(int32_t index) const;
   // Bucket value at a 0-based rank in the ascending order of all values.
   double value_at_rank(uint64_t rank) const;
   // Adds n copies of x's bucket without touching min/max/count.
-  void add_to_bucket(double x, uint64_t n);
-  void note_extremes(double lo, double hi, uint64_t n);
+  void add_to_bucket(double x, uint64_t n) {
+    const double magnitude = std::fabs(x);
+    if (magnitude < min_positive_) [[unlikely]] {
+      zero_count_ += n;
+    } else if (x > 0.0) {
+      positive_.add(bucket_index(magnitude), n);
+    } else {
+      negative_.add(bucket_index(magnitude), n);
+    }
+  }
+  void note_extremes(double lo, double hi, uint64_t n) {
+    if (count_ == 0) [[unlikely]] {
+      min_ = lo;
+      max_ = hi;
+    } else {
+      min_ = lo < min_ ? lo : min_;
+      max_ = hi > max_ ? hi : max_;
+    }
+    count_ += n;
+  }
   // The smallest value above x whose bucket differs from x's bucket.
   double next_bucket_start(double x) const;
 
   double relative_error_;
   double min_positive_;
   int32_t per_binade_;
+  std::vector<uint64_t> lower_fraction_;  // first 52-bit fraction of each sub-bucket, and 2^52
   DenseCounts positive_;
   DenseCounts negative_;  // indexed by the bucket of |x|
   uint64_t zero_count_ = 0;
@@ -186,9 +265,20 @@ class Distribution {
 
   void add(double x);
   /// A duration, kept exactly in picoseconds.
-  void add(Time t);
+  void add(Time t) {
+    if (kind_ != Kind::durations) [[unlikely]] {
+      check_kind(Kind::durations);
+      kind_ = Kind::durations;
+    }
+    stats_.add_integer(t.ticks());
+    const auto x = static_cast<double>(t.ticks());
+    histogram_.add(x);
+    if (keep_samples_) keep(x);
+  }
   /// Every duration of a tick run (picoseconds), moments in closed form.
   void add_run(const TickRun& run);
+  /// The same with tick_run_sums(run) at hand (run.count <= 2^20).
+  void add_run(const TickRun& run, const TickRunSums& sums);
   /// The plain values first + i * step, i in [0, n) (see RunningStats).
   void add_arithmetic_run(double first, double step, uint64_t n);
   uint64_t count() const { return stats_.count(); }
@@ -233,6 +323,8 @@ class Distribution {
   // Throws std::logic_error if values of `kind` cannot join this distribution.
   void check_kind(Kind kind) const;
   void keep(double stored_value);
+  // The histogram and kept samples of a run whose moments are added.
+  void add_run_samples(const TickRun& run);
   void release_samples();
 
   RunningStats stats_;

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "latsim/des/exact_sum.hpp"
 #include "latsim/des/time.hpp"
@@ -51,6 +52,8 @@ class TickStepper {
  public:
   TickStepper() = default;
   explicit TickStepper(const TickRun& run);
+  /// At index i of `run` (one division).
+  TickStepper(const TickRun& run, uint64_t i);
   Time time() const { return Time::ps(ticks_); }
   int64_t ticks() const { return ticks_; }
   void step() {
@@ -60,6 +63,17 @@ class TickStepper {
       remainder_ -= den_;
       ++ticks_;
     }
+  }
+  /// The run of `count` instants from this position on, `step / den` ticks
+  /// apart (den of this stepper's run).
+  TickRun run_from_here(i128 step, uint64_t count) const { return TickRun{ticks_, remainder_, step, den_, count}; }
+  /// This position, stepping from now on at the pace of `pace` (a stepper
+  /// over a run with the same den): no division.
+  TickStepper at_pace_of(const TickStepper& pace) const {
+    TickStepper s = *this;
+    s.whole_ = pace.whole_;
+    s.fraction_ = pace.fraction_;
+    return s;
   }
 
  private:
@@ -77,5 +91,23 @@ struct TickRunSums {
 };
 /// Closed form in O(log den) (a floor-sum recursion); count must be at most 2^20.
 TickRunSums tick_run_sums(const TickRun& run);
+
+/// Remembers tick_run_sums() of recent runs: the sums depend only on a run's
+/// offset, step, den and count, and the lines of a raster repeat the same few
+/// offsets field after field, so a small table answers most requests.
+class TickRunSumsCache {
+ public:
+  TickRunSumsCache() : table_(kSize) {}
+  const TickRunSums& sums(const TickRun& run);
+
+ private:
+  static constexpr size_t kSize = 1024;
+  struct Entry {
+    i128 offset = -1, step = 0, den = 0;
+    uint64_t count = 0;
+    TickRunSums sums;
+  };
+  std::vector<Entry> table_;
+};
 
 }  // namespace latsim::des

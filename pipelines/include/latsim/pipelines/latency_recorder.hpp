@@ -154,13 +154,21 @@ class LatencyRecorder : public display::ScanoutListener {
     int64_t field = -1;
     int64_t sample_index = -1;
     glm::dquat orientation{1.0, 0.0, 0.0, 0.0};  ///< the drawn orientation the hits were projected with
-    std::vector<ProbeHit> hits;
+    std::vector<ProbeHit> hits;                   ///< sorted by line
   };
   struct Held { ImageRecord record; bool shown = false; };
   /// A span whose orientation must come from a sample not simulated yet.
   struct Pending { ImageRecord record; display::ScanoutSpan span; };
 
+  Held* held(int64_t id);
   void record_span(const ImageRecord& img, const display::ScanoutSpan& span);
+  /// A span whose every sample shows one orientation: `newest` for an address
+  /// recalculation image (none: no sample visible yet), else the image's.
+  void record_uniform(const ImageRecord& img, const display::ScanoutSpan& span,
+                      const std::optional<tracker::PosePrediction>& newest);
+  /// Samples [begin, begin + n) of a span: lines at field fidelity, columns
+  /// of one line at batched pixel fidelity.
+  display::ScanoutSpan samples_of(const display::ScanoutSpan& span, uint64_t begin, uint64_t n) const;
   void record_probes(const display::ScanoutSpan& span, const tracker::Pose& drawn, int64_t sample_index,
                      int64_t image_id);
   using PhaseSplit = std::array<des::Distribution*, 4>;
@@ -172,6 +180,12 @@ class LatencyRecorder : public display::ScanoutListener {
   void prune(int64_t below_id);
   /// Glossary figures only through here; pipelines through add().
   void record(des::Distribution*& d, const char* name, double value);
+  /// A duration, kept exactly (a glossary duration is only ever recorded so).
+  void record(des::Distribution*& d, const char* name, des::Time value);
+  /// photon - origin for every sample of a span, in closed form for a run;
+  /// logged (samples.csv) at each sample's write, or now when that is earlier
+  /// (a field computed ahead at its retrace), as the per-sample events would.
+  void record_run(des::Distribution*& d, const char* name, const display::ScanoutSpan& span, des::Time origin);
   void refuse(const std::string& name, const char* how) const;
   void link_figures(const RunTotals& totals);
 
@@ -186,6 +200,8 @@ class LatencyRecorder : public display::ScanoutListener {
   const display::Persistence* persistence_ = nullptr;
   Timeline* timeline_ = nullptr;
   std::map<int64_t, Held> images_;
+  int64_t last_id_ = -1;
+  Held* last_held_ = nullptr;  // images_[last_id_], or nullptr
   std::vector<Pending> pending_;
   ProbeCache probe_cache_[2];
   double rad_per_px_ = 0.0;
@@ -210,6 +226,7 @@ class LatencyRecorder : public display::ScanoutListener {
   PhaseSplit reg_split_{};
   PhaseSplit prediction_split_{};
   std::map<std::string, int64_t> counters_;
+  des::TickRunSumsCache run_sums_;
   // Refresh deadlines: due times of renders not yet shown, oldest first, and
   // the field (one eye) being scanned now.
   std::deque<des::Time> due_;

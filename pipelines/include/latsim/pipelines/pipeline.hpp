@@ -157,6 +157,10 @@ struct RunContext {
   /// The first instant at or after `t` at which the middle line is lit (an
   /// image shown at once, without vsync).
   des::Time next_middle_line_time(des::Time t) const;
+  /// Address recalculation reads the newest orientation as each pixel is
+  /// fetched: at batched pixel fidelity every arrival splits the line being
+  /// scanned (arrival events exist only then).
+  void fetch_orientation_at_scanout();
 };
 
 /// A display strategy: schedules its events in start(), reports in finish().

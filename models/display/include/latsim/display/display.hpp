@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "latsim/des/simulator.hpp"
+#include "latsim/des/tick_run.hpp"
 #include "latsim/display/persistence.hpp"
 #include "latsim/display/raster_timing.hpp"
 
@@ -14,22 +15,32 @@ namespace latsim::display {
 
 /// How finely scanout is simulated (and what it costs in events).
 enum class ScanoutFidelity {
-  Field,  ///< one event per field: content sampled at the retrace, lines computed in a loop
+  Field,  ///< one event per field: content sampled at the retrace, every line at once
   Line,   ///< one event per active line: content sampled when each line is lit
-  Pixel,  ///< one event per (strided) pixel: content sampled when each pixel is lit
+  Pixel,  ///< content sampled when each (strided) pixel is lit
 };
 
-/// One stretch of scanout that shows one image: a whole line or one pixel.
+/// One stretch of scanout that shows one image: pixels [x_begin, x_end) of
+/// the lines [line, line_end) of one field. Latency is sampled in scan order:
+/// one sample per line (its first pixel) at field and line fidelity, one per
+/// pixel_stride pixels at pixel fidelity; only field fidelity spans several
+/// lines, with one sample per line. `written` says when scanout wrote each
+/// sample (the content was read then), `photons` the middle of its lit
+/// interval (the write time itself without persistence).
 struct ScanoutSpan {
   int eye = 0;
   int64_t field = 0;
-  int line = 0;         ///< line index within the field
-  int row = 0;          ///< screen row, 0 = top
-  int x_begin = 0;      ///< first pixel column of the span
-  int x_end = 0;        ///< one past the last pixel column
-  des::Time photon_time;   ///< middle of the lit interval of the span's first pixel
-  des::Time written_at;    ///< when scanout wrote the span (the content was read then)
+  int line = 0;            ///< first line index within the field
+  int line_end = 0;        ///< one past the last line
+  int row = 0;             ///< screen row of the first line, 0 = top
+  int x_begin = 0;         ///< first pixel column of the span (on each line)
+  int x_end = 0;           ///< one past the last pixel column
+  int x_step = 1;          ///< columns from one sample of a line to the next (pixel fidelity)
+  des::Time photon_time;   ///< photons of the first sample
+  des::Time written_at;    ///< written of the first sample
   des::Time lit_duration;  ///< how long each pixel stays lit; 0 without persistence (an impulse)
+  des::TickRun photons;    ///< middle of each sample's lit interval
+  des::TickRun written;    ///< when each sample was written
   int64_t image_id = -1;   ///< what the front buffer held; -1 = nothing yet
 };
 
@@ -59,13 +70,24 @@ class ScanoutListener {
 
 /// Front buffers per eye, swapped at retrace (double buffering) or at once
 /// (tearing), scanned out at the chosen fidelity.
+///
+/// Pixel fidelity costs one event per line: a line is handed to the listeners
+/// as spans of pixels once its last pixel is lit, split where what it shows
+/// changes mid-line (present_now, split_scanout). With pixel_events it costs
+/// one event per pixel (the reference the batched path is tested against).
+/// Either way a pixel lit at the very instant of a change shows the change:
+/// pixel scanout runs after every other event of that instant except the
+/// retrace.
 class Display {
  public:
-  Display(des::Simulator& sim, RasterTiming timing, int eyes, ScanoutFidelity fidelity, int pixel_stride = 1);
+  Display(des::Simulator& sim, RasterTiming timing, int eyes, ScanoutFidelity fidelity, int pixel_stride = 1,
+          bool pixel_events = false);
 
   const RasterTiming& timing() const { return timing_; }
   int eyes() const { return static_cast<int>(front_.size()); }
   ScanoutFidelity fidelity() const { return fidelity_; }
+  /// True at pixel fidelity without pixel_events: lines are scanned as batches.
+  bool batches_pixels() const { return fidelity_ == ScanoutFidelity::Pixel && !pixel_events_; }
 
   /// Makes `image_id` visible from now on (no vsync: a swap mid-scan tears).
   void present_now(int eye, int64_t image_id);
@@ -78,13 +100,17 @@ class Display {
   /// is lit as one span per stretch of one image). Regions of an
   /// eye never overlap unless equal; a whole image presented later replaces them.
   void write_region_now(int eye, const BufferRegion& region, int64_t image_id);
+  /// What the listeners will see changes now by other means than a swap (an
+  /// address recalculation display reads a newer orientation): pixels lit
+  /// before now are handed over first. Only batched pixel scanout needs this.
+  void split_scanout();
   int64_t front(int eye) const { return front_.at(eye); }
   bool has_pending(int eye) const { return pending_.at(eye) >= 0; }
 
   /// Called at every retrace after pending swaps, before scanout of the field.
   void on_retrace(std::function<void(int64_t field, des::Time retrace)> fn);
   /// Lights written pixels for a while instead of at the scanout instant;
-  /// spans then carry the middle of the lit interval as their photon time.
+  /// spans then carry the middle of the lit interval as their photon times.
   void set_persistence(PersistenceParams params);
   /// The persistence model (not configured() unless set_persistence was called).
   const Persistence& persistence() const { return persistence_; }
@@ -95,12 +121,28 @@ class Display {
   int64_t fields_shown() const { return fields_shown_; }
 
  private:
+  // The line of batched pixel scanout whose pixels are not all handed over yet.
+  struct OpenLine {
+    int64_t field = -1;
+    int line = -1;         // -1: none
+    int next_unit = 0;     // first sample (pixel_stride pixels) not handed over
+    des::TickStepper at;   // photon time of next_unit
+  };
+
   void retrace(int64_t field);
   void scan_line(int64_t field, int line);
-  void scan_pixel(int64_t field, int line, int x);
-  void emit(int eye, int64_t field, int line, int x_begin, int x_end, des::Time t);
-  // The parts of [x_begin, x_end) of a row that show written regions, the rest the front image.
+  void scan_pixel(int64_t field, int line, int unit);
+  void open_line(int64_t field, int line);
+  void finish_line(int64_t field, int line);
+  // Hands over the open line's samples [next_unit, end_unit).
+  void emit_open(int end_unit);
+  // Hands a span of samples written at `written` to every listener, once per eye.
+  void emit(int64_t field, int line, int line_end, int x_begin, int x_end, const des::TickRun& written);
+  // An eye with written regions: the span one sample at a time, each split by the regions.
+  void emit_samples_by_region(const ScanoutSpan& span);
+  // The parts of [x_begin, x_end) of a one-sample span that show written regions, the rest the front image.
   void emit_regions(ScanoutSpan span);
+  int units_per_line() const { return (timing_.params().width_px + pixel_stride_ - 1) / pixel_stride_; }
 
   /// One region written into a displayed buffer and what it shows.
   struct WrittenRegion {
@@ -112,6 +154,7 @@ class Display {
   RasterTiming timing_;
   ScanoutFidelity fidelity_;
   int pixel_stride_;
+  bool pixel_events_;
   std::vector<int64_t> front_;
   std::vector<int64_t> pending_;
   std::vector<std::vector<WrittenRegion>> written_;  // per eye; empty unless regions were written
@@ -121,6 +164,14 @@ class Display {
   des::Time end_;
   int64_t fields_shown_ = 0;
   des::KindId kind_retrace_ = 0, kind_line_ = 0, kind_pixel_ = 0;
+  // Exact steppers (no division per line or pixel): line starts and last
+  // samples of the current field, the pixel sample within a line, and the
+  // paces of one line and of one sample.
+  des::TickStepper line_start_, line_last_, pixel_;
+  des::TickStepper line_pace_, unit_pace_;
+  des::i128 unit_step_ = 0;  // ticks per sample, times the raster's D
+  des::i128 line_step_ = 0;  // ticks per line, times the raster's D
+  OpenLine open_;
 };
 
 }  // namespace latsim::display

@@ -17,6 +17,7 @@ struct DisplayParams {
   double hfov_deg = 90.0;
   ScanoutFidelity fidelity = ScanoutFidelity::Field;
   int pixel_stride = 1;
+  bool pixel_events = false;  ///< pixel fidelity: one event per pixel (the reference) instead of per line
   /// How long a written pixel is lit; none: at its scanout instant only.
   std::optional<PersistenceParams> persistence;
   /// The display's oscillator: retrace phase and refresh rate error.

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 
+#include "latsim/des/tick_run.hpp"
 #include "latsim/des/time.hpp"
 #include "latsim/display/raster_timing.hpp"
 
@@ -50,6 +51,10 @@ class Persistence {
   bool configured() const { return params_.mode != PersistenceParams::Mode::impulse; }
   /// The lit interval of a pixel of `field` written at `written`.
   LitInterval lit(int64_t field, des::Time written) const;
+  /// The middles of the lit intervals of pixels of `field` written at the
+  /// instants of `written`: those instants moved by one constant of the
+  /// field, or, for a global flash, one instant for all.
+  des::TickRun photons(int64_t field, const des::TickRun& written) const;
 
  private:
   PersistenceParams params_;

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 
+#include "latsim/des/tick_run.hpp"
 #include "latsim/des/time.hpp"
 
 namespace latsim::display {
@@ -21,6 +22,11 @@ struct RasterParams {
 
 /// Exact photon times of a raster: field k starts (vertical retrace) at
 /// t0 + k·period; its j-th active line is lit (vblank + j) line periods later.
+///
+/// A pixel's offset from its field's start is floor(slot · K / D) ticks, slot
+/// counting pixel times from the retrace (blanking included), K / D the pixel
+/// time in ticks as a reduced fraction. Runs of evenly spaced pixels or lines
+/// are des::TickRun values, which a des::TickStepper walks without dividing.
 class RasterTiming {
  public:
   RasterTiming() = default;
@@ -47,6 +53,16 @@ class RasterTiming {
   int line_of_row(int64_t field, int row) const;
   /// Parity (0/1) of the rows field k shows; always 0 when progressive.
   int parity(int64_t field) const;
+  /// Pixel times from the retrace to the field's j-th line's pixel x.
+  int64_t slot(int j, int x) const { return static_cast<int64_t>(p_.vblank_lines + j) * pixels_per_line() + x; }
+  /// Pixel times per line, blanking included.
+  int64_t pixels_per_line() const { return static_cast<int64_t>(p_.width_px) + p_.hblank_px; }
+  /// Photon times of `count` samples from pixel x of the field's j-th line on,
+  /// `slot_step` pixel times apart (pixels_per_line() steps line by line).
+  des::TickRun photon_run(int64_t field, int j, int x, int64_t slot_step, uint64_t count) const;
+  /// The pixel-time fraction K / D (ticks per pixel time).
+  des::i128 ticks_per_slot_num() const { return k_; }
+  des::i128 ticks_per_slot_den() const { return d_; }
 
   /// The field whose retrace is the first at or after t.
   int64_t field_at_or_after(des::Time t) const { return schedule_.index_at_or_after(t); }
@@ -62,6 +78,8 @@ class RasterTiming {
 
   RasterParams p_;
   des::PeriodicSchedule schedule_;
+  des::i128 k_ = 1;  // ticks per pixel time = k_ / d_, reduced
+  des::i128 d_ = 1;
 };
 
 }  // namespace latsim::display
