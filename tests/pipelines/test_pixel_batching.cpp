@@ -86,3 +86,25 @@ TEST_CASE("batched pixels equal per-pixel events: regions written into the displ
   check_identical("pxpl5/slats_140.json",
                   {"/duration_s=0.2", "/display/width_px=320", "/display/height_px=96", "/display/pixel_stride=3"});
 }
+
+TEST_CASE("a field computed at its retrace equals line scanout: address recalculation reads orientations mid-field",
+          "[pixel]") {
+  // Field scanout hands each field over as one span per eye at its retrace,
+  // before the samples measured during the field exist; the recorder cuts it
+  // into runs of lines that share the newest sample when each line is
+  // written. Line scanout looks each line up at its own event. A 997 Hz
+  // tracker makes about 16 runs per field.
+  std::vector<std::string> overrides{"/duration_s=0.5", "/pipeline/frame_times_s=[]", "/tracker/rate_hz=997"};
+  overrides.push_back("/display/scanout=\"field\"");
+  const Json field = run_file("arp/arp_basic.json", overrides);
+  overrides.back() = "/display/scanout=\"line\"";
+  const Json line = run_file("arp/arp_basic.json", overrides);
+  for (const char* name : {"motion_to_photon_ms", "rotation_latency_ms", "translation_latency_ms", "display_ms",
+                           "image_age_ms", "registration_error_arcmin", "registration_error_px"}) {
+    INFO(name);
+    REQUIRE(line["figures"].contains(name));
+    CHECK(field["figures"][name] == line["figures"][name]);
+  }
+  CHECK(line["figures"]["rotation_latency_ms"]["count"].get<int64_t>() > 10000);
+  CHECK(field["events_per_model"]["display"].get<int64_t>() * 100 < line["events_per_model"]["display"].get<int64_t>());
+}
