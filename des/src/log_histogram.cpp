@@ -108,7 +108,7 @@ void LogHistogram::add(double x, uint64_t weight) {
   require_finite(x, "LogHistogram::add");
   if (weight == 0) return;
   add_to_bucket(x, weight);
-  note_extremes(x, x, weight);
+  seen_.note(x, x, weight);
 }
 
 void LogHistogram::add_run(const TickRun& run) {
@@ -145,7 +145,7 @@ void LogHistogram::add_run(const TickRun& run) {
       i = j;
     }
   }
-  note_extremes(first, last, run.count);
+  seen_.note(first, last, run.count);
 }
 
 void LogHistogram::add_arithmetic_run(double first, double step, uint64_t n) {
@@ -178,7 +178,7 @@ void LogHistogram::add_arithmetic_run(double first, double step, uint64_t n) {
     i = good + 1;
   }
   const double last = value(n - 1);
-  note_extremes(std::min(first, last), std::max(first, last), n);
+  seen_.note(std::min(first, last), std::max(first, last), n);
 }
 
 double LogHistogram::value_at_rank(uint64_t rank) const {
@@ -194,19 +194,19 @@ double LogHistogram::value_at_rank(uint64_t rank) const {
     seen += positive_.at(i);
     if (seen > rank) return representative(i);
   }
-  return max_;  // unreachable while counts add up to count_
+  return seen_.max;  // unreachable while counts add up to seen_.count
 }
 
 double LogHistogram::quantile(double q) const {
-  if (count_ == 0) {
+  if (seen_.count == 0) {
     nearest_rank_index(q, 1);  // still reject a bad q loudly
     return 0.0;
   }
   // The extreme ranks are the tracked extremes, so q = 0 and q = 1 are exact.
-  const uint64_t rank = nearest_rank_index(q, count_);
-  if (rank == 0) return min_;
-  if (rank == count_ - 1) return max_;
-  return std::clamp(value_at_rank(rank), min_, max_);
+  const uint64_t rank = nearest_rank_index(q, seen_.count);
+  if (rank == 0) return seen_.min;
+  if (rank == seen_.count - 1) return seen_.max;
+  return std::clamp(value_at_rank(rank), seen_.min, seen_.max);
 }
 
 void LogHistogram::merge(const LogHistogram& other) {
@@ -215,7 +215,7 @@ void LogHistogram::merge(const LogHistogram& other) {
         "LogHistogram::merge: histograms differ in relative_error or min_positive; "
         "build both with the same parameters");
   }
-  if (other.count_ == 0) return;
+  if (other.seen_.count == 0) return;
   for (int32_t i = other.positive_.first_index(); i < other.positive_.end_index(); ++i) {
     if (const uint64_t c = other.positive_.at(i); c > 0) positive_.add(i, c);
   }
@@ -223,7 +223,7 @@ void LogHistogram::merge(const LogHistogram& other) {
     if (const uint64_t c = other.negative_.at(i); c > 0) negative_.add(i, c);
   }
   zero_count_ += other.zero_count_;
-  note_extremes(other.min_, other.max_, other.count_);
+  seen_.note(other.seen_.min, other.seen_.max, other.seen_.count);
 }
 
 std::vector<std::pair<double, uint64_t>> LogHistogram::buckets() const {

@@ -77,7 +77,7 @@ RunningStats::SumOfSquares RunningStats::total_sum_sq() const {
 
 void RunningStats::add(double x) {
   require_finite(x, "RunningStats::add");
-  note_extremes(x, x, 1);
+  seen_.note(x, x, 1);
   const Decomposed d = decompose(x);
   if (d.mantissa == 0) return;
   sum_.add(d.mantissa, d.exponent, d.negative);
@@ -102,7 +102,7 @@ void RunningStats::add_run(const TickRun& run, const TickRunSums& s) {
   sum_sq_.add(U256::product(static_cast<u128>(b) * b, n), 0, false);
   sum_sq_.add(U256::product(static_cast<u128>(b) * 2, s.sum), 0, negative);
   sum_sq_.add(s.sum_sq, 0, false);
-  note_extremes(static_cast<double>(run.base), static_cast<double>(run.last()), n);
+  seen_.note(static_cast<double>(run.base), static_cast<double>(run.last()), n);
 }
 
 void RunningStats::add_arithmetic_run(double first, double step, uint64_t n) {
@@ -124,29 +124,29 @@ void RunningStats::add_arithmetic_run(double first, double step, uint64_t n) {
   sum_sq_.add(U256::product(static_cast<u128>(a.mantissa) * d.mantissa * 2, t1), a.exponent + d.exponent,
               a.negative != d.negative);
   sum_sq_.add(U256::product(dd, t2), 2 * d.exponent, false);
-  note_extremes(std::min(first, last), std::max(first, last), n);
+  seen_.note(std::min(first, last), std::max(first, last), n);
 }
 
 double RunningStats::mean() const {
-  if (count_ == 0) return 0.0;
+  if (seen_.count == 0) return 0.0;
   bool negative = false;
   BigUint total = total_sum().magnitude(negative);
-  const uint64_t remainder = total.divide(count_);
+  const uint64_t remainder = total.divide(seen_.count);
   return total.to_double(Sum::min_exponent(), negative, remainder != 0);
 }
 
 double RunningStats::variance() const {
-  if (count_ < 2) return 0.0;
+  if (seen_.count < 2) return 0.0;
   // (n sum x^2 - (sum x)^2) / (n (n - 1)), exactly, then rounded once. Both
   // terms are in units of 2^-2148 (the square of sum x's unit).
   bool negative = false, ignored = false;
   const BigUint s = total_sum().magnitude(negative);
-  const BigUint scaled_squares = total_sum_sq().magnitude(ignored).times(count_);
+  const BigUint scaled_squares = total_sum_sq().magnitude(ignored).times(seen_.count);
   const BigUint square_of_sum = s.times(s);
   if (!square_of_sum.less_than(scaled_squares)) return 0.0;  // all values equal
   BigUint numerator = scaled_squares.minus(square_of_sum);
-  const uint64_t r1 = numerator.divide(count_);
-  const uint64_t r2 = numerator.divide(count_ - 1);  // floor(floor(a/b)/c) = floor(a/(bc))
+  const uint64_t r1 = numerator.divide(seen_.count);
+  const uint64_t r2 = numerator.divide(seen_.count - 1);  // floor(floor(a/b)/c) = floor(a/(bc))
   return numerator.to_double(SumOfSquares::min_exponent(), false, r1 != 0 || r2 != 0);
 }
 
@@ -158,8 +158,8 @@ double RunningStats::sum() const {
 }
 
 void RunningStats::merge(const RunningStats& other) {
-  if (other.count_ == 0) return;
-  note_extremes(other.min_, other.max_, other.count_);
+  if (other.seen_.count == 0) return;
+  seen_.note(other.seen_.min, other.seen_.max, other.seen_.count);
   sum_.merge(other.total_sum());
   sum_sq_.merge(other.total_sum_sq());
 }

@@ -32,6 +32,26 @@ namespace latsim::des {
 /// throws std::invalid_argument unless q is in [0, 1] and n > 0.
 uint64_t nearest_rank_index(double q, uint64_t n);
 
+/// How many values a stream had and its exact extremes (shared by the
+/// statistics below).
+struct Extremes {
+  uint64_t count = 0;
+  double min = 0.0;
+  double max = 0.0;
+
+  /// n values, the smallest lo and the largest hi.
+  void note(double lo, double hi, uint64_t n) {
+    if (count == 0) [[unlikely]] {
+      min = lo;
+      max = hi;
+    } else {
+      min = lo < min ? lo : min;
+      max = hi > max ? hi : max;
+    }
+    count += n;
+  }
+};
+
 /// Count, mean, variance, min and max of a stream of values in O(1) memory.
 ///
 /// The sums of x and of x^2 are exact (fixed-point integers wide enough for
@@ -45,7 +65,7 @@ class RunningStats {
   /// Adds an integer exactly (picoseconds, say), also beyond 2^53.
   void add_integer(int64_t v) {
     const double x = static_cast<double>(v);
-    note_extremes(x, x, 1);
+    seen_.note(x, x, 1);
     // Integers go to 128-bit sums first (a multiply and two adds); the wide
     // sums take them over only when those would overflow, and when read.
     const u128 square = static_cast<u128>(static_cast<__int128>(v) * v);
@@ -70,14 +90,14 @@ class RunningStats {
   /// Adds the n exact values first + i * step (i in [0, n)) in closed form;
   /// min and max are the end values rounded to double. n is at most 2^32.
   void add_arithmetic_run(double first, double step, uint64_t n);
-  uint64_t count() const { return count_; }
+  uint64_t count() const { return seen_.count; }
   double mean() const;
   /// Sample variance (divisor n - 1); 0 for fewer than two values.
   double variance() const;
   double stddev() const;
   /// Exact extremes; 0 when empty.
-  double min() const { return count_ == 0 ? 0.0 : min_; }
-  double max() const { return count_ == 0 ? 0.0 : max_; }
+  double min() const { return seen_.count == 0 ? 0.0 : seen_.min; }
+  double max() const { return seen_.count == 0 ? 0.0 : seen_.max; }
   /// Sum of all values, rounded once.
   double sum() const;
   /// Afterwards this equals the stats of both inputs' values together.
@@ -94,16 +114,6 @@ class RunningStats {
     if (const auto high = static_cast<uint64_t>(magnitude_squared >> 64); high != 0)
       sum_sq_.add(high, exponent + 64, false);
   }
-  void note_extremes(double lo, double hi, uint64_t n) {
-    if (count_ == 0) [[unlikely]] {
-      min_ = lo;
-      max_ = hi;
-    } else {
-      min_ = lo < min_ ? lo : min_;
-      max_ = hi > max_ ? hi : max_;
-    }
-    count_ += n;
-  }
   // Moves the 128-bit integer sums into the wide ones.
   void spill_integers();
   static void fold(__int128 int_sum, u128 int_sum_sq, Sum& sum, SumOfSquares& sum_sq);
@@ -111,9 +121,7 @@ class RunningStats {
   Sum total_sum() const;
   SumOfSquares total_sum_sq() const;
 
-  uint64_t count_ = 0;
-  double min_ = 0.0;
-  double max_ = 0.0;
+  Extremes seen_;
   __int128 int_sum_ = 0;  // sum of integers added since the last spill
   u128 int_sum_sq_ = 0;   // and of their squares
   Sum sum_;
@@ -142,7 +150,7 @@ class LogHistogram {
   void add(double x) {
     if (!std::isfinite(x)) [[unlikely]] reject_non_finite(x);
     add_to_bucket(x, 1);
-    note_extremes(x, x, 1);
+    seen_.note(x, x, 1);
   }
   /// Adds x as if it were added `weight` times (weight 0 does nothing).
   void add(double x, uint64_t weight);
@@ -151,14 +159,14 @@ class LogHistogram {
   /// Adds first + i * step for i in [0, n), each rounded to double as a loop
   /// of add() would, one bucket at a time.
   void add_arithmetic_run(double first, double step, uint64_t n);
-  uint64_t count() const { return count_; }
+  uint64_t count() const { return seen_.count; }
   /// Nearest-rank quantile (see file comment), clamped to the exact [min, max]
   /// seen and exactly min / max at the extreme ranks; 0 when empty. Relative
   /// error <= relative_error() for values whose magnitude is >= min_positive.
   double quantile(double q) const;
   /// Exact extremes of the values added; 0 when empty.
-  double min() const { return count_ == 0 ? 0.0 : min_; }
-  double max() const { return count_ == 0 ? 0.0 : max_; }
+  double min() const { return seen_.count == 0 ? 0.0 : seen_.min; }
+  double max() const { return seen_.count == 0 ? 0.0 : seen_.max; }
   /// Adds another histogram's counts; both must have the same relative_error
   /// and min_positive (std::invalid_argument otherwise).
   void merge(const LogHistogram& other);
@@ -220,16 +228,6 @@ class LogHistogram {
       negative_.add(bucket_index(magnitude), n);
     }
   }
-  void note_extremes(double lo, double hi, uint64_t n) {
-    if (count_ == 0) [[unlikely]] {
-      min_ = lo;
-      max_ = hi;
-    } else {
-      min_ = lo < min_ ? lo : min_;
-      max_ = hi > max_ ? hi : max_;
-    }
-    count_ += n;
-  }
   // The smallest value above x whose bucket differs from x's bucket.
   double next_bucket_start(double x) const;
 
@@ -240,9 +238,7 @@ class LogHistogram {
   DenseCounts positive_;
   DenseCounts negative_;  // indexed by the bucket of |x|
   uint64_t zero_count_ = 0;
-  uint64_t count_ = 0;
-  double min_ = 0.0;
-  double max_ = 0.0;
+  Extremes seen_;
 };
 
 /// A model's output channel for one quantity: RunningStats for moments, a
