@@ -60,6 +60,14 @@ TEST_CASE("batched pixels equal per-pixel events: address recalculation reads or
   check_identical("arp/arp_basic.json", {"/duration_s=0.5", "/pipeline/frame_times_s=[]", "/tracker/rate_hz=997"});
 }
 
+TEST_CASE("batched pixels equal per-pixel events: address recalculation predicts every pixel's own photon time",
+          "[pixel]") {
+  // With prediction each pixel's orientation is extrapolated to its own
+  // photon time, so a batched line is recorded sample by sample.
+  check_identical("arp/arp_basic.json", {"/duration_s=0.3", "/pipeline/frame_times_s=[]", "/tracker/rate_hz=997",
+                                         "/host/prediction={\"type\": \"constant_velocity\"}"});
+}
+
 TEST_CASE("batched pixels equal per-pixel events: frameless rendering", "[pixel]") {
   check_identical("frameless/side_by_side.json", {"/duration_s=0.5", "/frames/enabled=false"});
 }
@@ -94,17 +102,25 @@ TEST_CASE("a field computed at its retrace equals line scanout: address recalcul
   // into runs of lines that share the newest sample when each line is
   // written. Line scanout looks each line up at its own event. A 997 Hz
   // tracker makes about 16 runs per field.
-  std::vector<std::string> overrides{"/duration_s=0.5", "/pipeline/frame_times_s=[]", "/tracker/rate_hz=997"};
-  overrides.push_back("/display/scanout=\"field\"");
-  const Json field = run_file("arp/arp_basic.json", overrides);
-  overrides.back() = "/display/scanout=\"line\"";
-  const Json line = run_file("arp/arp_basic.json", overrides);
-  for (const char* name : {"motion_to_photon_ms", "rotation_latency_ms", "translation_latency_ms", "display_ms",
-                           "image_age_ms", "registration_error_arcmin", "registration_error_px"}) {
-    INFO(name);
-    REQUIRE(line["figures"].contains(name));
-    CHECK(field["figures"][name] == line["figures"][name]);
+  // With prediction every line has an orientation of its own.
+  for (const bool predicts : {false, true}) {
+    INFO("prediction " << predicts);
+    std::vector<std::string> overrides{"/duration_s=0.5", "/pipeline/frame_times_s=[]", "/tracker/rate_hz=997"};
+    if (predicts) overrides.emplace_back("/host/prediction={\"type\": \"constant_velocity\"}");
+    overrides.push_back("/display/scanout=\"field\"");
+    const Json field = run_file("arp/arp_basic.json", overrides);
+    overrides.back() = "/display/scanout=\"line\"";
+    const Json line = run_file("arp/arp_basic.json", overrides);
+    for (const char* name : {"motion_to_photon_ms", "rotation_latency_ms", "translation_latency_ms", "display_ms",
+                             "image_age_ms", "registration_error_arcmin", "registration_error_px",
+                             "prediction_error_deg", "prediction_horizon_ms"}) {
+      INFO(name);
+      REQUIRE(field["figures"].contains(name) == line["figures"].contains(name));
+      if (line["figures"].contains(name)) CHECK(field["figures"][name] == line["figures"][name]);
+    }
+    CHECK(line["figures"]["rotation_latency_ms"]["count"].get<int64_t>() > 10000);
+    CHECK(line["figures"].contains("prediction_error_deg") == predicts);
+    CHECK(field["events_per_model"]["display"].get<int64_t>() * 100 <
+          line["events_per_model"]["display"].get<int64_t>());
   }
-  CHECK(line["figures"]["rotation_latency_ms"]["count"].get<int64_t>() > 10000);
-  CHECK(field["events_per_model"]["display"].get<int64_t>() * 100 < line["events_per_model"]["display"].get<int64_t>());
 }
