@@ -73,6 +73,11 @@ def median_row(rows):
         'events': rows[0]['events'], 'mtp': rows[0]['mtp'], 'runs': len(rows)}
 
 
+# latsim draws each clock's phase per replication; the SimPy model and the
+# older latsim (which has no phase keys) start every clock at zero.
+PINNED = ['/display/phase_ms=0', '/tracker/phase_ms=0']
+
+
 def peers(args, rows):
     scenario = os.path.join(ROOT, 'scenarios', 'hmd_60hz_direct.json')
     programs = [('latsim', None), ('latsim before', None), ('SimPy 2', 'simpy2'), ('SimPy 3', 'simpy3')]
@@ -90,11 +95,12 @@ def peers(args, rows):
             for _ in range(args.runs):
                 for name, kernel in programs:
                     if kernel:
-                        got[name].append(simpy_run(args.simpy, kernel, scenario, sets))
+                        got[name].append(simpy_run(args.simpy, kernel, scenario, sets + PINNED))
                     else:
                         binary = args.latsim if name == 'latsim' else args.before
                         out_dir = os.path.join(args.out, f'{name.replace(" ", "_")}_{scanout}_{duration}')
-                        got[name].append(latsim_run(binary, scenario, sets, out_dir))
+                        got[name].append(latsim_run(binary, scenario, sets + (PINNED if name == 'latsim' else []),
+                                                    out_dir))
             med = {name: median_row(r) for name, r in got.items()}
             ours = med['latsim']
             for name, _ in programs:
@@ -121,7 +127,7 @@ def ladder(args, rows):
             for scanout in ('line', 'field', 'pixel'):
                 sets = ['/duration_s=10', f'/display/scanout="{scanout}"']
                 out_dir = os.path.join(args.out, f'ladder_{name.replace(" ", "_")}_{scenario}_{scanout}')
-                r = latsim_run(binary, path, sets, out_dir)
+                r = latsim_run(binary, path, sets + (PINNED if name == 'latsim' else []), out_dir)
                 line = r if scanout == 'line' else line
                 print(f"| {scenario} | {scanout} | {name} | {r['events']:,} | {r['sim_s']:.4f} | {r['proc_s']:.3f} "
                       f"| {r['cpu_s']:.3f} | {r['rss_mb']:.1f} | {r['mtp']:.9f} | {r['sim_s'] / line['sim_s']:.2f} "
