@@ -282,12 +282,16 @@ Json figures_of(Run& run) {
 constexpr uint64_t kEventsPerProgress = 1 << 14;
 
 // Runs the simulation; a model that throws becomes a RunFailure naming it
-// and the simulated time, a stop request a RunInterrupted.
+// and the simulated time, a stop request a RunInterrupted. A result file
+// streamed during the run (the timeline) that cannot be written stays a
+// WriteError: the storage failed, not the model.
 void simulate(Run& run) {
   try {
     run.host->start(run.duration);
     run.display->start(run.duration);
     run.sim.run_until(run.duration);
+  } catch (const WriteError&) {
+    throw;
   } catch (const std::exception& e) {
     const auto kind = run.sim.failed_kind();
     const std::string name = kind ? run.sim.kind_name(*kind) : std::string("start");
