@@ -71,9 +71,9 @@ class RunningStats {
     const u128 square = static_cast<u128>(static_cast<__int128>(v) * v);
     u128 sum_sq = 0;
     __int128 sum = 0;
-    const bool overflow = __builtin_add_overflow(int_sum_sq_, square, &sum_sq) |
-                          __builtin_add_overflow(int_sum_, static_cast<__int128>(v), &sum);
-    if (overflow) [[unlikely]] {
+    const bool square_overflows = __builtin_add_overflow(int_sum_sq_, square, &sum_sq);
+    const bool sum_overflows = __builtin_add_overflow(int_sum_, static_cast<__int128>(v), &sum);
+    if (square_overflows || sum_overflows) [[unlikely]] {
       spill_integers();
       int_sum_sq_ = square;
       int_sum_ = v;
