@@ -80,7 +80,6 @@ TEST_CASE("cancelled events never run, cancelling twice or after running returns
     const EventId a = sim.at(Time::ms(1), k, [&] { log.push_back(1); });
     const EventId b = sim.at(Time::ms(2), k, [&] { log.push_back(2); });
     const EventId c = sim.at(Time::ms(3), k, [&] { log.push_back(3); });
-    EventId from_callback;
     sim.at(Time::ms(1), k, [&] { CHECK(sim.cancel(c)); }, 1);
     CHECK(a.valid());
     CHECK_FALSE(EventId{}.valid());
