@@ -50,8 +50,21 @@ void Distribution::add_run(const TickRun& run, const TickRunSums& sums) {
   add_run_samples(run);
 }
 
+void Distribution::add_run(const TickRunSums& sums, const RunBuckets& b) {
+  if (b.run.count == 0) return;
+  check_kind(Kind::durations);
+  histogram_.add_buckets(b);  // throws on a bucket shape of another histogram first
+  kind_ = Kind::durations;
+  stats_.add_run(b.run, sums);
+  add_kept_samples(b.run);
+}
+
 void Distribution::add_run_samples(const TickRun& run) {
   histogram_.add_run(run);
+  add_kept_samples(run);
+}
+
+void Distribution::add_kept_samples(const TickRun& run) {
   if (!keep_samples_) return;
   TickStepper t(run);
   for (uint64_t i = 0; i < run.count && keep_samples_; ++i, t.step()) keep(static_cast<double>(t.ticks()));

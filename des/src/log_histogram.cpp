@@ -53,6 +53,14 @@ void LogHistogram::DenseCounts::grow_and_add(int32_t index, uint64_t weight) {
   counts_[static_cast<size_t>(index - offset_)] += weight;
 }
 
+void LogHistogram::DenseCounts::add_blocks(const std::vector<RunBuckets::Block>& blocks) {
+  if (blocks.empty()) return;
+  const auto [lo, hi] = std::minmax(blocks.front().bucket, blocks.back().bucket);
+  if (lo < offset_ || counts_.empty()) grow_and_add(lo, 0);
+  if (hi >= end_index()) grow_and_add(hi, 0);
+  for (const RunBuckets::Block& block : blocks) counts_[static_cast<size_t>(block.bucket - offset_)] += block.count;
+}
+
 uint64_t LogHistogram::DenseCounts::at(int32_t index) const {
   if (index < offset_ || index >= end_index()) return 0;
   return counts_[static_cast<size_t>(index - offset_)];
@@ -111,41 +119,75 @@ void LogHistogram::add(double x, uint64_t weight) {
   seen_.note(x, x, weight);
 }
 
+template <class OnBlock>
+void LogHistogram::walk_run(const TickRun& run, OnBlock&& on_block) const {
+  constexpr double kExact = 9007199254740992.0;  // 2^53: beyond it, ticks round as doubles
+  if (std::fabs(static_cast<double>(run.first())) >= kExact || std::fabs(static_cast<double>(run.last())) >= kExact) {
+    for (uint64_t i = 0; i < run.count; ++i) on_block(static_cast<double>(run.at(i)), 1);
+    return;
+  }
+  // Values never decrease: each bucket holds a contiguous block of indices,
+  // ending where the run first reaches the next bucket's start (an integer
+  // reaches a double bound b exactly when it reaches ceil(b)). A block of a
+  // few values is walked with the stepper; a longer one is jumped over in
+  // closed form (two divisions).
+  const double ticks_per_value = static_cast<double>(run.step) / static_cast<double>(run.den);
+  TickStepper t(run);
+  for (uint64_t i = 0; i < run.count;) {
+    const int64_t v = t.ticks();
+    const auto x = static_cast<double>(v);
+    const double next = next_bucket_start(x);
+    uint64_t j = i;
+    if (!(next < kExact)) {
+      j = run.count;  // every later value (all below 2^53) stays in this bucket
+    } else if (const auto limit = static_cast<int64_t>(std::ceil(next)); next - x <= 16.0 * ticks_per_value) {
+      do {
+        ++j;
+        t.step();
+      } while (j < run.count && t.ticks() < limit);
+    } else {
+      j = std::max(i + 1, run.first_index_at_or_above(limit));
+      if (j < run.count) t = TickStepper(run, j);
+    }
+    on_block(x, j - i);
+    i = j;
+  }
+}
+
 void LogHistogram::add_run(const TickRun& run) {
   if (run.count == 0) return;
-  const double first = static_cast<double>(run.first()), last = static_cast<double>(run.last());
-  constexpr double kExact = 9007199254740992.0;  // 2^53: beyond it, ticks round as doubles
-  if (std::fabs(first) >= kExact || std::fabs(last) >= kExact) {
-    for (uint64_t i = 0; i < run.count; ++i) add_to_bucket(static_cast<double>(run.at(i)), 1);
-  } else {
-    // Values never decrease: each bucket holds a contiguous block of indices,
-    // ending where the run first reaches the next bucket's start. A block of
-    // a few values is walked with the stepper; a longer one is jumped over in
-    // closed form (two divisions).
-    const double ticks_per_value = static_cast<double>(run.step) / static_cast<double>(run.den);
-    TickStepper t(run);
-    for (uint64_t i = 0; i < run.count;) {
-      const int64_t v = t.ticks();
-      const auto x = static_cast<double>(v);
-      const double next = next_bucket_start(x);
-      uint64_t j = i;
-      const int64_t limit = next < kExact ? static_cast<int64_t>(std::ceil(next)) : INT64_MAX;
-      if (limit == INT64_MAX) {
-        j = run.count;  // every later value (all below 2^53) stays in this bucket
-      } else if (next - x <= 16.0 * ticks_per_value) {
-        do {
-          ++j;
-          t.step();
-        } while (j < run.count && t.ticks() < limit);
-      } else {
-        j = std::max(i + 1, run.first_index_at_or_above(limit));
-        if (j < run.count) t = TickStepper(run, j);
-      }
-      add_to_bucket(x, j - i);
-      i = j;
+  walk_run(run, [this](double x, uint64_t n) { add_to_bucket(x, n); });
+  seen_.note(static_cast<double>(run.first()), static_cast<double>(run.last()), run.count);
+}
+
+void LogHistogram::bucket_run(const TickRun& run, RunBuckets& out) const {
+  out.run = run;
+  out.per_binade = per_binade_;
+  out.min_positive = min_positive_;
+  out.negative.clear();
+  out.zero = 0;
+  out.positive.clear();
+  if (run.count == 0) return;
+  walk_run(run, [this, &out](double x, uint64_t n) {
+    const double magnitude = std::fabs(x);
+    if (magnitude < min_positive_) {
+      out.zero += n;
+    } else {
+      (x > 0.0 ? out.positive : out.negative).push_back({bucket_index(magnitude), n});
     }
+  });
+}
+
+void LogHistogram::add_buckets(const RunBuckets& b) {
+  if (b.per_binade != per_binade_ || b.min_positive != min_positive_) {
+    throw std::invalid_argument(
+        "LogHistogram::add_buckets: the run was bucketed for another relative_error or min_positive");
   }
-  seen_.note(first, last, run.count);
+  if (b.run.count == 0) return;
+  negative_.add_blocks(b.negative);
+  zero_count_ += b.zero;
+  positive_.add_blocks(b.positive);
+  seen_.note(static_cast<double>(b.run.first()), static_cast<double>(b.run.last()), b.run.count);
 }
 
 void LogHistogram::add_arithmetic_run(double first, double step, uint64_t n) {

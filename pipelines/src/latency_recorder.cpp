@@ -99,8 +99,10 @@ void LatencyRecorder::record_run(des::Distribution*& d, const char* name, const 
   if (photons.count == 1) {
     d->add(des::Time::ps(photons.base) - origin);
   } else if (photons.count <= (uint64_t{1} << 20)) {
-    // Every distribution of a span shares the run's shape, hence its sums.
-    d->add_run(photons.shifted(-origin.ticks()), run_sums_.sums(photons));
+    // Every distribution of a span shares the run's shape, hence its sums;
+    // its buckets recur (see des::RunBucketsCache).
+    const des::TickRun run = photons.shifted(-origin.ticks());
+    d->add_run(run_sums_.sums(photons), run_buckets_.buckets(d->histogram(), run));
   } else {
     d->add_run(photons.shifted(-origin.ticks()));
   }

@@ -128,6 +128,23 @@ class RunningStats {
   SumOfSquares sum_sq_;
 };
 
+/// How the values of one tick run fall into the buckets of LogHistograms of
+/// one shape: a block of consecutive values per bucket, in value order.
+/// Worked out once (LogHistogram::bucket_run), it is added to any histogram
+/// of that shape with one increment per bucket (LogHistogram::add_buckets).
+struct RunBuckets {
+  struct Block {
+    int32_t bucket = 0;  // of the magnitude
+    uint64_t count = 0;
+  };
+  TickRun run;
+  int32_t per_binade = 0;  // the shape of the histograms the blocks are for
+  double min_positive = 0.0;
+  std::vector<Block> negative;  // ascending values: descending buckets
+  uint64_t zero = 0;            // values in the zero bucket
+  std::vector<Block> positive;  // ascending buckets
+};
+
 /// Quantiles with bounded relative error in memory bounded by the value range.
 ///
 /// Buckets split every binade [2^e, 2^(e+1)) into S equal parts, S the
@@ -156,6 +173,16 @@ class LogHistogram {
   void add(double x, uint64_t weight);
   /// Adds every value of a tick run (as doubles), one bucket at a time.
   void add_run(const TickRun& run);
+  /// Works out into `out` how the run's values fall into this histogram's
+  /// buckets (the walk of add_run), reusing out's memory.
+  void bucket_run(const TickRun& run, RunBuckets& out) const;
+  /// Adds the run of `b` as add_run(b.run) would; throws
+  /// std::invalid_argument if b was worked out for another bucket shape.
+  void add_buckets(const RunBuckets& b);
+  /// True when both histograms put every value into the same bucket.
+  bool same_buckets(const LogHistogram& other) const {
+    return per_binade_ == other.per_binade_ && min_positive_ == other.min_positive_;
+  }
   /// Adds first + i * step for i in [0, n), each rounded to double as a loop
   /// of add() would, one bucket at a time.
   void add_arithmetic_run(double first, double step, uint64_t n);
@@ -191,6 +218,8 @@ class LogHistogram {
       }
       grow_and_add(index, weight);
     }
+    // Adds blocks whose buckets are monotone (either way): one range check.
+    void add_blocks(const std::vector<RunBuckets::Block>& blocks);
     uint64_t at(int32_t index) const;
     int32_t first_index() const { return offset_; }
     int32_t end_index() const { return offset_ + static_cast<int32_t>(counts_.size()); }
@@ -230,6 +259,10 @@ class LogHistogram {
   }
   // The smallest value above x whose bucket differs from x's bucket.
   double next_bucket_start(double x) const;
+  // Calls on_block(x, n) for each block of n consecutive values of the run
+  // that share the bucket of value x, in order.
+  template <class OnBlock>
+  void walk_run(const TickRun& run, OnBlock&& on_block) const;
 
   double relative_error_;
   double min_positive_;
@@ -275,6 +308,9 @@ class Distribution {
   void add_run(const TickRun& run);
   /// The same with tick_run_sums(run) at hand (run.count <= 2^20).
   void add_run(const TickRun& run, const TickRunSums& sums);
+  /// The same with the run's histogram buckets at hand too (b.run is the run;
+  /// see LogHistogram::add_buckets).
+  void add_run(const TickRunSums& sums, const RunBuckets& b);
   /// The plain values first + i * step, i in [0, n) (see RunningStats).
   void add_arithmetic_run(double first, double step, uint64_t n);
   uint64_t count() const { return stats_.count(); }
@@ -321,6 +357,8 @@ class Distribution {
   void keep(double stored_value);
   // The histogram and kept samples of a run whose moments are added.
   void add_run_samples(const TickRun& run);
+  // The kept samples of a run (when samples are kept).
+  void add_kept_samples(const TickRun& run);
   void release_samples();
 
   RunningStats stats_;

@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
+#include "latsim/des/run_buckets_cache.hpp"
 #include "latsim/des/simulator.hpp"
 #include "latsim/des/stats.hpp"
 #include "latsim/display/display.hpp"
@@ -227,6 +228,7 @@ class LatencyRecorder : public display::ScanoutListener {
   PhaseSplit prediction_split_{};
   std::map<std::string, int64_t> counters_;
   des::TickRunSumsCache run_sums_;
+  des::RunBucketsCache run_buckets_;
   // Refresh deadlines: due times of renders not yet shown, oldest first, and
   // the field (one eye) being scanned now.
   std::deque<des::Time> due_;

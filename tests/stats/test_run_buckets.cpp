@@ -1,0 +1,177 @@
+// A tick run's histogram buckets worked out in blocks (LogHistogram::add_run,
+// bucket_run + add_buckets, RunBucketsCache) against the reference: each
+// value of the run added on its own, its bucket taken from its own bits.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include "latsim/des/random.hpp"
+#include "latsim/des/run_buckets_cache.hpp"
+#include "latsim/des/stats.hpp"
+#include "latsim/des/tick_run.hpp"
+
+using latsim::des::Distribution;
+using latsim::des::i128;
+using latsim::des::LogHistogram;
+using latsim::des::RandomStream;
+using latsim::des::RunBuckets;
+using latsim::des::RunBucketsCache;
+using latsim::des::TickRun;
+using latsim::des::tick_run_sums;
+using latsim::des::Time;
+
+namespace {
+
+// The reference: every value added alone.
+LogHistogram one_by_one(const LogHistogram& shape, const TickRun& run) {
+  LogHistogram h(shape.relative_error(), shape.min_positive());
+  for (uint64_t i = 0; i < run.count; ++i) h.add(static_cast<double>(run.at(i)));
+  return h;
+}
+
+void check_same(const LogHistogram& a, const LogHistogram& b) {
+  CHECK(a.count() == b.count());
+  CHECK(a.min() == b.min());
+  CHECK(a.max() == b.max());
+  CHECK(a.buckets() == b.buckets());
+}
+
+// add_run and bucket_run + add_buckets both against the reference.
+void check_run(const LogHistogram& shape, const TickRun& run) {
+  INFO("base " << run.base << ", step " << static_cast<double>(run.step) << " / " << static_cast<double>(run.den)
+               << ", count " << run.count << ", relative_error " << shape.relative_error() << ", min_positive "
+               << shape.min_positive());
+  const LogHistogram reference = one_by_one(shape, run);
+  LogHistogram walked(shape.relative_error(), shape.min_positive());
+  walked.add_run(run);
+  check_same(walked, reference);
+  RunBuckets b;
+  shape.bucket_run(run, b);
+  LogHistogram blocked(shape.relative_error(), shape.min_positive());
+  blocked.add_buckets(b);
+  check_same(blocked, reference);
+}
+
+// The first integer in the bucket of magnitude x (its lower bound rounded up),
+// found from the reference alone: the bucket changes between it and its predecessor.
+int64_t first_integer_of_bucket(const LogHistogram& shape, int64_t x) {
+  const auto bucket_of = [&](int64_t v) {
+    LogHistogram h(shape.relative_error(), shape.min_positive());
+    h.add(static_cast<double>(v));
+    return h.buckets().front().first;
+  };
+  const double rep = bucket_of(x);
+  int64_t good = x, span = 1;  // good: in the bucket; good - span: below it once the gallop stops
+  while (bucket_of(good - span) == rep) {
+    good -= span;
+    span *= 2;
+  }
+  int64_t bad = good - span;
+  while (good - bad > 1) {
+    const int64_t mid = bad + (good - bad) / 2;
+    (bucket_of(mid) == rep ? good : bad) = mid;
+  }
+  return good;
+}
+
+}  // namespace
+
+TEST_CASE("a tick run bucketed in blocks equals its values added one by one", "[stats][histogram][tick_run]") {
+  for (const double relative_error : {0.005, 0.1, 1e-4}) {
+    const LogHistogram shape(relative_error);
+    // Small integers, where a bucket is narrower than one tick: every value
+    // its own block, binade edges at every power of two.
+    check_run(shape, TickRun::make(0, 0, 1, 1, 5000));
+    // A zero step: one value many times.
+    check_run(shape, TickRun::make(42'015'272'244, 5, 0, 7, 1000));
+    // Negative values through the zero bucket, a step of 7/3 ticks.
+    check_run(shape, TickRun::make(-5000, 1, 7, 3, 5000));
+    check_run(shape, TickRun::make(-40'000'000'000, 0, 33'200'000, 1, 2000));
+    // Steps of exactly one bucket width (2^35 / S at 2^35 ps, about 34 ms),
+    // and a tick either side, so that values fall on and beside bucket edges.
+    const int s = shape.buckets_per_binade();
+    for (const i128 delta : {i128{-1}, i128{0}, i128{1}}) {
+      check_run(shape, TickRun::make(int64_t{1} << 35, 0, (i128{1} << 35) + delta, s, 3000));
+      check_run(shape, TickRun::make((int64_t{1} << 35) - 3, 2, (i128{1} << 35) * 3 + delta, 3 * s, 3000));
+    }
+    // Values one below, at and past the first integer of a bucket.
+    const int64_t edge = first_integer_of_bucket(shape, 40'000'000'000);
+    for (const int64_t start : {edge - 2, edge - 1, edge})
+      check_run(shape, TickRun::make(start, 0, 1, 1, 5));
+    // A line's pixel times at 59.94 Hz: 1001e12 / (60000 * 502 * 800) ps each.
+    check_run(shape, TickRun::make(33'000'000'000, 0, i128{1001} * 1'000'000'000'000, i128{60000} * 502 * 800, 640));
+    // Across 2^53, where ticks round as doubles (value by value).
+    check_run(shape, TickRun::make((int64_t{1} << 53) - 1000, 0, 3, 1, 1000));
+    check_run(shape, TickRun::make(INT64_MAX - 10'000, 0, 7, 1, 1000));
+  }
+  // The zero bucket of a histogram whose min_positive is above one tick, and
+  // one whose min_positive is the smallest normal double (only 0 is zero).
+  check_run(LogHistogram(0.005, 2.5), TickRun::make(-10, 0, 1, 1, 21));
+  check_run(LogHistogram(0.005, std::numeric_limits<double>::min()), TickRun::make(-10, 0, 1, 1, 21));
+  // A run longer than a million values (two million pixel times).
+  check_run(LogHistogram(), TickRun::make(-3'000'000'000, 5, 2'083'333, 500, 2'100'000));
+}
+
+TEST_CASE("random tick runs bucketed in blocks equal their values one by one", "[stats][histogram][tick_run]") {
+  RandomStream rng(21, "stats.run_buckets");
+  const auto between = [&](int64_t lo, int64_t hi) {
+    return lo + static_cast<int64_t>(rng.uniform_int(static_cast<uint64_t>(hi - lo) + 1));
+  };
+  for (int trial = 0; trial < 300; ++trial) {
+    const auto den = static_cast<i128>(between(1, 100'000'000));
+    // Steps from a small fraction of a tick to a few bucket widths at the base.
+    const i128 step = den * between(0, trial % 2 == 0 ? 20 : 2'000'000'000) + between(0, static_cast<int64_t>(den) - 1);
+    const int64_t base = between(-60'000'000'000, 60'000'000'000);
+    check_run(LogHistogram(trial % 3 == 0 ? 0.02 : 0.005),
+              TickRun::make(base, between(0, static_cast<int64_t>(den) - 1), step, den,
+                            static_cast<uint64_t>(between(1, 3000))));
+  }
+}
+
+TEST_CASE("remembered run buckets give the histogram of the runs themselves", "[stats][histogram][tick_run]") {
+  // Fields of a display: the same display-delay run every field, and
+  // latencies whose base moves; three histogram shapes share one cache.
+  RunBucketsCache cache;
+  const TickRun delays = TickRun::make(0, 0, i128{800} * 1'000'000'000'000, i128{60} * 502 * 800, 480);
+  Distribution fine, coarse(0.05), loop, loop_coarse(0.05);
+  for (int field = 0; field < 200; ++field) {
+    const TickRun latencies = delays.shifted(34'000'000'000 + 1'000'003 * (field % 7));
+    for (const TickRun& run : {delays, latencies, latencies}) {
+      fine.add_run(tick_run_sums(run), cache.buckets(fine.histogram(), run));
+      coarse.add_run(tick_run_sums(run), cache.buckets(coarse.histogram(), run));
+      for (uint64_t i = 0; i < run.count; ++i) {
+        loop.add(Time::ps(run.at(i)));
+        loop_coarse.add(Time::ps(run.at(i)));
+      }
+    }
+  }
+  check_same(fine.histogram(), loop.histogram());
+  check_same(coarse.histogram(), loop_coarse.histogram());
+  CHECK(fine.stats().mean() == loop.stats().mean());
+  CHECK(fine.stats().variance() == loop.stats().variance());
+  // Buckets worked out for another shape are refused.
+  RunBuckets b;
+  LogHistogram(0.05).bucket_run(delays, b);
+  LogHistogram other;
+  CHECK_THROWS_AS(other.add_buckets(b), std::invalid_argument);
+  CHECK(other.count() == 0);
+}
+
+TEST_CASE("a distribution keeps a bucketed run's samples", "[stats][tick_run]") {
+  const TickRun run = TickRun::make(1'000, 1, 10, 3, 50);
+  RunBuckets b;
+  Distribution kept(0.005, true), loop(0.005, true);
+  kept.histogram().bucket_run(run, b);
+  kept.add_run(tick_run_sums(run), b);
+  for (uint64_t i = 0; i < run.count; ++i) loop.add(Time::ps(run.at(i)));
+  CHECK(kept.samples() == loop.samples());
+  CHECK(kept.summary().p90 == loop.summary().p90);
+  Distribution plain;
+  plain.add(1.0);
+  CHECK_THROWS_AS(plain.add_run(tick_run_sums(run), b), std::logic_error);
+  CHECK(plain.count() == 1);
+}
