@@ -19,10 +19,11 @@ int64_t to_ticks(i128 v) {
   return static_cast<int64_t>(v);
 }
 
+bool fits64(i128 v) { return v == static_cast<i128>(static_cast<int64_t>(v)); }
+
 i128 checked_mul(i128 a, i128 b) {
   // Two factors within +-2^63 cannot overflow: one plain multiply instead of
   // the overflow-checking routine (the usual case, on every bucket of a run).
-  const auto fits64 = [](i128 v) { return v == static_cast<i128>(static_cast<int64_t>(v)); };
   if (fits64(a) && fits64(b)) return a * b;
   i128 r = 0;
   if (__builtin_mul_overflow(a, b, &r)) throw TimeOverflow("tick run arithmetic exceeds 128 bits");

@@ -88,27 +88,45 @@ void LatencyRecorder::record(des::Distribution*& d, const char* name, double val
 
 void LatencyRecorder::record(des::Distribution*& d, const char* name, des::Time value) {
   if (!d) d = &dists_.try_emplace(name, 0.005, keep_samples_).first->second;
+  runs_.close(d);  // a span figure's gathered run goes first
   d->add(value);
   if (sample_log_on_) sample_log_.push_back({sim_.now().to_ms(), name, value.to_ms()});
 }
 
-void LatencyRecorder::record_run(des::Distribution*& d, const char* name, const display::ScanoutSpan& span,
-                                 des::Time origin) {
+des::Distribution& LatencyRecorder::figure(des::Distribution*& d, const char* name) {
   if (!d) d = &dists_.try_emplace(name, 0.005, keep_samples_).first->second;
-  const des::TickRun& photons = span.photons;
-  if (photons.count == 1) {
-    d->add(des::Time::ps(photons.base) - origin);
-  } else if (photons.count <= (uint64_t{1} << 20)) {
-    // Every distribution of a span shares the run's shape, hence its sums;
-    // its buckets recur (see des::RunBucketsCache).
-    const des::TickRun run = photons.shifted(-origin.ticks());
-    d->add_run(run_sums_.sums(photons), run_buckets_.buckets(d->histogram(), run));
-  } else {
-    d->add_run(photons.shifted(-origin.ticks()));
+  return *d;
+}
+
+void LatencyRecorder::record_spans(const display::ScanoutSpan& span, des::Time orientation_measured,
+                                   des::Time position_measured) {
+  const des::Time origin = std::min(orientation_measured, position_measured);
+  if (span.field != scan_field_) {
+    scan_field_ = span.field;
+    scan_start_ = timing_.scanout_start(span.field);
   }
+  if (display_ms_ == nullptr || mtp_ == nullptr || rotation_ == nullptr || translation_ == nullptr) [[unlikely]] {
+    figure(mtp_, "motion_to_photon_ms");
+    figure(rotation_, "rotation_latency_ms");
+    figure(translation_, "translation_latency_ms");
+    figure(display_ms_, "display_ms");
+  }
+  // One open run per eye; each line of a field continues it at line fidelity.
+  runs_.add(static_cast<size_t>(span.eye & 1), span.photons,
+            {{mtp_, origin.ticks()},
+             {rotation_, orientation_measured.ticks()},
+             {translation_, position_measured.ticks()},
+             {display_ms_, scan_start_.ticks()}});
   if (!sample_log_on_) return;
-  des::TickStepper photon(photons), written(span.written);
-  for (uint64_t i = 0; i < photons.count; ++i, photon.step(), written.step())
+  log_run("motion_to_photon_ms", span, origin);
+  log_run("rotation_latency_ms", span, orientation_measured);
+  log_run("translation_latency_ms", span, position_measured);
+  log_run("display_ms", span, scan_start_);
+}
+
+void LatencyRecorder::log_run(const char* name, const display::ScanoutSpan& span, des::Time origin) {
+  des::TickStepper photon(span.photons), written(span.written);
+  for (uint64_t i = 0; i < span.photons.count; ++i, photon.step(), written.step())
     sample_log_.push_back({std::min(written.time(), sim_.now()).to_ms(), name, (photon.time() - origin).to_ms()});
 }
 
@@ -262,14 +280,7 @@ void LatencyRecorder::record_uniform(const ImageRecord& img, const display::Scan
   }
   const des::Time position_measured = img.sample.measured_at;
   const des::Time origin = std::min(orientation_measured, position_measured);
-  record_run(mtp_, "motion_to_photon_ms", span, origin);
-  record_run(rotation_, "rotation_latency_ms", span, orientation_measured);
-  record_run(translation_, "translation_latency_ms", span, position_measured);
-  if (span.field != scan_field_) {
-    scan_field_ = span.field;
-    scan_start_ = timing_.scanout_start(span.field);
-  }
-  record_run(display_ms_, "display_ms", span, scan_start_);
+  record_spans(span, orientation_measured, position_measured);
   // The age of the shown image's pose as the field starts to light up.
   if (span.line == 0 && span.x_begin == 0) record(image_age_, "image_age_ms", span.photon_time - origin);
   if (!probes_.points_m.empty()) record_probes(span, drawn, orientation_index, span.image_id);
@@ -422,10 +433,29 @@ void LatencyRecorder::record_probes(const display::ScanoutSpan& span, const trac
       cache.hits.push_back({line, x, i});
     }
     std::stable_sort(cache.hits.begin(), cache.hits.end());
+    cache.first_hit.clear();
+    cache.lookups = 0;
   }
-  // The hits on the span's lines (several at field fidelity).
-  const auto first = std::lower_bound(cache.hits.begin(), cache.hits.end(), ProbeHit{span.line, 0.0, 0});
-  const auto last = std::lower_bound(first, cache.hits.end(), ProbeHit{span.line_end, 0.0, 0});
+  // The hits on the span's lines (several at field fidelity): by binary
+  // search, or once the hits serve a second span (a span per line at line
+  // fidelity) from an index of where each line's hits begin.
+  const int lines = timing_.lines_per_field();
+  if (cache.first_hit.empty() && ++cache.lookups >= 2) {
+    cache.first_hit.assign(static_cast<size_t>(lines) + 1, 0);
+    size_t k = 0;
+    for (int line = 0; line <= lines; ++line) {
+      while (k < cache.hits.size() && cache.hits[k].line < line) ++k;
+      cache.first_hit[static_cast<size_t>(line)] = k;
+    }
+  }
+  auto first = cache.hits.begin(), last = cache.hits.end();
+  if (!cache.first_hit.empty() && span.line >= 0 && span.line_end <= lines) {
+    first += static_cast<std::ptrdiff_t>(cache.first_hit[static_cast<size_t>(span.line)]);
+    last = cache.hits.begin() + static_cast<std::ptrdiff_t>(cache.first_hit[static_cast<size_t>(span.line_end)]);
+  } else {
+    first = std::lower_bound(cache.hits.begin(), cache.hits.end(), ProbeHit{span.line, 0.0, 0});
+    last = std::lower_bound(first, cache.hits.end(), ProbeHit{span.line_end, 0.0, 0});
+  }
   for (auto h = first; h != last; ++h) {
     const int xi = static_cast<int>(h->x_px);
     if (xi < span.x_begin || xi >= span.x_end) continue;

@@ -67,6 +67,7 @@ void LatencyRecorder::publish(const std::string& name, const des::Distribution& 
 }
 
 const des::Distribution* LatencyRecorder::distribution(const std::string& name) const {
+  runs_.close_all();
   auto it = dists_.find(name);
   return it == dists_.end() ? nullptr : &it->second;
 }
@@ -78,6 +79,7 @@ int64_t LatencyRecorder::counter(const std::string& name) const {
 
 void LatencyRecorder::finish(const RunTotals& totals) {
   flush_pending();
+  runs_.close_all();
   // A field whose first line would be lit after the run showed nothing, new
   // or old: there is nothing to judge it by.
   if (open_field_ != INT64_MIN && timing_.scanout_start(open_field_) > totals.duration) open_field_ = INT64_MIN;

@@ -3,14 +3,17 @@
 // value of the run added on its own, its bucket taken from its own bits.
 #include <catch2/catch.hpp>
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <stdexcept>
 #include <vector>
 
 #include "latsim/des/random.hpp"
 #include "latsim/des/run_buckets_cache.hpp"
+#include "latsim/des/run_feed.hpp"
 #include "latsim/des/stats.hpp"
 #include "latsim/des/tick_run.hpp"
 
@@ -174,4 +177,42 @@ TEST_CASE("a distribution keeps a bucketed run's samples", "[stats][tick_run]") 
   plain.add(1.0);
   CHECK_THROWS_AS(plain.add_run(tick_run_sums(run), b), std::logic_error);
   CHECK(plain.count() == 1);
+}
+
+TEST_CASE("runs fed a line at a time are gathered into the figures of the lines added one by one",
+          "[stats][tick_run]") {
+  using latsim::des::RunFeed;
+  using latsim::des::TickStepper;
+  // 60 Hz, 502 lines of 800 pixel times: a line every 1e12 / (60 * 502) ps.
+  const i128 den = i128{60} * 502 * 800, line_step = i128{800} * 1'000'000'000'000;
+  RunFeed feed;
+  Distribution mtp, shown, loop_mtp, loop_shown;
+  for (int64_t field = 0; field < 30; ++field) {
+    // The field's lines, one event each, as the display paces them.
+    TickStepper line(TickRun::make(0, field * 502 * line_step, line_step, den, 480));
+    // The image, hence the origin, changes mid-field every third field (a
+    // swap during scanout), which must close the gathered run.
+    for (int j = 0; j < 480; ++j, line.step()) {
+      const int64_t origin = field * 16'000'000'000 - (field % 3 == 0 && j >= 200 ? 5'000'000 : 0);
+      const int64_t scan_start = field * 16'666'666'667;
+      feed.add(0, line.run_from_here(line_step, 1), {{&mtp, origin}, {&shown, scan_start}});
+      loop_mtp.add(Time::ps(line.ticks() - origin));
+      loop_shown.add(Time::ps(line.ticks() - scan_start));
+    }
+    // A value added another way after closing the run, as the recorder does.
+    feed.close(&mtp);
+    mtp.add(Time::ps(7));
+    loop_mtp.add(Time::ps(7));
+  }
+  feed.close_all();
+  for (const auto& [a, b] : {std::pair{&mtp, &loop_mtp}, std::pair{&shown, &loop_shown}}) {
+    check_same(a->histogram(), b->histogram());
+    CHECK(std::bit_cast<uint64_t>(a->stats().mean()) == std::bit_cast<uint64_t>(b->stats().mean()));
+    CHECK(std::bit_cast<uint64_t>(a->stats().variance()) == std::bit_cast<uint64_t>(b->stats().variance()));
+  }
+  CHECK(mtp.count() == 30 * 481);
+  // More than four targets are refused.
+  Distribution d;
+  CHECK_THROWS_AS(feed.add(1, TickRun::single(1), {{&d, 0}, {&d, 0}, {&d, 0}, {&d, 0}, {&d, 0}}),
+                  std::invalid_argument);
 }

@@ -131,7 +131,9 @@ void Display::retrace(int64_t field) {
 }
 
 void Display::scan_line(int64_t field, int line) {
-  const des::TickRun photon = des::TickRun::single(sim_.now().ticks());
+  // The line's instant with the pace of lines, so that a listener can tell
+  // that the next line continues it (line_start_ is at now).
+  const des::TickRun photon = line_start_.run_from_here(line_step_, 1);
   emit(field, line, line + 1, 0, timing_.params().width_px, photon);
   const int next = line + 1;
   if (next >= timing_.lines_per_field()) return;

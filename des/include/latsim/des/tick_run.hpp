@@ -56,6 +56,8 @@ class TickStepper {
   TickStepper(const TickRun& run, uint64_t i);
   Time time() const { return Time::ps(ticks_); }
   int64_t ticks() const { return ticks_; }
+  /// The exact fraction of a tick past ticks(), in units of 1/den, in [0, den).
+  i128 remainder() const { return remainder_; }
   void step() {
     ticks_ += whole_;
     remainder_ += fraction_;

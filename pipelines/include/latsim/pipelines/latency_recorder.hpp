@@ -12,7 +12,7 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
-#include "latsim/des/run_buckets_cache.hpp"
+#include "latsim/des/run_feed.hpp"
 #include "latsim/des/simulator.hpp"
 #include "latsim/des/stats.hpp"
 #include "latsim/display/display.hpp"
@@ -95,7 +95,10 @@ class LatencyRecorder : public display::ScanoutListener {
   void count(const std::string& name, int64_t n = 1);
   const des::Distribution* distribution(const std::string& name) const;
   int64_t counter(const std::string& name) const;
-  const std::map<std::string, des::Distribution>& distributions() const { return dists_; }
+  const std::map<std::string, des::Distribution>& distributions() const {
+    runs_.close_all();
+    return dists_;
+  }
   const std::map<std::string, int64_t>& counters() const { return counters_; }
 
   /// A named figure ("frames_rendered", "utilisation.gp", "memories.0.renders").
@@ -113,7 +116,7 @@ class LatencyRecorder : public display::ScanoutListener {
   /// rate, missed refreshes, the link's load) and warns about overload.
   void finish(const RunTotals& totals);
   /// Every figure in the one serialisation of figures.json.
-  nlohmann::json figures() const { return table_.to_json(dists_, counters_); }
+  nlohmann::json figures() const { return table_.to_json(distributions(), counters_); }
 
   /// Prediction figures: per image shown, prediction_error_deg (predicted
   /// against true head orientation at the instant predicted for),
@@ -156,6 +159,8 @@ class LatencyRecorder : public display::ScanoutListener {
     int64_t sample_index = -1;
     glm::dquat orientation{1.0, 0.0, 0.0, 0.0};  ///< the drawn orientation the hits were projected with
     std::vector<ProbeHit> hits;                   ///< sorted by line
+    std::vector<size_t> first_hit;                ///< per line of the field (and one past): its first hit
+    int lookups = 0;                              ///< spans served before first_hit was built
   };
   struct Held { ImageRecord record; bool shown = false; };
   /// A span whose orientation must come from a sample not simulated yet.
@@ -183,10 +188,15 @@ class LatencyRecorder : public display::ScanoutListener {
   void record(des::Distribution*& d, const char* name, double value);
   /// A duration, kept exactly (a glossary duration is only ever recorded so).
   void record(des::Distribution*& d, const char* name, des::Time value);
-  /// photon - origin for every sample of a span, in closed form for a run;
-  /// logged (samples.csv) at each sample's write, or now when that is earlier
-  /// (a field computed ahead at its retrace), as the per-sample events would.
-  void record_run(des::Distribution*& d, const char* name, const display::ScanoutSpan& span, des::Time origin);
+  /// The glossary distribution `name` behind handle d, created on first use.
+  des::Distribution& figure(des::Distribution*& d, const char* name);
+  /// Motion-to-photon, rotation and translation latency and display delay of
+  /// every sample of a span (photon - origin), in closed form for a run.
+  void record_spans(const display::ScanoutSpan& span, des::Time orientation_measured, des::Time position_measured);
+  /// The samples of a span for samples.csv, logged at each sample's write, or
+  /// now when that is earlier (a field computed ahead at its retrace), as the
+  /// per-sample events would.
+  void log_run(const char* name, const display::ScanoutSpan& span, des::Time origin);
   void refuse(const std::string& name, const char* how) const;
   void link_figures(const RunTotals& totals);
 
@@ -227,8 +237,9 @@ class LatencyRecorder : public display::ScanoutListener {
   PhaseSplit reg_split_{};
   PhaseSplit prediction_split_{};
   std::map<std::string, int64_t> counters_;
-  des::TickRunSumsCache run_sums_;
-  des::RunBucketsCache run_buckets_;
+  // The runs of the span figures, gathered across spans; closed whenever the
+  // figures are read, so they are always complete (hence mutable).
+  mutable des::RunFeed runs_;
   // Refresh deadlines: due times of renders not yet shown, oldest first, and
   // the field (one eye) being scanned now.
   std::deque<des::Time> due_;

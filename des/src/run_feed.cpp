@@ -1,0 +1,59 @@
+#include "latsim/des/run_feed.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace latsim::des {
+
+void RunFeed::add_anew(size_t slot, const TickRun& run, std::initializer_list<RunTarget> targets) {
+  if (run.count == 0) return;
+  if (targets.size() > kMaxTargets) throw std::invalid_argument("RunFeed::add: at most four targets");
+  if (slot >= open_.size()) open_.resize(slot + 1);
+  Open& o = open_[slot];
+  close(o);
+  if (run.count > kMaxGathered) {
+    for (const RunTarget& t : targets) t.d->add_run(run.shifted(-t.origin));  // in chunks, on its own
+    return;
+  }
+  open(o, run, targets);
+}
+
+void RunFeed::open(Open& o, const TickRun& run, std::initializer_list<RunTarget> targets) {
+  std::copy(targets.begin(), targets.end(), o.targets.begin());
+  o.n_targets = targets.size();
+  o.run = run;
+  const TickStepper end(run, run.count);  // where the next instant would lie
+  o.end_base = end.ticks();
+  o.end_offset = end.remainder();
+  o.whole = static_cast<int64_t>(run.step / run.den);
+  o.fraction = run.step % run.den;
+}
+
+void RunFeed::close(Open& o) {
+  if (o.run.count == 0) return;
+  for (size_t i = 0; i < o.n_targets; ++i) {
+    const RunTarget& t = o.targets[i];
+    const TickRun run = o.run.shifted(-t.origin);
+    if (run.count == 1) {
+      t.d->add(Time::ps(run.base));
+    } else {
+      t.d->add_run(sums_.sums(run), buckets_.buckets(t.d->histogram(), run));
+    }
+  }
+  o.run.count = 0;
+}
+
+void RunFeed::close(const Distribution* d) {
+  for (Open& o : open_) {
+    if (o.run.count == 0) continue;
+    const auto goes_to_d = [d](const RunTarget& t) { return t.d == d; };
+    if (std::any_of(o.targets.begin(), o.targets.begin() + static_cast<std::ptrdiff_t>(o.n_targets), goes_to_d))
+      close(o);
+  }
+}
+
+void RunFeed::close_all() {
+  for (Open& o : open_) close(o);
+}
+
+}  // namespace latsim::des
