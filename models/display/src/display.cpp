@@ -208,23 +208,11 @@ void Display::emit_open(int end_unit) {
 }
 
 void Display::emit(int64_t field, int line, int line_end, int x_begin, int x_end, const des::TickRun& written) {
-  ScanoutSpan span;
-  span.field = field;
-  span.line = line;
-  span.line_end = line_end;
-  span.row = timing_.row_of(field, line);
-  span.x_begin = x_begin;
-  span.x_end = x_end;
-  span.x_step = pixel_stride_;
-  span.written = written;
-  span.written_at = des::Time::ps(written.base);
-  if (persistence_.configured()) {
-    span.photons = persistence_.photons(field, written);
-    span.lit_duration = persistence_.lit(field, span.written_at).duration;
-  } else {
-    span.photons = written;
-  }
-  span.photon_time = des::Time::ps(span.photons.base);
+  const des::Time written_at = des::Time::ps(written.base);
+  const bool persists = persistence_.configured();
+  const des::TickRun photons = persists ? persistence_.photons(field, written) : written;
+  ScanoutSpan span(field, line, line_end, timing_.row_of(field, line), x_begin, x_end, pixel_stride_,
+                   persists ? persistence_.lit(field, written_at).duration : des::Time::zero(), photons, written);
   for (int eye = 0; eye < eyes(); ++eye) {
     span.eye = eye;
     span.image_id = front_[static_cast<size_t>(eye)];

@@ -28,6 +28,24 @@ enum class ScanoutFidelity {
 /// sample (the content was read then), `photons` the middle of its lit
 /// interval (the write time itself without persistence).
 struct ScanoutSpan {
+  ScanoutSpan() = default;
+  /// A span of one eye (eye 0, no image yet) with every other member given;
+  /// built member by member, without clearing the whole span first.
+  ScanoutSpan(int64_t field_index, int first_line, int end_line, int first_row, int first_x, int end_x, int step_x,
+              des::Time lit, const des::TickRun& photon_run, const des::TickRun& written_run)
+      : field(field_index),
+        line(first_line),
+        line_end(end_line),
+        row(first_row),
+        x_begin(first_x),
+        x_end(end_x),
+        x_step(step_x),
+        photon_time(des::Time::ps(photon_run.base)),
+        written_at(des::Time::ps(written_run.base)),
+        lit_duration(lit),
+        photons(photon_run),
+        written(written_run) {}
+
   int eye = 0;
   int64_t field = 0;
   int line = 0;            ///< first line index within the field
