@@ -8,7 +8,9 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 PACKAGES=(g++ cmake make pkg-config git python3 python3-matplotlib
           libglm-dev libeigen3-dev nlohmann-json3-dev catch2 libembree-dev
           libcli11-dev libpng-dev libtbb-dev libsqlite3-dev libopenmpi-dev openmpi-bin
-          python3-jsonschema)
+          python3-jsonschema
+          # The sanitizer and fuzz build of .ci/run: clang with libFuzzer.
+          clang libclang-rt-14-dev)
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
