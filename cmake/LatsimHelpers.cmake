@@ -17,6 +17,7 @@ function(latsim_add_library name)
   add_library(latsim::${name} ALIAS latsim_${name})
   target_include_directories(latsim_${name} PUBLIC "${CMAKE_CURRENT_SOURCE_DIR}/include")
   target_link_libraries(latsim_${name} PUBLIC latsim::warnings ${ARG_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+  target_compile_options(latsim_${name} PRIVATE ${LATSIM_FUZZ_COVERAGE})
 endfunction()
 
 # latsim_add_test(NAME SOURCES ... DEPS ... [LABELS ...]): a Catch2 test binary whose
