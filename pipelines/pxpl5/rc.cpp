@@ -75,6 +75,12 @@ void bind(scenario::Section& s, Pxpl5RcPipeline::Params& p, const params::Shared
                "/scene/triangles × regions_per_triangle per frame");
   s.check_span("render_us_per_command", r.hw.render_time_per_command.to_seconds(), bins,
                "/scene/triangles × regions_per_triangle per frame");
+  // With the view workload the triangles come from the geometry, counted when the run builds it.
+  const std::string& at = s.pointer();
+  p.common.view_spans = {{at + "/transform_us_per_triangle", r.transform_time_per_triangle.to_seconds(), true, false},
+                         {at + "/reject_us_per_triangle", r.reject_time_per_triangle.to_seconds(), true, false},
+                         {at + "/binitize_us_per_bin", r.binitize_time_per_bin.to_seconds(), true, true},
+                         {at + "/render_us_per_command", r.hw.render_time_per_command.to_seconds(), true, true}};
 }
 
 }  // namespace

@@ -56,6 +56,21 @@ pxpl5::WorkloadSource& Pxpl5Wiring::workload(const Pxpl5Common& common) {
     return *workload_;
   }
   const renderer::Scene scene = renderer::make_scene(ctx_->scene->geometry);
+  // Every triangle of the geometry may be in view of each eye and touch
+  // every region: one image must still fit the run's clock.
+  for (const Pxpl5ViewSpan& span : common.view_spans) {
+    double items = static_cast<double>(scene.triangles().size());
+    std::string text = "triangles of /scene's geometry";
+    if (span.per_eye && common.stereo) {
+      items *= 2.0;
+      text += " × 2 eyes";
+    }
+    if (span.per_region) {
+      items *= g.regions();
+      text += " × " + std::to_string(g.regions()) + " regions";
+    }
+    scenario::check_span_at(span.pointer, span.per_item_s, items, text);
+  }
   std::vector<pxpl5::WorldTriangle> triangles;
   triangles.reserve(scene.triangles().size());
   for (const renderer::Triangle& t : scene.triangles())

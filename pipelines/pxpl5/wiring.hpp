@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "latsim/des/stats.hpp"
 #include "latsim/pipelines/pipeline.hpp"
@@ -25,11 +26,22 @@ enum class Pxpl5WorkloadKind {
   view,       ///< /scene's geometry inside each eye's view at the pose the image uses
 };
 
+/// A per-item cost whose item count the view workload learns only from the
+/// scene's geometry: checked with scenario::check_span_at when the workload is
+/// built, before the first event.
+struct Pxpl5ViewSpan {
+  std::string pointer;       ///< the cost's key, e.g. /pipeline/transform_us_per_triangle
+  double per_item_s = 0.0;
+  bool per_eye = false;      ///< items are counted once per eye (Rendering Control), not once for both (Slats)
+  bool per_region = false;   ///< and in every region (the most a triangle can touch)
+};
+
 /// What both pipelines read besides their own costs.
 struct Pxpl5Common {
   bool stereo = true;
   Pxpl5WorkloadKind workload = Pxpl5WorkloadKind::synthetic;
   pxpl5::Workload synthetic;
+  std::vector<Pxpl5ViewSpan> view_spans;  ///< workload view: what one image costs must fit the run's clock
 };
 
 /// Declares the /pipeline keys both Pixel-Planes 5 pipelines share.

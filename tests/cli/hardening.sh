@@ -82,6 +82,20 @@ expect_bad binitize "/pipeline/binitize_us_per_bin" \
   "$(scenario binitize '{"include": "'"$PWD"'/scenarios/pxpl5/rc_min_latency.json", "duration_s": 0.5,
      "pipeline": {"binitize_us_per_bin": 1e12}}')"
 
+# The same with Pixel-Planes 5's view workload, whose triangles are the
+# geometry's, counted when the run builds it (once a run error, exit 1, or a
+# frame that never finished): the room has hundreds of triangles, so 1e6 s
+# per triangle or 1000 s per command in each of 20 regions cannot fit 1e6 s.
+expect_bad view_rc_transform "/pipeline/transform_us_per_triangle" \
+  "$(scenario view_rc_transform '{"include": "'"$PWD"'/scenarios/pxpl5/rc_room_walk.json", "duration_s": 0.5,
+     "pipeline": {"transform_us_per_triangle": 1e12}}')"
+expect_bad view_rc_render "/pipeline/render_us_per_command" \
+  "$(scenario view_rc_render '{"include": "'"$PWD"'/scenarios/pxpl5/rc_room_walk.json", "duration_s": 0.5,
+     "pipeline": {"render_us_per_command": 1e9}}')"
+expect_bad view_slats_gp "/pipeline/gp_us_per_triangle" \
+  "$(scenario view_slats_gp '{"include": "'"$PWD"'/scenarios/pxpl5/slats_room_walk.json", "duration_s": 0.5,
+     "pipeline": {"gp_us_per_triangle": 1e12}}')"
+
 # Address recalculation: a render cost times the scene's items beyond what a
 # run may last, a floor cut into billions of regions, a warp falloff that
 # would have every vertex look at millions of regions.
