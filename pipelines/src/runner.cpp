@@ -74,6 +74,15 @@ PipelineFactory bind_scenario(scenario::Section& root, params::SharedParams& sha
   return factory;
 }
 
+/// The declaration of every key of a scenario whose pipelines are `registry`'s.
+scenario::ObjectSchema schema_of(const PipelineRegistry& registry) {
+  scenario::ObjectSchema root;
+  scenario::Section s(root);
+  params::SharedParams shared;
+  (void)bind_scenario(s, shared, registry);
+  return root;
+}
+
 /// Everything one run builds from its scenario.
 struct Run {
   des::Simulator sim;
@@ -152,12 +161,18 @@ void built_from(const char* pointer, const char* what, F&& make) {
 // anything is built; then builds every model and lets the pipeline schedule
 // its first events.
 void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& options) {
-  const PipelineRegistry registry = builtin_pipelines();
+  const PipelineRegistry builtin = options.pipelines ? PipelineRegistry{} : builtin_pipelines();
+  const PipelineRegistry& registry = options.pipelines ? *options.pipelines : builtin;
   PipelineFactory make_pipeline;
   built_from("", "scenario", [&] {
     scenario::Section root(doc.root());
     make_pipeline = bind_scenario(root, run.shared, registry);
-    doc.check_unknown_keys(&scenario_schema(), &run.input_warnings);
+    if (options.pipelines) {
+      const scenario::ObjectSchema schema = schema_of(registry);
+      doc.check_unknown_keys(&schema, &run.input_warnings);
+    } else {
+      doc.check_unknown_keys(&scenario_schema(), &run.input_warnings);
+    }
   });
 
   run.duration = des::Time::from_seconds(run.shared.duration_s);
@@ -366,13 +381,7 @@ std::string latsim_version() { return LATSIM_VERSION; }
 std::string latsim_git_revision() { return LATSIM_GIT_REVISION; }
 
 const scenario::ObjectSchema& scenario_schema() {
-  static const scenario::ObjectSchema schema = [] {
-    scenario::ObjectSchema root;
-    scenario::Section s(root);
-    params::SharedParams shared;
-    (void)bind_scenario(s, shared, builtin_pipelines());
-    return root;
-  }();
+  static const scenario::ObjectSchema schema = schema_of(builtin_pipelines());
   return schema;
 }
 

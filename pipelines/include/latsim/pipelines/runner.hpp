@@ -20,6 +20,8 @@
 
 namespace latsim::pipelines {
 
+class PipelineRegistry;
+
 /// How far a running simulation got, for a progress display.
 struct RunProgress {
   des::Time now;          ///< simulated time reached
@@ -47,6 +49,9 @@ struct RunOptions {
   const std::atomic<bool>* stop = nullptr;
   /// Called every few thousand events while simulating.
   std::function<void(const RunProgress&)> progress;
+  /// The pipelines /pipeline/type may name; null: builtin_pipelines(). A
+  /// program that embeds latsim runs its own pipelines through this.
+  const PipelineRegistry* pipelines = nullptr;
 };
 
 /// The simulation failed, not the input: which model's event, when, and why.
