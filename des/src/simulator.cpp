@@ -1,5 +1,6 @@
 #include "latsim/des/simulator.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <chrono>
 
@@ -42,7 +43,8 @@ Simulator::Simulator(QueueKind queue_kind)
 Simulator::~Simulator() {
   // Callbacks may hold coroutine handles but never own them: drop them first,
   // then destroy the processes that never finished.
-  slots_.clear();
+  slots_.reset();
+  retired_slots_.reset();
   while (live_processes_ != nullptr) {
     ProcessPromise* p = live_processes_;
     p->detach();
@@ -65,21 +67,42 @@ const std::string& Simulator::kind_name(KindId id) const {
 }
 
 void Simulator::reserve(std::size_t n) {
-  slots_.reserve(n);
+  if (n > slot_capacity_) reallocate_slots(std::min<std::size_t>(n, kMaxSlots));
   quaternary_.reserve(queue_kind_ == QueueKind::quaternary_heap ? n : 0);
   binary_.reserve(queue_kind_ == QueueKind::binary_heap ? n : 0);
 }
 
 uint32_t Simulator::grow_slots() {
-  if (slots_.size() >= UINT32_MAX) throw std::length_error("more than 2^32-1 pending events");
-  slots_.emplace_back();
-  return static_cast<uint32_t>(slots_.size() - 1);
+  if (slot_count_ == slot_capacity_) {
+    if (slot_capacity_ >= kMaxSlots) throw std::length_error("more than 2^32-1 pending events");
+    reallocate_slots(std::min<std::size_t>(kMaxSlots, std::max<std::size_t>(64, 2 * slot_capacity_)));
+  }
+  return static_cast<uint32_t>(slot_count_++);
+}
+
+// Moves every callback to a larger slab, except the running one: it stays in
+// the old slab, which is kept until the callback returns (finish_running).
+void Simulator::reallocate_slots(std::size_t capacity) {
+  auto fresh = std::make_unique<Slot[]>(capacity);
+  for (std::size_t i = 0; i < slot_count_; ++i) {
+    Slot& from = slots_[i];
+    Slot& to = fresh[i];
+    to.seq = from.seq;
+    to.generation = from.generation;
+    to.kind = from.kind;
+    if (i != running_slot_) to.fn = std::move(from.fn);
+  }
+  // A second reallocation within the same callback finds the running slot
+  // already empty here, and frees this slab at once.
+  if (running_slot_ != kNoSlot && slots_[running_slot_].fn) retired_slots_ = std::move(slots_);
+  slots_ = std::move(fresh);
+  slot_capacity_ = capacity;
 }
 
 bool Simulator::cancel(EventId id) {
   const auto s = static_cast<uint32_t>(id.value & 0xffffffffu);
   const auto generation = static_cast<uint32_t>(id.value >> 32);
-  if (!id.valid() || s >= slots_.size()) return false;
+  if (!id.valid() || s >= slot_count_) return false;
   Slot& slot = slots_[s];
   if (slot.generation != generation || !slot.fn) return false;
   // The entry stays queued; run_loop frees the slot when it reaches the front.
@@ -123,9 +146,9 @@ void Simulator::run_events(int64_t limit_ticks) {
 // The hot loop. The running event's entry stays at the front of the queue
 // while its callback runs (top_consumed_), so that the first event the
 // callback schedules replaces it with one sift-down; otherwise it is popped
-// afterwards. The callback is moved out of its slot first and the slot freed,
-// so the callback may schedule (and the slab may grow) freely, and the next
-// event usually reuses the same, cache-hot slot.
+// afterwards. The callback runs in its slot, unmoved: its id is made stale
+// first (an event cannot cancel itself), the slot is freed after it returns,
+// and the next event's first schedule reuses it while it is still in cache.
 template <class Q, bool Profile>
 void Simulator::run_loop(Q& queue, int64_t limit_ticks) {
   while (!stop_requested_ && !queue.empty()) {
@@ -145,12 +168,13 @@ void Simulator::run_loop(Q& queue, int64_t limit_ticks) {
       release_slot(e.slot);
       continue;
     }
-    Callback fn(std::move(slot.fn));
     const KindId k = slot.kind;
-    free_slot(e.slot);
+    retire_id(slot);
+    running_slot_ = e.slot;
     // The next event's callback is a cache miss away in a large slab: start
-    // loading the candidates now, while this event runs.
-    for (const QueueEntry& next : queue.successors()) __builtin_prefetch(slots_.data() + next.slot);
+    // loading the candidates now, while this event runs. (Hints past the
+    // queue's end name slots that exist: the slab never shrinks.)
+    for (const QueueEntry& next : queue.successor_hints()) __builtin_prefetch(&slots_[next.slot]);
     now_ = Time::ps(e.time_ticks);
     --live_;
     KindRecord& record = kinds_[k];
@@ -161,13 +185,14 @@ void Simulator::run_loop(Q& queue, int64_t limit_ticks) {
     try {
       if constexpr (Profile) {
         const auto t0 = std::chrono::steady_clock::now();
-        fn();
+        slot.fn();
         const auto t1 = std::chrono::steady_clock::now();
         kinds_[k].wall_s += std::chrono::duration<double>(t1 - t0).count();
       } else {
-        fn();
+        slot.fn();  // `slot` is not touched again: the slab may have moved
       }
     } catch (...) {
+      finish_running();
       failed_kind_ = k;
       if (top_consumed_) {
         queue.pop();
@@ -175,6 +200,7 @@ void Simulator::run_loop(Q& queue, int64_t limit_ticks) {
       }
       throw;
     }
+    finish_running();
     if (top_consumed_) {
       queue.pop();
       top_consumed_ = false;

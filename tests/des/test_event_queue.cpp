@@ -37,6 +37,7 @@ class SortedVector {
  public:
   void push(const Entry& e) { items_.insert(std::upper_bound(items_.begin(), items_.end(), e, EntryLess{}), e); }
   const Entry& top() const { return items_.front(); }
+  const Entry& second() const { return items_[1]; }
   void pop() { items_.erase(items_.begin()); }
   void replace_top(const Entry& e) {
     pop();
@@ -109,6 +110,12 @@ TEMPLATE_TEST_CASE("event queue matches a sorted vector after every operation", 
       REQUIRE(q.size() == ref.size());
       REQUIRE(q.empty() == ref.empty());
       if (!ref.empty()) REQUIRE(q.top() == ref.top());
+      // What the simulator prefetches: the entry that pop() would bring to
+      // the front is always among the hints.
+      if (ref.size() >= 2) {
+        const auto hints = q.successor_hints();
+        REQUIRE(std::find(hints.begin(), hints.end(), ref.second()) != hints.end());
+      }
     }
     while (!ref.empty()) {
       REQUIRE(q.top() == ref.top());

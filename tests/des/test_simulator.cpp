@@ -3,6 +3,7 @@
 
 #include <array>
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -234,4 +235,78 @@ TEST_CASE("large captures fall back to the heap and still run", "[simulator]") {
   sim.at(Time::ms(1), k, [payload, &seen] { seen = payload[63]; });
   sim.run();
   CHECK(seen == 42);
+}
+
+namespace {
+
+// What the slab-growth tests' callbacks share: a few bytes of capture, so
+// that the callbacks themselves lie inline in the slab.
+struct GrowthContext {
+  Simulator& sim;
+  latsim::des::KindId kind;
+  int burst;
+  std::vector<std::string> ran;
+};
+
+using InlineCallback = latsim::des::InlineFunction<void(), 32>;
+
+}  // namespace
+
+// A callback runs in its slab slot. When it schedules so many events that the
+// slab is reallocated (once or several times) while it runs, its captures
+// must stay where they are until it returns, and every callback must still
+// run exactly once with its captures intact. The captures are shared_ptrs:
+// moved away, the running callback would see null; freed, ASan reports a
+// use-after-free.
+TEST_CASE("a callback that makes the slab grow keeps its captures until it returns", "[simulator]") {
+  for (const QueueKind qk : kQueueKinds) {
+    for (const int burst : {10, 100, 1000}) {  // no growth, one, several
+      std::weak_ptr<std::string> watch;
+      {
+        Simulator sim(qk);
+        GrowthContext ctx{sim, sim.kind("test.grow"), burst, {}};
+        auto text = std::make_shared<std::string>(40, 'a');
+        watch = text;
+        auto parent = [c = &ctx, text = std::move(text)] {
+          for (int i = 0; i < c->burst; ++i) {
+            auto child = [c, tag = std::make_shared<std::string>("child " + std::to_string(i))] {
+              c->ran.push_back(*tag);
+            };
+            static_assert(InlineCallback::stores_inline<decltype(child)>);
+            c->sim.at(Time::ms(2), c->kind, std::move(child));
+            REQUIRE(text != nullptr);  // read after every schedule, growth included
+            REQUIRE(*text == std::string(40, 'a'));
+          }
+          c->ran.push_back(*text);
+        };
+        static_assert(InlineCallback::stores_inline<decltype(parent)>);
+        sim.at(Time::ms(1), ctx.kind, std::move(parent));
+        sim.run();
+        REQUIRE(ctx.ran.size() == static_cast<std::size_t>(burst) + 1);
+        CHECK(ctx.ran.front() == std::string(40, 'a'));
+        for (int i = 0; i < burst; ++i) CHECK(ctx.ran[static_cast<std::size_t>(i) + 1] == "child " + std::to_string(i));
+        CHECK(watch.expired());  // the parent's capture was destroyed when it returned
+      }
+    }
+  }
+}
+
+TEST_CASE("a callback that makes the slab grow and then throws leaves the simulator usable", "[simulator]") {
+  Simulator sim;
+  GrowthContext ctx{sim, sim.kind("test.grow_throw"), 500, {}};
+  auto text = std::make_shared<std::string>("kept");
+  const std::weak_ptr<std::string> watch = text;
+  EventId last_child;
+  auto parent = [c = &ctx, text = std::move(text), &last_child] {
+    for (int i = 0; i < c->burst; ++i) last_child = c->sim.at(Time::ms(2), c->kind, [c] { c->ran.emplace_back(); });
+    throw std::runtime_error("failed after " + *text);
+  };
+  static_assert(InlineCallback::stores_inline<decltype(parent)>);
+  sim.at(Time::ms(1), ctx.kind, std::move(parent));
+  CHECK_THROWS_WITH(sim.run(), "failed after kept");
+  CHECK(watch.expired());  // the callback that threw is destroyed
+  CHECK(sim.pending() == 500);
+  CHECK(sim.cancel(last_child));
+  sim.run();
+  CHECK(ctx.ran.size() == 499);
 }

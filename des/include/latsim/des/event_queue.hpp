@@ -10,10 +10,11 @@
 //   replace_top(e)  pop() then push(e), fused where the structure allows it
 //   size(), empty()
 //
-// plus clear(), reserve(n) and successors(): the few entries that may become
-// top() next, which lets the simulator prefetch their callbacks. The simulator keeps entries tiny (time,
-// priority, slot) and the callbacks elsewhere, so each structure moves 16-byte
-// records only.
+// plus clear(), reserve(n) and successor_hints(): a fixed number of entries
+// among which is the one that becomes top() next, which lets the simulator
+// prefetch the next callback without a branch. The simulator keeps entries
+// tiny (time, priority, slot) and the callbacks elsewhere, so each structure
+// moves 16-byte records only.
 //
 // | implementation  | push      | pop       | top  | replace_top | memory       |
 // |-----------------|-----------|-----------|------|-------------|--------------|
@@ -29,6 +30,7 @@
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <new>
 #include <span>
 #include <utility>
@@ -46,7 +48,35 @@ concept EventQueue = requires(Q q, const Q cq, const Entry& e) {
   { cq.size() } -> std::convertible_to<std::size_t>;
   { cq.empty() } -> std::convertible_to<bool>;
   q.clear();
-  { cq.successors() } -> std::convertible_to<std::span<const Entry>>;
+  { cq.successor_hints() } -> std::convertible_to<std::span<const Entry, Q::kSuccessorHints>>;
+};
+
+/// Storage for an implicit heap of trivially copyable entries: `size()` live
+/// entries after `Pad` unused ones, always followed by at least `Room` more
+/// that are initialised (zero or left behind by a pop), so that reading a
+/// fixed number of children never leaves the allocation and needs no bounds
+/// check.
+template <class Entry, std::size_t Pad, std::size_t Room, class Alloc = std::allocator<Entry>>
+class HeapStorage {
+ public:
+  HeapStorage() { items_.resize(Pad + Room); }
+  Entry* data() { return items_.data() + Pad; }
+  const Entry* data() const { return items_.data() + Pad; }
+  std::size_t size() const { return size_; }
+  /// Appends a slot for one more entry and returns its index.
+  std::size_t grow() {
+    if (Pad + size_ + Room >= items_.size()) items_.resize(2 * items_.size());
+    return size_++;
+  }
+  void shrink() { --size_; }
+  void clear() { size_ = 0; }
+  void reserve(std::size_t n) {
+    if (Pad + n + Room > items_.size()) items_.resize(Pad + n + Room);
+  }
+
+ private:
+  std::vector<Entry, Alloc> items_;
+  std::size_t size_ = 0;
 };
 
 /// Implicit binary min-heap in a vector: the textbook structure, kept as the
@@ -54,59 +84,63 @@ concept EventQueue = requires(Q q, const Q cq, const Entry& e) {
 template <class Entry, class Less>
 class BinaryHeap {
  public:
+  /// successor_hints() names the root's two children.
+  static constexpr std::size_t kSuccessorHints = 2;
+
   explicit BinaryHeap(Less less = Less{}) : less_(std::move(less)) {}
 
   void push(const Entry& e) {
-    std::size_t i = items_.size();
-    items_.push_back(e);
+    std::size_t i = items_.grow();
+    Entry* a = items_.data();
     while (i > 0) {
       const std::size_t parent = (i - 1) / 2;
-      if (!less_(e, items_[parent])) break;
-      items_[i] = items_[parent];
+      if (!less_(e, a[parent])) break;
+      a[i] = a[parent];
       i = parent;
     }
-    items_[i] = e;
+    a[i] = e;
   }
 
-  const Entry& top() const { return items_.front(); }
+  const Entry& top() const { return items_.data()[0]; }
 
   void pop() {
-    const Entry last = items_.back();
-    items_.pop_back();
-    if (!items_.empty()) sift_down(last);
+    const Entry last = items_.data()[size() - 1];
+    items_.shrink();
+    if (!empty()) sift_down(last);
   }
 
   void replace_top(const Entry& e) { sift_down(e); }
 
-  /// The entries that can become top() after the next pop: the root's children.
-  std::span<const Entry> successors() const {
-    const std::size_t n = items_.size();
-    return n <= 1 ? std::span<const Entry>() : std::span<const Entry>(items_.data() + 1, n - 1 < 2 ? n - 1 : 2);
+  /// The root's children, one of which becomes top() after the next pop
+  /// (when size() >= 2); past size() they are leftovers, fit only for hints.
+  std::span<const Entry, kSuccessorHints> successor_hints() const {
+    return std::span<const Entry, kSuccessorHints>(items_.data() + 1, kSuccessorHints);
   }
 
   std::size_t size() const { return items_.size(); }
-  bool empty() const { return items_.empty(); }
+  bool empty() const { return items_.size() == 0; }
   void clear() { items_.clear(); }
   void reserve(std::size_t n) { items_.reserve(n); }
 
  private:
   // Places `e` at the root's hole and moves it down to where it belongs.
   void sift_down(const Entry& e) {
-    const std::size_t n = items_.size();
+    const std::size_t n = size();
+    Entry* a = items_.data();
     std::size_t i = 0;
     for (;;) {
       std::size_t child = 2 * i + 1;
       if (child >= n) break;
-      if (child + 1 < n) child += static_cast<std::size_t>(less_(items_[child + 1], items_[child]));
-      if (!less_(items_[child], e)) break;
-      items_[i] = items_[child];
+      if (child + 1 < n) child += static_cast<std::size_t>(less_(a[child + 1], a[child]));
+      if (!less_(a[child], e)) break;
+      a[i] = a[child];
       i = child;
     }
-    items_[i] = e;
+    a[i] = e;
   }
 
   Less less_;
-  std::vector<Entry> items_;
+  HeapStorage<Entry, 0, 1 + kSuccessorHints> items_;
 };
 
 /// Allocates with cache-line alignment, so heap families can sit in one line.
@@ -136,12 +170,14 @@ struct CacheLineAllocator {
 template <class Entry, class Less>
 class QuaternaryHeap {
  public:
-  explicit QuaternaryHeap(Less less = Less{}) : less_(std::move(less)) { items_.resize(kPad); }
+  /// successor_hints() names the root's four children.
+  static constexpr std::size_t kSuccessorHints = 4;
+
+  explicit QuaternaryHeap(Less less = Less{}) : less_(std::move(less)) {}
 
   void push(const Entry& e) {
-    std::size_t i = size();
-    items_.push_back(e);
-    Entry* a = items_.data() + kPad;
+    std::size_t i = items_.grow();
+    Entry* a = items_.data();
     while (i > 0) {
       const std::size_t parent = (i - 1) / 4;
       if (!less_(e, a[parent])) break;
@@ -151,28 +187,30 @@ class QuaternaryHeap {
     a[i] = e;
   }
 
-  const Entry& top() const { return items_[kPad]; }
+  const Entry& top() const { return items_.data()[0]; }
 
   void pop() {
-    const Entry last = items_.back();
-    items_.pop_back();
+    const Entry last = items_.data()[size() - 1];
+    items_.shrink();
     if (!empty()) sift_down(last);
   }
 
   void replace_top(const Entry& e) { sift_down(e); }
 
-  /// The entries that can become top() after the next pop: the root's children.
-  std::span<const Entry> successors() const {
-    const std::size_t n = size();
-    return n <= 1 ? std::span<const Entry>() : std::span<const Entry>(items_.data() + kPad + 1, n - 1 < 4 ? n - 1 : 4);
+  /// The root's children, one of which becomes top() after the next pop
+  /// (when size() >= 2); past size() they are leftovers, fit only for hints.
+  std::span<const Entry, kSuccessorHints> successor_hints() const {
+    return std::span<const Entry, kSuccessorHints>(items_.data() + 1, kSuccessorHints);
   }
 
-  std::size_t size() const { return items_.size() - kPad; }
-  bool empty() const { return items_.size() == kPad; }
-  void clear() { items_.resize(kPad); }
-  void reserve(std::size_t n) { items_.reserve(n + kPad); }
+  std::size_t size() const { return items_.size(); }
+  bool empty() const { return items_.size() == 0; }
+  void clear() { items_.clear(); }
+  void reserve(std::size_t n) { items_.reserve(n); }
 
  private:
+  // Node i lives at index i + kPad of the aligned array: the four children
+  // 4i+1..4i+4 then share one cache line.
   static constexpr std::size_t kPad = 3;
 
   // Moves the hole at the root down along the smallest children until `e`
@@ -180,7 +218,7 @@ class QuaternaryHeap {
   // measured no faster here: a PHOLD event lands mid-heap, not at a leaf.)
   void sift_down(const Entry& e) {
     const std::size_t n = size();
-    Entry* a = items_.data() + kPad;
+    Entry* a = items_.data();
     std::size_t i = 0;
     for (;;) {
       const std::size_t first = 4 * i + 1;
@@ -208,7 +246,7 @@ class QuaternaryHeap {
   }
 
   Less less_;
-  std::vector<Entry, CacheLineAllocator<Entry>> items_;
+  HeapStorage<Entry, kPad, 1 + kSuccessorHints, CacheLineAllocator<Entry>> items_;
 };
 
 }  // namespace latsim::des

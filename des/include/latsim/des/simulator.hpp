@@ -10,7 +10,8 @@
 // 32 bytes of captures, heap beyond that) recycled through a free list, so
 // scheduling allocates nothing in the common case; the pending-event set holds
 // 16-byte entries only. Cancelling empties the slot; the entry is skipped when
-// it reaches the front.
+// it reaches the front. A callback runs where it lies in the slab; should the
+// slab grow meanwhile, the old slab lives on until the callback returns.
 #pragma once
 
 #include <atomic>
@@ -18,6 +19,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -191,7 +193,7 @@ class Simulator {
   // Orders entries by (time, priority, sequence); the sequence lives in the
   // slot because ties are rare and the entries stay at 16 bytes.
   struct EntryLess {
-    const std::vector<Slot>* slots;
+    const std::unique_ptr<Slot[]>* slots;
     bool operator()(const QueueEntry& a, const QueueEntry& b) const {
       if (a.time_ticks != b.time_ticks) [[likely]] return a.time_ticks < b.time_ticks;
       return tie_less(a, b);
@@ -212,9 +214,10 @@ class Simulator {
   };
 
   // Free slots form a LIFO list threaded through their `seq` fields (unused
-  // while free): the slot freed by the running event is the one its
-  // successor gets, still in cache.
+  // while free): the slot freed by the running event is the one the next
+  // event's first schedule gets, still in cache.
   static constexpr uint32_t kNoSlot = UINT32_MAX;
+  static constexpr std::size_t kMaxSlots = UINT32_MAX;  // indices 0..2^32-2: kNoSlot is none
   uint32_t acquire_slot() {
     if (free_head_ != kNoSlot) [[likely]] {
       const uint32_t s = free_head_;
@@ -224,16 +227,32 @@ class Simulator {
     return grow_slots();
   }
   uint32_t grow_slots();
+  void reallocate_slots(std::size_t capacity);
   void release_slot(uint32_t s) {
     Slot& slot = slots_[s];
     slot.fn.reset();
-    free_slot(s);
+    retire_id(slot);
+    push_free(s);
   }
-  void free_slot(uint32_t s) {
-    Slot& slot = slots_[s];
-    if (++slot.generation == 0) slot.generation = 1;  // 0 would make EventId{0} valid
-    slot.seq = free_head_;
+  // Makes the slot's current EventId stale (0 would make EventId{0} valid).
+  static void retire_id(Slot& slot) {
+    if (++slot.generation == 0) slot.generation = 1;
+  }
+  void push_free(uint32_t s) {
+    slots_[s].seq = free_head_;
     free_head_ = s;
+  }
+  // After the running callback returned or threw: destroys it (in the slab
+  // it ran from) and frees its slot.
+  void finish_running() {
+    const uint32_t s = running_slot_;
+    running_slot_ = kNoSlot;
+    if (retired_slots_) [[unlikely]] {
+      retired_slots_.reset();  // the callback ran there; this slab's copy of the slot is empty
+    } else {
+      slots_[s].fn.reset();
+    }
+    push_free(s);
   }
 
   void enqueue(const QueueEntry& e) {
@@ -264,8 +283,16 @@ class Simulator {
 
   QueueKind queue_kind_;
   Time now_;
-  std::vector<Slot> slots_;
+  // The slab: slot_capacity_ slots, of which the first slot_count_ have been
+  // handed out at least once.
+  std::unique_ptr<Slot[]> slots_;
+  std::size_t slot_count_ = 0;
+  std::size_t slot_capacity_ = 0;
   uint32_t free_head_ = kNoSlot;
+  // The slot whose callback is running, kNoSlot between events; and the slab
+  // that callback lies in, if the slab was reallocated while it ran.
+  uint32_t running_slot_ = kNoSlot;
+  std::unique_ptr<Slot[]> retired_slots_;
   QuaternaryHeap<QueueEntry, EntryLess> quaternary_;
   BinaryHeap<QueueEntry, EntryLess> binary_;
   // True while the running event's entry is still at the front of the queue:
