@@ -133,8 +133,7 @@ void Display::retrace(int64_t field) {
 void Display::scan_line(int64_t field, int line) {
   // The line's instant with the pace of lines, so that a listener can tell
   // that the next line continues it (line_start_ is at now).
-  const des::TickRun photon = line_start_.run_from_here(line_step_, 1);
-  emit(field, line, line + 1, 0, timing_.params().width_px, photon);
+  emit_line(field, line);
   const int next = line + 1;
   if (next >= timing_.lines_per_field()) return;
   line_start_.step();
@@ -213,6 +212,32 @@ void Display::emit(int64_t field, int line, int line_end, int x_begin, int x_end
   const des::TickRun photons = persists ? persistence_.photons(field, written) : written;
   ScanoutSpan span(field, line, line_end, timing_.row_of(field, line), x_begin, x_end, pixel_stride_,
                    persists ? persistence_.lit(field, written_at).duration : des::Time::zero(), photons, written);
+  emit_span(span);
+}
+
+void Display::emit_line(int64_t field, int line) {
+  if (persistence_.configured()) {
+    emit(field, line, line + 1, 0, timing_.params().width_px, line_start_.run_from_here(line_step_, 1));
+    return;
+  }
+  // Every member is stored from registers or from state written an event
+  // ago, never copied from a TickRun built just now.
+  ScanoutSpan& span = line_span_;
+  span.field = field;
+  span.line = line;
+  span.line_end = line + 1;
+  span.row = timing_.row_of(field, line);
+  span.x_begin = 0;
+  span.x_end = timing_.params().width_px;
+  span.x_step = pixel_stride_;
+  span.photon_time = span.written_at = line_start_.time();
+  span.lit_duration = des::Time::zero();
+  span.photons = line_start_.run_from_here(line_step_, 1);
+  span.written = line_start_.run_from_here(line_step_, 1);
+  emit_span(span);
+}
+
+void Display::emit_span(ScanoutSpan& span) {
   for (int eye = 0; eye < eyes(); ++eye) {
     span.eye = eye;
     span.image_id = front_[static_cast<size_t>(eye)];

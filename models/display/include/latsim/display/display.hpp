@@ -156,6 +156,10 @@ class Display {
   void emit_open(int end_unit);
   // Hands a span of samples written at `written` to every listener, once per eye.
   void emit(int64_t field, int line, int line_end, int x_begin, int x_end, const des::TickRun& written);
+  // The same for the whole line at line_start_, built in place (line_span_).
+  void emit_line(int64_t field, int line);
+  // Hands `span` to every listener, once per eye.
+  void emit_span(ScanoutSpan& span);
   // An eye with written regions: the span one sample at a time, each split by the regions.
   void emit_samples_by_region(const ScanoutSpan& span);
   // The parts of [x_begin, x_end) of a one-sample span that show written regions, the rest the front image.
@@ -190,6 +194,10 @@ class Display {
   des::i128 unit_step_ = 0;  // ticks per sample, times the raster's D
   des::i128 line_step_ = 0;  // ticks per line, times the raster's D
   OpenLine open_;
+  // Line scanout's span, filled in place for each line: copying a just-built
+  // 80-byte TickRun costs a failed store-to-load forward on every 16-byte
+  // chunk, which was a fifth of a line-level run.
+  ScanoutSpan line_span_;
 };
 
 }  // namespace latsim::display
