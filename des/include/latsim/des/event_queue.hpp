@@ -51,98 +51,6 @@ concept EventQueue = requires(Q q, const Q cq, const Entry& e) {
   { cq.successor_hints() } -> std::convertible_to<std::span<const Entry, Q::kSuccessorHints>>;
 };
 
-/// Storage for an implicit heap of trivially copyable entries: `size()` live
-/// entries after `Pad` unused ones, always followed by at least `Room` more
-/// that are initialised (zero or left behind by a pop), so that reading a
-/// fixed number of children never leaves the allocation and needs no bounds
-/// check.
-template <class Entry, std::size_t Pad, std::size_t Room, class Alloc = std::allocator<Entry>>
-class HeapStorage {
- public:
-  HeapStorage() { items_.resize(Pad + Room); }
-  Entry* data() { return items_.data() + Pad; }
-  const Entry* data() const { return items_.data() + Pad; }
-  std::size_t size() const { return size_; }
-  /// Appends a slot for one more entry and returns its index.
-  std::size_t grow() {
-    if (Pad + size_ + Room >= items_.size()) items_.resize(2 * items_.size());
-    return size_++;
-  }
-  void shrink() { --size_; }
-  void clear() { size_ = 0; }
-  void reserve(std::size_t n) {
-    if (Pad + n + Room > items_.size()) items_.resize(Pad + n + Room);
-  }
-
- private:
-  std::vector<Entry, Alloc> items_;
-  std::size_t size_ = 0;
-};
-
-/// Implicit binary min-heap in a vector: the textbook structure, kept as the
-/// reference implementation and for comparison.
-template <class Entry, class Less>
-class BinaryHeap {
- public:
-  /// successor_hints() names the root's two children.
-  static constexpr std::size_t kSuccessorHints = 2;
-
-  explicit BinaryHeap(Less less = Less{}) : less_(std::move(less)) {}
-
-  void push(const Entry& e) {
-    std::size_t i = items_.grow();
-    Entry* a = items_.data();
-    while (i > 0) {
-      const std::size_t parent = (i - 1) / 2;
-      if (!less_(e, a[parent])) break;
-      a[i] = a[parent];
-      i = parent;
-    }
-    a[i] = e;
-  }
-
-  const Entry& top() const { return items_.data()[0]; }
-
-  void pop() {
-    const Entry last = items_.data()[size() - 1];
-    items_.shrink();
-    if (!empty()) sift_down(last);
-  }
-
-  void replace_top(const Entry& e) { sift_down(e); }
-
-  /// The root's children, one of which becomes top() after the next pop
-  /// (when size() >= 2); past size() they are leftovers, fit only for hints.
-  std::span<const Entry, kSuccessorHints> successor_hints() const {
-    return std::span<const Entry, kSuccessorHints>(items_.data() + 1, kSuccessorHints);
-  }
-
-  std::size_t size() const { return items_.size(); }
-  bool empty() const { return items_.size() == 0; }
-  void clear() { items_.clear(); }
-  void reserve(std::size_t n) { items_.reserve(n); }
-
- private:
-  // Places `e` at the root's hole and moves it down to where it belongs.
-  void sift_down(const Entry& e) {
-    const std::size_t n = size();
-    Entry* a = items_.data();
-    std::size_t i = 0;
-    for (;;) {
-      std::size_t child = 2 * i + 1;
-      if (child >= n) break;
-      if (child + 1 < n) child += static_cast<std::size_t>(less_(a[child + 1], a[child]));
-      if (!less_(a[child], e)) break;
-      a[i] = a[child];
-      i = child;
-    }
-    a[i] = e;
-  }
-
-  Less less_;
-  HeapStorage<Entry, 0, 1 + kSuccessorHints> items_;
-};
-
 /// Allocates with cache-line alignment, so heap families can sit in one line.
 template <class T>
 struct CacheLineAllocator {
@@ -159,27 +67,30 @@ struct CacheLineAllocator {
   }
 };
 
-/// Implicit 4-ary min-heap with a fused replace_top, the simulator's default.
-///
-/// The event loop pops the next event and usually schedules a new one from
-/// its callback; replace_top does both in a single sift-down instead of a
-/// sift-down plus a sift-up. Node i has children 4i+1..4i+4. Node i is stored
-/// at index i+3 of a cache-line-aligned array: with 16-byte entries the four
-/// children of every node then share one 64-byte line, so each level of a
-/// sift-down costs at most one cache miss.
-template <class Entry, class Less>
-class QuaternaryHeap {
- public:
-  /// successor_hints() names the root's four children.
-  static constexpr std::size_t kSuccessorHints = 4;
+/// Implicit `Arity`-ary min-heap of trivially copyable entries with a fused
+/// replace_top: the event loop pops the next event and usually schedules a
+/// new one from its callback, and replace_top does both in a single
+/// sift-down instead of a sift-down plus a sift-up. Node i has children
+/// Arity*i+1 .. Arity*i+Arity and is stored at index i + Pad of the array.
+/// Past the size() live entries the array always holds at least Arity + 1
+/// more, initialised (zero or left behind by a pop), so that the root's
+/// children can be read as successor hints without a bounds check.
+template <class Entry, class Less, std::size_t Arity, std::size_t Pad, class Alloc>
+class ImplicitHeap {
+  static_assert(Arity == 2 || Arity == 4, "a full family is selected by a tournament of 2 or 4");
 
-  explicit QuaternaryHeap(Less less = Less{}) : less_(std::move(less)) {}
+ public:
+  /// successor_hints() names the root's children.
+  static constexpr std::size_t kSuccessorHints = Arity;
+
+  explicit ImplicitHeap(Less less) : less_(std::move(less)) { items_.resize(Pad + kRoom); }
 
   void push(const Entry& e) {
-    std::size_t i = items_.grow();
-    Entry* a = items_.data();
+    if (Pad + size_ + kRoom >= items_.size()) items_.resize(2 * items_.size());
+    std::size_t i = size_++;
+    Entry* a = data();
     while (i > 0) {
-      const std::size_t parent = (i - 1) / 4;
+      const std::size_t parent = (i - 1) / Arity;
       if (!less_(e, a[parent])) break;
       a[i] = a[parent];
       i = parent;
@@ -187,12 +98,12 @@ class QuaternaryHeap {
     a[i] = e;
   }
 
-  const Entry& top() const { return items_.data()[0]; }
+  const Entry& top() const { return data()[0]; }
 
   void pop() {
-    const Entry last = items_.data()[size() - 1];
-    items_.shrink();
-    if (!empty()) sift_down(last);
+    const Entry last = data()[size_ - 1];
+    --size_;
+    if (size_ != 0) sift_down(last);
   }
 
   void replace_top(const Entry& e) { sift_down(e); }
@@ -200,37 +111,49 @@ class QuaternaryHeap {
   /// The root's children, one of which becomes top() after the next pop
   /// (when size() >= 2); past size() they are leftovers, fit only for hints.
   std::span<const Entry, kSuccessorHints> successor_hints() const {
-    return std::span<const Entry, kSuccessorHints>(items_.data() + 1, kSuccessorHints);
+    return std::span<const Entry, kSuccessorHints>(data() + 1, kSuccessorHints);
   }
 
-  std::size_t size() const { return items_.size(); }
-  bool empty() const { return items_.size() == 0; }
-  void clear() { items_.clear(); }
-  void reserve(std::size_t n) { items_.reserve(n); }
+  std::size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  void clear() { size_ = 0; }
+  void reserve(std::size_t n) {
+    if (Pad + n + kRoom > items_.size()) items_.resize(Pad + n + kRoom);
+  }
 
  private:
-  // Node i lives at index i + kPad of the aligned array: the four children
-  // 4i+1..4i+4 then share one cache line.
-  static constexpr std::size_t kPad = 3;
+  static constexpr std::size_t kRoom = Arity + 1;
+
+  Entry* data() { return items_.data() + Pad; }
+  const Entry* data() const { return items_.data() + Pad; }
+
+  // The smallest of a full family a[first .. first+Arity-1]. Index
+  // arithmetic instead of ?: keeps the compiler from turning the
+  // (unpredictable) outcomes into branches; with four, a small tournament
+  // keeps the comparisons independent.
+  std::size_t smallest_of_family(const Entry* a, std::size_t first) const {
+    const std::size_t l = first + static_cast<std::size_t>(less_(a[first + 1], a[first]));
+    if constexpr (Arity == 2) {
+      return l;
+    } else {
+      const std::size_t r = first + 2 + static_cast<std::size_t>(less_(a[first + 3], a[first + 2]));
+      const std::size_t take_r = 0 - static_cast<std::size_t>(less_(a[r], a[l]));
+      return l ^ ((l ^ r) & take_r);
+    }
+  }
 
   // Moves the hole at the root down along the smallest children until `e`
   // fits. (Floyd's bottom-up variant, which skips the comparison with `e`,
   // measured no faster here: a PHOLD event lands mid-heap, not at a leaf.)
   void sift_down(const Entry& e) {
-    const std::size_t n = size();
-    Entry* a = items_.data();
+    const std::size_t n = size_;
+    Entry* a = data();
     std::size_t i = 0;
     for (;;) {
-      const std::size_t first = 4 * i + 1;
+      const std::size_t first = Arity * i + 1;
       std::size_t best;
-      if (first + 3 < n) {
-        // Full family: a small tournament keeps the comparisons independent,
-        // and index arithmetic instead of ?: keeps the compiler from turning
-        // the (unpredictable) outcomes into branches.
-        const std::size_t l = first + static_cast<std::size_t>(less_(a[first + 1], a[first]));
-        const std::size_t r = first + 2 + static_cast<std::size_t>(less_(a[first + 3], a[first + 2]));
-        const std::size_t take_r = 0 - static_cast<std::size_t>(less_(a[r], a[l]));
-        best = l ^ ((l ^ r) & take_r);
+      if (first + Arity - 1 < n) {
+        best = smallest_of_family(a, first);
       } else if (first < n) {
         best = first;
         for (std::size_t c = first + 1; c < n; ++c)
@@ -246,7 +169,27 @@ class QuaternaryHeap {
   }
 
   Less less_;
-  HeapStorage<Entry, kPad, 1 + kSuccessorHints, CacheLineAllocator<Entry>> items_;
+  std::vector<Entry, Alloc> items_;
+  std::size_t size_ = 0;
+};
+
+/// Implicit binary min-heap: the textbook structure, kept as the reference
+/// implementation and for comparison.
+template <class Entry, class Less>
+class BinaryHeap : public ImplicitHeap<Entry, Less, 2, 0, std::allocator<Entry>> {
+ public:
+  explicit BinaryHeap(Less less = Less{}) : ImplicitHeap<Entry, Less, 2, 0, std::allocator<Entry>>(std::move(less)) {}
+};
+
+/// Implicit 4-ary min-heap, the simulator's default. Node i is stored at
+/// index i+3 of a cache-line-aligned array: with 16-byte entries the four
+/// children of every node then share one 64-byte line, so each level of a
+/// sift-down costs at most one cache miss.
+template <class Entry, class Less>
+class QuaternaryHeap : public ImplicitHeap<Entry, Less, 4, 3, CacheLineAllocator<Entry>> {
+ public:
+  explicit QuaternaryHeap(Less less = Less{})
+      : ImplicitHeap<Entry, Less, 4, 3, CacheLineAllocator<Entry>>(std::move(less)) {}
 };
 
 }  // namespace latsim::des
