@@ -24,7 +24,9 @@ void RunFeed::open(Open& o, const TickRun& run, std::initializer_list<RunTarget>
   o.run = run;
   const TickStepper end(run, run.count);  // where the next instant would lie
   o.end_base = end.ticks();
-  o.end_offset = end.remainder();
+  o.end_offset = Halves::of(end.remainder());
+  o.step = Halves::of(run.step);
+  o.den = Halves::of(run.den);
   o.whole = static_cast<int64_t>(run.step / run.den);
   o.fraction = run.step % run.den;
 }

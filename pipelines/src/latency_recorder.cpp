@@ -193,6 +193,10 @@ void LatencyRecorder::on_scanout(const display::ScanoutSpan& span) {
     pending_.push_back(Pending{img, samples_of(span, written_by_now, span.written.count - written_by_now)});
     return;
   }
+  if (!img.orientation_at_scanout) [[likely]] {
+    record_image_pose(img, span);
+    return;
+  }
   record_span(img, span);
 }
 
@@ -225,7 +229,7 @@ void LatencyRecorder::flush_pending() {
 
 void LatencyRecorder::record_span(const ImageRecord& img, const display::ScanoutSpan& span) {
   if (!img.orientation_at_scanout) {
-    record_uniform(img, span, std::nullopt);
+    record_image_pose(img, span);
     return;
   }
   // Address recalculation looks up the newest orientation as each pixel is
@@ -264,26 +268,42 @@ void LatencyRecorder::record_span(const ImageRecord& img, const display::Scanout
 
 void LatencyRecorder::record_uniform(const ImageRecord& img, const display::ScanoutSpan& span,
                                      const std::optional<tracker::PosePrediction>& newest) {
-  tracker::Pose drawn = img.eye_pose;
-  int64_t orientation_index = img.sample.index;
-  des::Time orientation_measured = img.sample.measured_at;
-  if (newest) {
-    drawn.orientation = eye_pose_of(newest->pose, span.eye, ipd_m_, stereo_).orientation;
-    orientation_index = newest->sample.index;
-    orientation_measured = newest->sample.measured_at;
-    if (predicting_ && span.eye == 0 && span.line == timing_.lines_per_field() / 2 && span.x_begin == 0)
-      add_prediction_error(*newest, true, false);
-  } else if (!img.orientation_at_scanout && img.warp == ImageRecord::Warp::rotation) [[unlikely]] {
-    // Time warp re-projected the image to a newer orientation (eye_pose has
-    // it); the position is the rendered one.
-    orientation_measured = img.orientation_measured_at;
+  if (!newest) {
+    record_image_pose(img, span);
+    return;
   }
+  const glm::dquat orientation = eye_pose_of(newest->pose, span.eye, ipd_m_, stereo_).orientation;
+  if (predicting_ && span.eye == 0 && span.line == timing_.lines_per_field() / 2 && span.x_begin == 0)
+    add_prediction_error(*newest, true, false);
+  const des::Time orientation_measured = newest->sample.measured_at;
   const des::Time position_measured = img.sample.measured_at;
-  const des::Time origin = std::min(orientation_measured, position_measured);
   record_spans(span, orientation_measured, position_measured);
   // The age of the shown image's pose as the field starts to light up.
-  if (span.line == 0 && span.x_begin == 0) record(image_age_, "image_age_ms", span.photon_time - origin);
-  if (!probes_.points_m.empty()) record_probes(span, drawn, orientation_index, span.image_id);
+  if (span.line == 0 && span.x_begin == 0)
+    record(image_age_, "image_age_ms", span.photon_time - std::min(orientation_measured, position_measured));
+  if (!probes_.points_m.empty())
+    record_probes(span, orientation, img.eye_pose.position_m, newest->sample.index, span.image_id, false);
+}
+
+void LatencyRecorder::record_image_pose(const ImageRecord& img, const display::ScanoutSpan& span) {
+  // Time warp re-projected the image to a newer orientation (eye_pose has
+  // it); the position is the rendered one.
+  const des::Time orientation_measured =
+      !img.orientation_at_scanout && img.warp == ImageRecord::Warp::rotation ? img.orientation_measured_at
+                                                                            : img.sample.measured_at;
+  const des::Time position_measured = img.sample.measured_at;
+  record_spans(span, orientation_measured, position_measured);
+  if (span.line == 0 && span.x_begin == 0) [[unlikely]]
+    record(image_age_, "image_age_ms", span.photon_time - std::min(orientation_measured, position_measured));
+  if (probes_.points_m.empty()) return;
+  // Most spans (one line each at line fidelity) show no probe: with the
+  // image's hits indexed by line, that takes two loads.
+  const ProbeCache& cache = probe_cache_[span.eye & 1];
+  if (cache.image_pose && cache.image_id == span.image_id && cache.field == span.field &&
+      !cache.first_hit.empty() && span.line >= 0 && span.line_end <= timing_.lines_per_field() &&
+      cache.first_hit[static_cast<size_t>(span.line)] == cache.first_hit[static_cast<size_t>(span.line_end)])
+    return;
+  record_probes(span, img.eye_pose.orientation, img.eye_pose.position_m, img.sample.index, span.image_id, true);
 }
 
 void LatencyRecorder::first_shown(const ImageRecord& img, const display::ScanoutSpan& span) {
@@ -405,23 +425,27 @@ void LatencyRecorder::record_carried(const tracker::TrackerSample& s, const trac
                              c.visible.ticks()});
 }
 
-void LatencyRecorder::record_probes(const display::ScanoutSpan& span, const tracker::Pose& drawn,
-                                    int64_t sample_index, int64_t image_id) {
+void LatencyRecorder::record_probes(const display::ScanoutSpan& span, const glm::dquat& orientation,
+                                    const glm::dvec3& position_m, int64_t sample_index, int64_t image_id,
+                                    bool image_pose) {
   ProbeCache& cache = probe_cache_[span.eye & 1];
   // Predicted per line (address recalculation), the drawn orientation may
-  // change from line to line even with the same sample.
-  if (cache.image_id != image_id || cache.field != span.field || cache.sample_index != sample_index ||
-      cache.orientation != drawn.orientation) {
+  // change from line to line even with the same sample; the image's own pose
+  // is the same for every span that shows the image.
+  const bool same = cache.image_id == image_id && cache.field == span.field && cache.image_pose == image_pose &&
+                    (image_pose || (cache.sample_index == sample_index && cache.orientation == orientation));
+  if (!same) {
     // Where each probe is drawn in this image: project with the drawn pose.
     cache.image_id = image_id;
     cache.field = span.field;
+    cache.image_pose = image_pose;
     cache.sample_index = sample_index;
-    cache.orientation = drawn.orientation;
+    cache.orientation = orientation;
     cache.hits.clear();
-    const glm::dquat inv = glm::conjugate(drawn.orientation);
+    const glm::dquat inv = glm::conjugate(orientation);
     const int w = timing_.params().width_px, h = timing_.params().height_px;
     for (size_t i = 0; i < probes_.points_m.size(); ++i) {
-      const glm::dvec3 d = inv * (probes_.points_m[i] - drawn.position_m);
+      const glm::dvec3 d = inv * (probes_.points_m[i] - position_m);
       if (d.z >= -1e-9) continue;  // behind the eye
       const double u = (d.x / -d.z) / tan_half_h_, v = (d.y / -d.z) / tan_half_v_;
       const double x = (u + 1.0) * 0.5 * w, y = (1.0 - v) * 0.5 * h;
@@ -460,7 +484,7 @@ void LatencyRecorder::record_probes(const display::ScanoutSpan& span, const trac
     const int xi = static_cast<int>(h->x_px);
     if (xi < span.x_begin || xi >= span.x_end) continue;
     const glm::dvec3 p = probes_.points_m[h->probe];
-    const glm::dvec3 drawn_head_dir = glm::conjugate(drawn.orientation) * glm::normalize(p - drawn.position_m);
+    const glm::dvec3 drawn_head_dir = glm::conjugate(orientation) * glm::normalize(p - position_m);
     // Judged at the middle of the pixel's lit interval on a display with persistence.
     des::Time t = timing_.pixel_time(span.field, h->line, xi);
     if (persistence_) t = persistence_->lit(span.field, t).middle();

@@ -34,6 +34,10 @@ Display::Display(des::Simulator& sim, RasterTiming timing, int eyes, ScanoutFide
   unit_pace_ = des::TickStepper(timing_.photon_run(0, 0, 0, pixel_stride_, 1));
   unit_step_ = static_cast<des::i128>(pixel_stride_) * timing_.ticks_per_slot_num();
   line_step_ = static_cast<des::i128>(ppl) * timing_.ticks_per_slot_num();
+  // What every line's span has in common (emit_line() writes the rest): all
+  // columns, no persistence, one sample at the pace of lines.
+  const des::TickRun line = line_pace_.run_from_here(line_step_, 1);
+  line_span_ = ScanoutSpan(0, 0, 1, 0, 0, timing_.params().width_px, pixel_stride_, des::Time::zero(), line, line);
 }
 
 void Display::present_now(int eye, int64_t image_id) {
@@ -220,20 +224,17 @@ void Display::emit_line(int64_t field, int line) {
     emit(field, line, line + 1, 0, timing_.params().width_px, line_start_.run_from_here(line_step_, 1));
     return;
   }
-  // Every member is stored from registers or from state written an event
-  // ago, never copied from a TickRun built just now.
+  // Only what changes from line to line is stored (the rest was set at
+  // construction), from registers or from state written an event ago, never
+  // copied from a TickRun built just now.
   ScanoutSpan& span = line_span_;
   span.field = field;
   span.line = line;
   span.line_end = line + 1;
   span.row = timing_.row_of(field, line);
-  span.x_begin = 0;
-  span.x_end = timing_.params().width_px;
-  span.x_step = pixel_stride_;
   span.photon_time = span.written_at = line_start_.time();
-  span.lit_duration = des::Time::zero();
-  span.photons = line_start_.run_from_here(line_step_, 1);
-  span.written = line_start_.run_from_here(line_step_, 1);
+  span.photons.base = span.written.base = line_start_.ticks();
+  span.photons.offset = span.written.offset = line_start_.remainder();
   emit_span(span);
 }
 

@@ -48,33 +48,50 @@ class RunFeed {
   void close_all();
 
  private:
+  // A 128-bit integer kept as two 64-bit halves. extend() runs on every line
+  // and reads what the previous line wrote; GCC loads a 128-bit member with
+  // one vector load and spills it to the stack to split it, and neither that
+  // load (of two 64-bit stores) nor the split (of a vector store) is forwarded
+  // from the store buffer: a stall on every line. Halves are read and written
+  // with 64-bit moves.
+  struct Halves {
+    uint64_t lo = 0;
+    uint64_t hi = 0;
+    static Halves of(i128 v) { return {static_cast<uint64_t>(v), static_cast<uint64_t>(static_cast<u128>(v) >> 64)}; }
+    i128 value() const { return static_cast<i128>((static_cast<u128>(hi) << 64) | lo); }
+    bool equals(i128 v) const {
+      return lo == static_cast<uint64_t>(v) && hi == static_cast<uint64_t>(static_cast<u128>(v) >> 64);
+    }
+  };
   struct Open {
     std::array<RunTarget, kMaxTargets> targets{};
     size_t n_targets = 0;
     TickRun run;  // count 0: nothing open
-    // Where the run's next instant lies (base and normalised offset), and
-    // the whole ticks and remainder of a step: continuing is a comparison.
+    // Where the run's next instant lies (base and normalised offset), the
+    // run's step and den, and the whole ticks and remainder of a step:
+    // continuing is a comparison.
     int64_t end_base = 0;
-    i128 end_offset = 0;
+    Halves end_offset, step, den;
     int64_t whole = 0;
     i128 fraction = 0;
   };
   // Extends the open run by `run` if it is the single instant one step past
   // it (offsets of both normalised to [0, den)) for the same targets.
   static bool extend(Open& o, const TickRun& run, std::initializer_list<RunTarget> targets) {
-    if (run.base != o.end_base || run.count != 1 || o.run.count == 0 || o.run.count >= kMaxGathered ||
-        run.offset != o.end_offset || run.step != o.run.step || run.den != o.run.den || targets.size() != o.n_targets)
-      return false;
+    if (run.base != o.end_base || run.count != 1 || o.run.count == 0 || o.run.count >= kMaxGathered) return false;
+    if (!o.end_offset.equals(run.offset) || !o.step.equals(run.step) || !o.den.equals(run.den)) return false;
+    if (targets.size() != o.n_targets) return false;
     const RunTarget* t = o.targets.data();
     for (const RunTarget& target : targets)
       if (!(target == *t++)) return false;
     ++o.run.count;
     o.end_base += o.whole;
-    o.end_offset += o.fraction;
-    if (o.end_offset >= o.run.den) {
-      o.end_offset -= o.run.den;
+    i128 end_offset = o.end_offset.value() + o.fraction;
+    if (end_offset >= o.den.value()) {
+      end_offset -= o.den.value();
       ++o.end_base;
     }
+    o.end_offset = Halves::of(end_offset);
     return true;
   }
   void add_anew(size_t slot, const TickRun& run, std::initializer_list<RunTarget> targets);

@@ -156,6 +156,7 @@ class LatencyRecorder : public display::ScanoutListener {
   struct ProbeCache {
     int64_t image_id = -2;
     int64_t field = -1;
+    bool image_pose = false;  ///< projected with the image's own pose (sample_index and orientation unused)
     int64_t sample_index = -1;
     glm::dquat orientation{1.0, 0.0, 0.0, 0.0};  ///< the drawn orientation the hits were projected with
     std::vector<ProbeHit> hits;                   ///< sorted by line
@@ -175,8 +176,13 @@ class LatencyRecorder : public display::ScanoutListener {
   /// Samples [begin, begin + n) of a span: lines at field fidelity, columns
   /// of one line at batched pixel fidelity.
   display::ScanoutSpan samples_of(const display::ScanoutSpan& span, uint64_t begin, uint64_t n) const;
-  void record_probes(const display::ScanoutSpan& span, const tracker::Pose& drawn, int64_t sample_index,
-                     int64_t image_id);
+  /// record_uniform() with the orientation the image was drawn (or warped) to.
+  void record_image_pose(const ImageRecord& img, const display::ScanoutSpan& span);
+  /// Registration error of the probes lit by a span, drawn with `orientation`
+  /// (from sample `sample_index`, or the image's own when image_pose) and the
+  /// image's position.
+  void record_probes(const display::ScanoutSpan& span, const glm::dquat& orientation, const glm::dvec3& position_m,
+                     int64_t sample_index, int64_t image_id, bool image_pose);
   using PhaseSplit = std::array<des::Distribution*, 4>;
   void add_split(PhaseSplit& split, const char* name, double value, des::Time at);
   void first_shown(const ImageRecord& img, const display::ScanoutSpan& span);
