@@ -112,6 +112,7 @@ void LatencyRecorder::record_spans(const display::ScanoutSpan& span, des::Time o
     figure(display_ms_, "display_ms");
   }
   // One open run per eye; each line of a field continues it at line fidelity.
+  hot_[static_cast<size_t>(span.eye & 1)].valid = false;  // until on_scanout() knows the targets again
   runs_.add(static_cast<size_t>(span.eye & 1), span.photons,
             {{mtp_, origin.ticks()},
              {rotation_, orientation_measured.ticks()},
@@ -133,6 +134,8 @@ void LatencyRecorder::log_run(const char* name, const display::ScanoutSpan& span
 void LatencyRecorder::prune(int64_t below_id) {
   while (!images_.empty() && images_.begin()->first < below_id) images_.erase(images_.begin());
   last_held_ = nullptr;
+  for (HotSpan& hot : hot_)
+    if (hot.image_id < below_id) hot.valid = false;
 }
 
 LatencyRecorder::Held* LatencyRecorder::held(int64_t id) {
@@ -167,6 +170,19 @@ void LatencyRecorder::close_field() {
 }
 
 void LatencyRecorder::on_scanout(const display::ScanoutSpan& span) {
+  // At line fidelity nearly every span is the next line of the image and
+  // field this eye's last span showed: it continues the open run, with the
+  // same targets, and usually lights no probe.
+  const size_t slot = static_cast<size_t>(span.eye & 1);
+  const HotSpan& hot = hot_[slot];
+  if (hot.valid && hot.image_id == span.image_id && hot.field == span.field && runs_.extend_run(slot, span.photons))
+      [[likely]] {
+    if (!probes_.points_m.empty() && !no_probe_on(span)) {
+      const ImageRecord& img = held(span.image_id)->record;  // prune() drops a pruned image's hot span
+      record_probes(span, img.eye_pose.orientation, img.eye_pose.position_m, img.sample.index, span.image_id, true);
+    }
+    return;
+  }
   Held* shown = held(span.image_id);
   if (shown == nullptr) {
     // One per sample, however the display groups samples into spans.
@@ -195,6 +211,9 @@ void LatencyRecorder::on_scanout(const display::ScanoutSpan& span) {
   }
   if (!img.orientation_at_scanout) [[likely]] {
     record_image_pose(img, span);
+    // The next span of this image and field continues this one's run (its
+    // ledger row and logged samples need the whole path).
+    if (!ledger_on_ && !sample_log_on_) hot_[slot] = HotSpan{span.image_id, span.field, true};
     return;
   }
   record_span(img, span);
@@ -295,15 +314,17 @@ void LatencyRecorder::record_image_pose(const ImageRecord& img, const display::S
   record_spans(span, orientation_measured, position_measured);
   if (span.line == 0 && span.x_begin == 0) [[unlikely]]
     record(image_age_, "image_age_ms", span.photon_time - std::min(orientation_measured, position_measured));
-  if (probes_.points_m.empty()) return;
+  if (probes_.points_m.empty() || no_probe_on(span)) return;
+  record_probes(span, img.eye_pose.orientation, img.eye_pose.position_m, img.sample.index, span.image_id, true);
+}
+
+bool LatencyRecorder::no_probe_on(const display::ScanoutSpan& span) const {
   // Most spans (one line each at line fidelity) show no probe: with the
   // image's hits indexed by line, that takes two loads.
   const ProbeCache& cache = probe_cache_[span.eye & 1];
-  if (cache.image_pose && cache.image_id == span.image_id && cache.field == span.field &&
-      !cache.first_hit.empty() && span.line >= 0 && span.line_end <= timing_.lines_per_field() &&
-      cache.first_hit[static_cast<size_t>(span.line)] == cache.first_hit[static_cast<size_t>(span.line_end)])
-    return;
-  record_probes(span, img.eye_pose.orientation, img.eye_pose.position_m, img.sample.index, span.image_id, true);
+  return cache.image_pose && cache.image_id == span.image_id && cache.field == span.field &&
+         !cache.first_hit.empty() && span.line >= 0 && span.line_end <= timing_.lines_per_field() &&
+         cache.first_hit[static_cast<size_t>(span.line)] == cache.first_hit[static_cast<size_t>(span.line_end)];
 }
 
 void LatencyRecorder::first_shown(const ImageRecord& img, const display::ScanoutSpan& span) {

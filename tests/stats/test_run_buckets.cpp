@@ -216,3 +216,32 @@ TEST_CASE("runs fed a line at a time are gathered into the figures of the lines 
   CHECK_THROWS_AS(feed.add(1, TickRun::single(1), {{&d, 0}, {&d, 0}, {&d, 0}, {&d, 0}, {&d, 0}}),
                   std::invalid_argument);
 }
+
+TEST_CASE("runs whose step and den need more than 64 bits are gathered into the values of the direct formula",
+          "[stats][tick_run]") {
+  using latsim::des::RunFeed;
+  using latsim::des::TickStepper;
+  // A den of 2^70 + 12345 and a step of 3 den + 2^66 + 7: the remainder
+  // carried from line to line has high bits, and carries into a whole tick
+  // every fourth line or so.
+  const i128 den = (i128{1} << 70) + 12345, step = 3 * den + (i128{1} << 66) + 7;
+  const TickRun field = TickRun::make(1'000, (i128{1} << 69) + 99, step, den, 3000);
+  RunFeed feed;
+  Distribution gathered, direct;
+  TickStepper line(field);
+  for (uint64_t i = 0; i < field.count; ++i, line.step()) {
+    // The origin moves at line 1700, which closes the gathered run.
+    const int64_t origin = i < 1700 ? 0 : 500;
+    feed.add(0, line.run_from_here(step, 1), {{&gathered, origin}});
+    // v_i = base + floor((offset + i step) / den), by one division of its own.
+    const i128 v = i128{1'000} + ((i128{1} << 69) + 99 + static_cast<i128>(i) * step) / den;
+    direct.add(Time::ps(static_cast<int64_t>(v) - origin));
+  }
+  feed.close_all();
+  check_same(gathered.histogram(), direct.histogram());
+  CHECK(gathered.count() == 3000);
+  CHECK(std::bit_cast<uint64_t>(gathered.stats().mean()) == std::bit_cast<uint64_t>(direct.stats().mean()));
+  CHECK(std::bit_cast<uint64_t>(gathered.stats().variance()) == std::bit_cast<uint64_t>(direct.stats().variance()));
+  CHECK(gathered.stats().min() == direct.stats().min());
+  CHECK(gathered.stats().max() == direct.stats().max());
+}

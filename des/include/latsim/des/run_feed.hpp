@@ -42,6 +42,10 @@ class RunFeed {
     if (slot < open_.size() && extend(open_[slot], run, targets)) [[likely]] return;
     add_anew(slot, run, targets);
   }
+  /// Extends the open run of `slot` by `run` if it is the single instant one
+  /// step past it, for the targets that run has (the caller knows they are
+  /// the same as add() would be given); false otherwise, with nothing done.
+  bool extend_run(size_t slot, const TickRun& run) { return slot < open_.size() && extend_pace(open_[slot], run); }
   /// Adds the open run that goes to d, if any.
   void close(const Distribution* d);
   /// Adds every open run.
@@ -78,12 +82,16 @@ class RunFeed {
   // Extends the open run by `run` if it is the single instant one step past
   // it (offsets of both normalised to [0, den)) for the same targets.
   static bool extend(Open& o, const TickRun& run, std::initializer_list<RunTarget> targets) {
-    if (run.base != o.end_base || run.count != 1 || o.run.count == 0 || o.run.count >= kMaxGathered) return false;
-    if (!o.end_offset.equals(run.offset) || !o.step.equals(run.step) || !o.den.equals(run.den)) return false;
     if (targets.size() != o.n_targets) return false;
     const RunTarget* t = o.targets.data();
     for (const RunTarget& target : targets)
       if (!(target == *t++)) return false;
+    return extend_pace(o, run);
+  }
+  // The same, whatever the targets.
+  static bool extend_pace(Open& o, const TickRun& run) {
+    if (run.base != o.end_base || run.count != 1 || o.run.count == 0 || o.run.count >= kMaxGathered) return false;
+    if (!o.end_offset.equals(run.offset) || !o.step.equals(run.step) || !o.den.equals(run.den)) return false;
     ++o.run.count;
     o.end_base += o.whole;
     i128 end_offset = o.end_offset.value() + o.fraction;

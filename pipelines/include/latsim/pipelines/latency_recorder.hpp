@@ -140,14 +140,20 @@ class LatencyRecorder : public display::ScanoutListener {
   /// The ledger: frames.csv (one row per image first shown), fields.csv (one
   /// row per run of spans of a field showing one image) and tracker.csv (one
   /// row per sample carried).
-  void enable_ledger(bool on) { ledger_on_ = on; }
+  void enable_ledger(bool on) {
+    ledger_on_ = on;
+    hot_[0].valid = hot_[1].valid = false;
+  }
   const std::vector<nlohmann::json>& ledger() const { return ledger_; }
   const std::vector<std::vector<int64_t>>& field_ledger() const { return field_rows_; }
   const std::vector<std::vector<int64_t>>& tracker_ledger() const { return tracker_rows_; }
   static const std::vector<std::string>& field_ledger_columns();
   static const std::vector<std::string>& tracker_ledger_columns();
   /// Raw (time, name, value) samples for samples.csv, when enabled.
-  void enable_sample_log(bool on) { sample_log_on_ = on; }
+  void enable_sample_log(bool on) {
+    sample_log_on_ = on;
+    hot_[0].valid = hot_[1].valid = false;
+  }
   struct LoggedSample { double t_ms; std::string name; double value; };
   const std::vector<LoggedSample>& sample_log() const { return sample_log_; }
 
@@ -176,6 +182,8 @@ class LatencyRecorder : public display::ScanoutListener {
   /// Samples [begin, begin + n) of a span: lines at field fidelity, columns
   /// of one line at batched pixel fidelity.
   display::ScanoutSpan samples_of(const display::ScanoutSpan& span, uint64_t begin, uint64_t n) const;
+  /// Whether the span's lines light no probe, known without projecting.
+  bool no_probe_on(const display::ScanoutSpan& span) const;
   /// record_uniform() with the orientation the image was drawn (or warped) to.
   void record_image_pose(const ImageRecord& img, const display::ScanoutSpan& span);
   /// Registration error of the probes lit by a span, drawn with `orientation`
@@ -221,6 +229,15 @@ class LatencyRecorder : public display::ScanoutListener {
   Held* last_held_ = nullptr;  // images_[last_id_], or nullptr
   std::vector<Pending> pending_;
   ProbeCache probe_cache_[2];
+  // Per eye: the image and field of the last span recorded with the image's
+  // own pose, while the run it was added to is the eye's open run with that
+  // span's targets (record_spans() clears it before any other add).
+  struct HotSpan {
+    int64_t image_id = -1;
+    int64_t field = INT64_MIN;
+    bool valid = false;
+  };
+  HotSpan hot_[2];
   double rad_per_px_ = 0.0;
   int64_t scan_field_ = INT64_MIN;  // field whose scanout start is cached
   des::Time scan_start_;
