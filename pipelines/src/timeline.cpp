@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cstdio>
 #include <stdexcept>
+#include <string_view>
 
 namespace latsim::pipelines {
 
@@ -43,8 +44,9 @@ void append_ms(std::string& out, des::Time t) { append_fixed6(out, t.ticks() / 1
 // Microseconds with picosecond resolution: exact.
 void append_us(std::string& out, des::Time t) { append_fixed6(out, t.ticks(), 1'000'000); }
 
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
+// s as a JSON string literal, appended to out.
+void append_json_string(std::string& out, std::string_view s) {
+  out += '"';
   for (const char c : s) {
     if (c == '"' || c == '\\') {
       out += '\\';
@@ -57,7 +59,7 @@ std::string json_string(const std::string& s) {
       out += c;
     }
   }
-  return out + "\"";
+  out += '"';
 }
 
 }  // namespace
@@ -88,12 +90,15 @@ void Timeline::Writer::write(const Entry& e) {
   b += '\n';
   csv_.write(b);
 
+  // Appended in place: no temporary strings (a few entries every field).
   b.clear();
   auto it = tids_.find(e.unit);
   if (it == tids_.end()) {
     it = tids_.emplace(e.unit, static_cast<int>(tids_.size()) + 1).first;
     b += first_event_ ? "\n" : ",\n";
-    b += "{\"args\":{\"name\":" + json_string(e.unit) + "},\"name\":\"thread_name\",\"ph\":\"M\",\"pid\":1,\"tid\":";
+    b += "{\"args\":{\"name\":";
+    append_json_string(b, e.unit);
+    b += "},\"name\":\"thread_name\",\"ph\":\"M\",\"pid\":1,\"tid\":";
     append_int(b, it->second);
     b += '}';
     first_event_ = false;
@@ -103,12 +108,20 @@ void Timeline::Writer::write(const Entry& e) {
   append_int(b, e.eye);
   b += ",\"frame\":";
   append_int(b, e.frame);
-  b += "},\"cat\":" + json_string(e.stage) + ",\"dur\":";
+  b += "},\"cat\":";
+  append_json_string(b, e.stage);
+  b += ",\"dur\":";
   append_us(b, e.end - e.start);
-  std::string name = e.stage + " ";
-  append_int(name, e.frame);
-  if (e.eye >= 0) name += e.eye == 0 ? " L" : " R";
-  b += ",\"name\":" + json_string(name) + ",\"ph\":\"X\",\"pid\":1,\"tid\":";
+  // The name, "<stage> <frame>[ L| R]", as a JSON string: the frame and
+  // the eye need no escaping.
+  b += ",\"name\":";
+  append_json_string(b, e.stage);
+  b.pop_back();
+  b += ' ';
+  append_int(b, e.frame);
+  if (e.eye >= 0) b += e.eye == 0 ? " L" : " R";
+  b += '"';
+  b += ",\"ph\":\"X\",\"pid\":1,\"tid\":";
   append_int(b, it->second);
   b += ",\"ts\":";
   append_us(b, e.start);
