@@ -55,7 +55,7 @@ void Distribution::add_run(const TickRunSums& sums, const RunBuckets& b) {
   check_kind(Kind::durations);
   histogram_.add_buckets(b);  // throws on a bucket shape of another histogram first
   kind_ = Kind::durations;
-  stats_.add_run(b.run, sums);
+  stats_.add_run(b.run, sums, b.last);
   add_kept_samples(b.run);
 }
 

@@ -167,6 +167,7 @@ void LogHistogram::bucket_run(const TickRun& run, RunBuckets& out) const {
   out.negative.clear();
   out.zero = 0;
   out.positive.clear();
+  out.last = run.count == 0 ? run.base : run.last();
   if (run.count == 0) return;
   walk_run(run, [this, &out](double x, uint64_t n) {
     const double magnitude = std::fabs(x);
@@ -187,7 +188,7 @@ void LogHistogram::add_buckets(const RunBuckets& b) {
   negative_.add_blocks(b.negative);
   zero_count_ += b.zero;
   positive_.add_blocks(b.positive);
-  seen_.note(static_cast<double>(b.run.first()), static_cast<double>(b.run.last()), b.run.count);
+  seen_.note(static_cast<double>(b.run.first()), static_cast<double>(b.last), b.run.count);
 }
 
 void LogHistogram::add_arithmetic_run(double first, double step, uint64_t n) {

@@ -25,10 +25,12 @@ void RunFeed::open(Open& o, const TickRun& run, std::initializer_list<RunTarget>
   const TickStepper end(run, run.count);  // where the next instant would lie
   o.end_base = end.ticks();
   o.end_offset = Halves::of(end.remainder());
-  o.step = Halves::of(run.step);
-  o.den = Halves::of(run.den);
-  o.whole = static_cast<int64_t>(run.step / run.den);
-  o.fraction = run.step % run.den;
+  if (!o.step.equals(run.step) || !o.den.equals(run.den)) {  // the same pace as last time: no division
+    o.whole = static_cast<int64_t>(run.step / run.den);
+    o.fraction = run.step % run.den;
+    o.step = Halves::of(run.step);
+    o.den = Halves::of(run.den);
+  }
 }
 
 void RunFeed::close(Open& o) {

@@ -92,7 +92,7 @@ void RunningStats::add_run(const TickRun& run) {
   }
 }
 
-void RunningStats::add_run(const TickRun& run, const TickRunSums& s) {
+void RunningStats::add_run(const TickRun& run, const TickRunSums& s, int64_t last) {
   if (run.count == 0) return;
   // v_i = base + w_i: sum = n base + sum w, sum of squares = n base^2 + 2 base sum w + sum w^2.
   const uint64_t n = run.count, b = magnitude_of(run.base);
@@ -102,7 +102,7 @@ void RunningStats::add_run(const TickRun& run, const TickRunSums& s) {
   sum_sq_.add(U256::product(static_cast<u128>(b) * b, n), 0, false);
   sum_sq_.add(U256::product(static_cast<u128>(b) * 2, s.sum), 0, negative);
   sum_sq_.add(s.sum_sq, 0, false);
-  seen_.note(static_cast<double>(run.base), static_cast<double>(run.last()), n);
+  seen_.note(static_cast<double>(run.base), static_cast<double>(last), n);
 }
 
 void RunningStats::add_arithmetic_run(double first, double step, uint64_t n) {

@@ -86,7 +86,9 @@ class RunningStats {
   void add_run(const TickRun& run);
   /// The same with the run's sums already at hand (tick_run_sums(run), e.g.
   /// from a TickRunSumsCache; run.count <= 2^20).
-  void add_run(const TickRun& run, const TickRunSums& sums);
+  void add_run(const TickRun& run, const TickRunSums& sums) { add_run(run, sums, run.last()); }
+  /// The same with the run's last value at hand too (run.last(): a division).
+  void add_run(const TickRun& run, const TickRunSums& sums, int64_t last);
   /// Adds the n exact values first + i * step (i in [0, n)) in closed form;
   /// min and max are the end values rounded to double. n is at most 2^32.
   void add_arithmetic_run(double first, double step, uint64_t n);
@@ -138,6 +140,7 @@ struct RunBuckets {
     uint64_t count = 0;
   };
   TickRun run;
+  int64_t last = 0;        // run.last(), worked out once
   int32_t per_binade = 0;  // the shape of the histograms the blocks are for
   double min_positive = 0.0;
   std::vector<Block> negative;  // ascending values: descending buckets
