@@ -221,9 +221,9 @@ TEST_CASE("runs whose step and den need more than 64 bits are gathered into the 
           "[stats][tick_run]") {
   using latsim::des::RunFeed;
   using latsim::des::TickStepper;
-  // A den of 2^70 + 12345 and a step of 3 den + 2^66 + 7: the remainder
-  // carried from line to line has high bits, and carries into a whole tick
-  // every fourth line or so.
+  // A den of 2^70 + 12345 and a step of 3 den + 2^66 + 7: three whole ticks
+  // a line, and a remainder with high bits that carries into a fourth tick
+  // about every sixteenth line (2^66 / 2^70).
   const i128 den = (i128{1} << 70) + 12345, step = 3 * den + (i128{1} << 66) + 7;
   const TickRun field = TickRun::make(1'000, (i128{1} << 69) + 99, step, den, 3000);
   RunFeed feed;
