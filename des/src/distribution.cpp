@@ -50,12 +50,12 @@ void Distribution::add_run(const TickRun& run, const TickRunSums& sums) {
   add_run_samples(run);
 }
 
-void Distribution::add_run(const TickRunSums& sums, const RunBuckets& b) {
+void Distribution::add_run(const TickRunSums& sums, const RunBuckets& b, const TickRunMoments& moments) {
   if (b.run.count == 0) return;
   check_kind(Kind::durations);
   histogram_.add_buckets(b);  // throws on a bucket shape of another histogram first
   kind_ = Kind::durations;
-  stats_.add_run(b.run, sums, b.last);
+  stats_.add_run(b.run, sums, b.last, moments);
   add_kept_samples(b.run);
 }
 

@@ -122,8 +122,15 @@ void LogHistogram::add(double x, uint64_t weight) {
 template <class OnBlock>
 void LogHistogram::walk_run(const TickRun& run, OnBlock&& on_block) const {
   constexpr double kExact = 9007199254740992.0;  // 2^53: beyond it, ticks round as doubles
-  if (std::fabs(static_cast<double>(run.first())) >= kExact || std::fabs(static_cast<double>(run.last())) >= kExact) {
+  const int64_t last = run.last();
+  if (std::fabs(static_cast<double>(run.first())) >= kExact || std::fabs(static_cast<double>(last)) >= kExact) {
     for (uint64_t i = 0; i < run.count; ++i) on_block(static_cast<double>(run.at(i)), 1);
+    return;
+  }
+  // A run within one bucket (the pixels of a line, most often): one block,
+  // with no walk at all.
+  if (const auto first = static_cast<double>(run.first()); static_cast<double>(last) < next_bucket_start(first)) {
+    on_block(first, run.count);
     return;
   }
   // Values never decrease: each bucket holds a contiguous block of indices,
@@ -160,23 +167,39 @@ void LogHistogram::add_run(const TickRun& run) {
   seen_.note(static_cast<double>(run.first()), static_cast<double>(run.last()), run.count);
 }
 
-void LogHistogram::bucket_run(const TickRun& run, RunBuckets& out) const {
+void LogHistogram::start_buckets(const TickRun& run, int64_t last, RunBuckets& out) const {
   out.run = run;
   out.per_binade = per_binade_;
   out.min_positive = min_positive_;
   out.negative.clear();
   out.zero = 0;
   out.positive.clear();
-  out.last = run.count == 0 ? run.base : run.last();
+  out.last = last;
+}
+
+void LogHistogram::add_block(double x, uint64_t n, RunBuckets& out) const {
+  const double magnitude = std::fabs(x);
+  if (magnitude < min_positive_) {
+    out.zero += n;
+  } else {
+    (x > 0.0 ? out.positive : out.negative).push_back({bucket_index(magnitude), n});
+  }
+}
+
+void LogHistogram::bucket_run(const TickRun& run, RunBuckets& out) const {
+  start_buckets(run, run.count == 0 ? run.base : run.last(), out);
   if (run.count == 0) return;
-  walk_run(run, [this, &out](double x, uint64_t n) {
-    const double magnitude = std::fabs(x);
-    if (magnitude < min_positive_) {
-      out.zero += n;
-    } else {
-      (x > 0.0 ? out.positive : out.negative).push_back({bucket_index(magnitude), n});
-    }
-  });
+  walk_run(run, [this, &out](double x, uint64_t n) { add_block(x, n, out); });
+}
+
+bool LogHistogram::bucket_if_one(const TickRun& run, int64_t last, RunBuckets& out) const {
+  constexpr double kExact = 9007199254740992.0;  // 2^53, as in walk_run
+  const auto first = static_cast<double>(run.first()), end = static_cast<double>(last);
+  if (run.count == 0 || !(std::fabs(first) < kExact && std::fabs(end) < kExact && end < next_bucket_start(first)))
+    return false;
+  start_buckets(run, last, out);
+  add_block(first, run.count, out);
+  return true;
 }
 
 void LogHistogram::add_buckets(const RunBuckets& b) {

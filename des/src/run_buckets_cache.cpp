@@ -3,6 +3,8 @@
 namespace latsim::des {
 
 const RunBuckets& RunBucketsCache::buckets(const LogHistogram& h, const TickRun& run) {
+  // A run within one bucket costs less to work out than to look up.
+  if (run.count > 0 && h.bucket_if_one(run, run.last(), one_)) return one_;
   const auto key = (static_cast<uint64_t>(run.base) ^ static_cast<uint64_t>(run.offset)) * 0x9E3779B97F4A7C15ull ^
                    run.count;
   RunBuckets& e = table_[(key >> 40) % kSize];

@@ -42,6 +42,8 @@ void RunFeed::close(Open& o) {
   const RunBuckets* last = nullptr;
   int64_t last_origin = 0;
   const LogHistogram* last_shape = nullptr;
+  const TickRunSums* sums = nullptr;
+  TickRunMoments moments;
   for (size_t i = 0; i < o.n_targets; ++i) {
     const RunTarget& t = o.targets[i];
     if (o.run.count == 1) {
@@ -52,10 +54,12 @@ void RunFeed::close(Open& o) {
     if (last == nullptr || t.origin != last_origin || last_shape->buckets_per_binade() != shape.buckets_per_binade() ||
         last_shape->min_positive() != shape.min_positive()) {
       last = &buckets_.buckets(shape, o.run.shifted(-t.origin));
+      if (sums == nullptr) sums = &sums_.sums(last->run);  // the same for every origin
+      if (last_shape == nullptr || t.origin != last_origin) moments = tick_run_moments(last->run, *sums);
       last_origin = t.origin;
       last_shape = &shape;
     }
-    t.d->add_run(sums_.sums(last->run), *last);
+    t.d->add_run(*sums, *last, moments);
   }
   o.run.count = 0;
 }

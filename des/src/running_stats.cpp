@@ -92,8 +92,13 @@ void RunningStats::add_run(const TickRun& run) {
   }
 }
 
-void RunningStats::add_run(const TickRun& run, const TickRunSums& s, int64_t last) {
+void RunningStats::add_run(const TickRun& run, const TickRunSums& s, int64_t last, const TickRunMoments& moments) {
   if (run.count == 0) return;
+  if (moments.fits) {
+    add_integer_sums(moments.sum, moments.sum_sq);
+    seen_.note(static_cast<double>(run.base), static_cast<double>(last), run.count);
+    return;
+  }
   // v_i = base + w_i: sum = n base + sum w, sum of squares = n base^2 + 2 base sum w + sum w^2.
   const uint64_t n = run.count, b = magnitude_of(run.base);
   const bool negative = run.base < 0;

@@ -106,11 +106,11 @@ TickRun TickRun::slice(uint64_t begin, uint64_t n) const {
 }
 
 TickStepper::TickStepper(const TickRun& run)
-    : ticks_(run.base),
-      whole_(to_ticks(run.step / run.den)),
-      fraction_(run.step % run.den),
-      remainder_(run.offset),
-      den_(run.den) {}
+    : ticks_(run.base), remainder_(run.offset), den_(run.den) {
+  const i128 whole = quotient(run.step, run.den);
+  whole_ = to_ticks(whole);
+  fraction_ = run.step - whole * run.den;
+}
 
 TickStepper::TickStepper(const TickRun& run, uint64_t i) : TickStepper(run) {
   const i128 position = offset_at(run, i);
@@ -146,6 +146,30 @@ TickRunSums tick_run_sums(const TickRun& run) {
                    .plus(U256::product(static_cast<u128>(2 * q), static_cast<u128>(fs.g)))
                    .plus(U256::of(static_cast<u128>(fs.h)));
   return out;
+}
+
+TickRunMoments tick_run_moments(const TickRun& run, const TickRunSums& s) {
+  TickRunMoments m;
+  if (run.count == 0) return {true, 0, 0};
+  if (!(s.sum_sq.w[2] == 0 && s.sum_sq.w[3] == 0) || (s.sum >> 126) != 0) return m;
+  const u128 n = run.count;
+  const bool negative = run.base < 0;
+  const u128 b = negative ? u128{0} - static_cast<u128>(static_cast<i128>(run.base)) : static_cast<u128>(run.base);
+  const u128 sum_w_sq = static_cast<u128>(s.sum_sq.w[1]) << 64 | s.sum_sq.w[0];
+  // |n base| < 2^84 and sum w < 2^126: the sum cannot overflow.
+  m.sum = (negative ? -static_cast<i128>(n * b) : static_cast<i128>(n * b)) + static_cast<i128>(s.sum);
+  // b^2 < 2^126 (b <= 2^63); the rest is checked.
+  u128 n_b2 = 0, cross = 0, squares = 0;
+  if (__builtin_mul_overflow(b * b, n, &n_b2) || __builtin_mul_overflow(2 * b, s.sum, &cross) ||
+      __builtin_add_overflow(n_b2, sum_w_sq, &squares))
+    return m;
+  if (negative) {
+    m.sum_sq = squares - cross;  // the sum of (base + w_i)^2 >= 0, so no wrap
+  } else if (__builtin_add_overflow(squares, cross, &m.sum_sq)) {
+    return m;
+  }
+  m.fits = true;
+  return m;
 }
 
 }  // namespace latsim::des

@@ -113,10 +113,15 @@ StreamedFile::StreamedFile(fs::path staged, fs::path shown_as)
     : staged_(std::move(staged)), shown_as_(std::move(shown_as)) {
   out_ = std::fopen(staged_.c_str(), "wb");
   if (out_ == nullptr) throw WriteError(shown_as_, errno);
+  buffer_ = std::make_unique_for_overwrite<char[]>(kBufferBytes);
+  std::setvbuf(out_, buffer_.get(), _IOFBF, kBufferBytes);  // before any output, as setvbuf requires
 }
 
 StreamedFile::StreamedFile(StreamedFile&& o) noexcept
-    : staged_(std::move(o.staged_)), shown_as_(std::move(o.shown_as_)), out_(std::exchange(o.out_, nullptr)) {}
+    : staged_(std::move(o.staged_)),
+      shown_as_(std::move(o.shown_as_)),
+      out_(std::exchange(o.out_, nullptr)),
+      buffer_(std::move(o.buffer_)) {}
 
 StreamedFile& StreamedFile::operator=(StreamedFile&& o) noexcept {
   if (this != &o) {
@@ -124,6 +129,7 @@ StreamedFile& StreamedFile::operator=(StreamedFile&& o) noexcept {
     staged_ = std::move(o.staged_);
     shown_as_ = std::move(o.shown_as_);
     out_ = std::exchange(o.out_, nullptr);
+    buffer_ = std::move(o.buffer_);  // after discard() closed the stream that used the old one
   }
   return *this;
 }

@@ -276,3 +276,48 @@ TEST_CASE("durations are kept in picoseconds and reported in milliseconds", "[st
   CHECK(empty.holds_durations());
   CHECK(empty.count() == 3);
 }
+
+TEST_CASE("a run's moments are 128-bit integers while they fit, and the wide sums take them past that",
+          "[stats][tick_run]") {
+  // Second method: the sums of v_i and v_i^2 from the values themselves, in
+  // 256 bits.
+  const auto direct = [](const TickRun& run, i128& sum, U256& sum_sq) {
+    sum = 0;
+    sum_sq = U256{};
+    for (uint64_t i = 0; i < run.count; ++i) {
+      const int64_t v = run.at(i);
+      sum += v;
+      const auto m = static_cast<latsim::des::u128>(v < 0 ? -static_cast<i128>(v) : static_cast<i128>(v));
+      sum_sq = sum_sq.plus(U256::product(m, m));
+    }
+  };
+  RandomStream rng(15, "stats.run_moments");
+  for (int trial = 0; trial < 200; ++trial) {
+    // |base| <= 2e12 and n <= 3000: n base^2 <= 1.2e28, far below 2^127; the
+    // other terms are smaller still, so the moments must fit.
+    const TickRun run = random_run(rng, trial % 3 == 0);
+    const latsim::des::TickRunMoments m = latsim::des::tick_run_moments(run, tick_run_sums(run));
+    i128 sum = 0;
+    U256 sum_sq;
+    direct(run, sum, sum_sq);
+    INFO("trial " << trial);
+    REQUIRE(m.fits);
+    CHECK(m.sum == sum);
+    CHECK(static_cast<uint64_t>(m.sum_sq) == sum_sq.w[0]);
+    CHECK(static_cast<uint64_t>(m.sum_sq >> 64) == sum_sq.w[1]);
+    CHECK((sum_sq.w[2] | sum_sq.w[3]) == 0);
+  }
+  // Values near +-2^62: a thousand squares pass 2^128, so the run goes to the
+  // wide sums, and still equals its values added one by one.
+  for (const int64_t base : {int64_t{1} << 62, -(int64_t{1} << 62) - 5'000'000}) {
+    const TickRun run = TickRun::make(base, 7, 3'000'001, 1'000, 1'000);
+    CHECK_FALSE(latsim::des::tick_run_moments(run, tick_run_sums(run)).fits);
+    RunningStats batch, loop;
+    batch.add_run(run);
+    batch.add_run(run.slice(0, 10));  // a short one that fits, after the wide one
+    for (int pass = 0; pass < 2; ++pass)
+      for (uint64_t i = 0; i < (pass == 0 ? run.count : 10); ++i) loop.add_integer(run.at(i));
+    INFO("base " << base);
+    check_same_bits(batch, loop);
+  }
+}

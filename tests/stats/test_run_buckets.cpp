@@ -57,6 +57,20 @@ void check_run(const LogHistogram& shape, const TickRun& run) {
   LogHistogram blocked(shape.relative_error(), shape.min_positive());
   blocked.add_buckets(b);
   check_same(blocked, reference);
+  // The shortcut for a run within one bucket takes exactly the runs whose
+  // values the reference put into a single bucket, as long as they are below
+  // 2^53 (beyond, ticks round as doubles and the walk takes them).
+  RunBuckets one;
+  const bool single = shape.bucket_if_one(run, run.last(), one);
+  const double exact = std::ldexp(1.0, 53);
+  const bool in_range = std::fabs(static_cast<double>(run.first())) < exact &&
+                        std::fabs(static_cast<double>(run.last())) < exact;
+  CHECK(single == (in_range && reference.buckets().size() == 1));
+  if (single) {
+    LogHistogram shortcut(shape.relative_error(), shape.min_positive());
+    shortcut.add_buckets(one);
+    check_same(shortcut, reference);
+  }
 }
 
 // The first integer in the bucket of magnitude x (its lower bound rounded up),

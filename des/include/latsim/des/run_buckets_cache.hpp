@@ -1,8 +1,8 @@
 // Remembering how recent tick runs fall into histogram buckets.
 #pragma once
 
-#include <array>
 #include <cstddef>
+#include <vector>
 
 #include "latsim/des/stats.hpp"
 #include "latsim/des/tick_run.hpp"
@@ -25,8 +25,12 @@ class RunBucketsCache {
   const RunBuckets& buckets(const LogHistogram& h, const TickRun& run);
 
  private:
-  static constexpr size_t kSize = 64;
-  std::array<RunBuckets, kSize> table_;  // per_binade 0: an empty slot
+  // Room for the lines of a few fields: at pixel level every line is a run,
+  // and a field's display delays recur only fields later (60 Hz on the
+  // picosecond grid repeats its phase every third field: 1,440 line runs).
+  static constexpr size_t kSize = 4096;
+  std::vector<RunBuckets> table_ = std::vector<RunBuckets>(kSize);  // per_binade 0: an empty slot
+  RunBuckets one_;  // a run within one bucket, worked out without the table
 };
 
 }  // namespace latsim::des

@@ -68,19 +68,7 @@ class RunningStats {
     seen_.note(x, x, 1);
     // Integers go to 128-bit sums first (a multiply and two adds); the wide
     // sums take them over only when those would overflow, and when read.
-    const u128 square = static_cast<u128>(static_cast<__int128>(v) * v);
-    u128 sum_sq = 0;
-    __int128 sum = 0;
-    const bool square_overflows = __builtin_add_overflow(int_sum_sq_, square, &sum_sq);
-    const bool sum_overflows = __builtin_add_overflow(int_sum_, static_cast<__int128>(v), &sum);
-    if (square_overflows || sum_overflows) [[unlikely]] {
-      spill_integers();
-      int_sum_sq_ = square;
-      int_sum_ = v;
-    } else {
-      int_sum_sq_ = sum_sq;
-      int_sum_ = sum;
-    }
+    add_integer_sums(v, static_cast<u128>(static_cast<__int128>(v) * v));
   }
   /// Adds every value of a tick run, in closed form.
   void add_run(const TickRun& run);
@@ -88,7 +76,11 @@ class RunningStats {
   /// from a TickRunSumsCache; run.count <= 2^20).
   void add_run(const TickRun& run, const TickRunSums& sums) { add_run(run, sums, run.last()); }
   /// The same with the run's last value at hand too (run.last(): a division).
-  void add_run(const TickRun& run, const TickRunSums& sums, int64_t last);
+  void add_run(const TickRun& run, const TickRunSums& sums, int64_t last) {
+    add_run(run, sums, last, tick_run_moments(run, sums));
+  }
+  /// The same with its moments at hand too (tick_run_moments(run, sums)).
+  void add_run(const TickRun& run, const TickRunSums& sums, int64_t last, const TickRunMoments& moments);
   /// Adds the n exact values first + i * step (i in [0, n)) in closed form;
   /// min and max are the end values rounded to double. n is at most 2^32.
   void add_arithmetic_run(double first, double step, uint64_t n);
@@ -111,6 +103,21 @@ class RunningStats {
   using Sum = FixedPointSum<-1074, 72>;
   using SumOfSquares = FixedPointSum<-2148, 138>;
 
+  // Adds integer sums of values and of their squares to the 128-bit sums.
+  void add_integer_sums(__int128 sum_v, u128 sum_v_sq) {
+    u128 sum_sq = 0;
+    __int128 sum = 0;
+    const bool square_overflows = __builtin_add_overflow(int_sum_sq_, sum_v_sq, &sum_sq);
+    const bool sum_overflows = __builtin_add_overflow(int_sum_, sum_v, &sum);
+    if (square_overflows || sum_overflows) [[unlikely]] {
+      spill_integers();
+      int_sum_sq_ = sum_v_sq;
+      int_sum_ = sum_v;
+    } else {
+      int_sum_sq_ = sum_sq;
+      int_sum_ = sum;
+    }
+  }
   void add_square(u128 magnitude_squared, int exponent) {
     sum_sq_.add(static_cast<uint64_t>(magnitude_squared), exponent, false);
     if (const auto high = static_cast<uint64_t>(magnitude_squared >> 64); high != 0)
@@ -179,6 +186,10 @@ class LogHistogram {
   /// Works out into `out` how the run's values fall into this histogram's
   /// buckets (the walk of add_run), reusing out's memory.
   void bucket_run(const TickRun& run, RunBuckets& out) const;
+  /// The same when every value of the run falls into one bucket (`last` is
+  /// run.last()): no walk, no division; false, with `out` untouched, when
+  /// the run spans more than one bucket or reaches 2^53 (the walk's domain).
+  bool bucket_if_one(const TickRun& run, int64_t last, RunBuckets& out) const;
   /// Adds the run of `b` as add_run(b.run) would; throws
   /// std::invalid_argument if b was worked out for another bucket shape.
   void add_buckets(const RunBuckets& b);
@@ -260,6 +271,10 @@ class LogHistogram {
       negative_.add(bucket_index(magnitude), n);
     }
   }
+  // The head of `out` for `run`, with no blocks yet.
+  void start_buckets(const TickRun& run, int64_t last, RunBuckets& out) const;
+  // Appends a block of n values in the bucket of x.
+  void add_block(double x, uint64_t n, RunBuckets& out) const;
   // The smallest value above x whose bucket differs from x's bucket.
   double next_bucket_start(double x) const;
   // Calls on_block(x, n) for each block of n consecutive values of the run
@@ -313,7 +328,9 @@ class Distribution {
   void add_run(const TickRun& run, const TickRunSums& sums);
   /// The same with the run's histogram buckets at hand too (b.run is the run;
   /// see LogHistogram::add_buckets).
-  void add_run(const TickRunSums& sums, const RunBuckets& b);
+  void add_run(const TickRunSums& sums, const RunBuckets& b) { add_run(sums, b, tick_run_moments(b.run, sums)); }
+  /// The same with the run's moments at hand (tick_run_moments(b.run, sums)).
+  void add_run(const TickRunSums& sums, const RunBuckets& b, const TickRunMoments& moments);
   /// The plain values first + i * step, i in [0, n) (see RunningStats).
   void add_arithmetic_run(double first, double step, uint64_t n);
   uint64_t count() const { return stats_.count(); }

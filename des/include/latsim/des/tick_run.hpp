@@ -94,6 +94,18 @@ struct TickRunSums {
 /// Closed form in O(log den) (a floor-sum recursion); count must be at most 2^20.
 TickRunSums tick_run_sums(const TickRun& run);
 
+/// The sum of a run's values v_i and of their squares as 128-bit integers,
+/// when both fit (runs of durations of a second or less always do).
+struct TickRunMoments {
+  bool fits = false;
+  i128 sum = 0;
+  u128 sum_sq = 0;
+};
+/// From the run's sums (tick_run_sums(run)): sum = n base + sum w and sum of
+/// squares = n base^2 + 2 base sum w + sum w^2; `fits` is false when either
+/// needs more than 128 bits on the way.
+TickRunMoments tick_run_moments(const TickRun& run, const TickRunSums& s);
+
 /// Remembers tick_run_sums() of recent runs: the sums depend only on a run's
 /// offset, step, den and count, and the lines of a raster repeat the same few
 /// offsets field after field, so a small table answers most requests.
@@ -103,7 +115,7 @@ class TickRunSumsCache {
   const TickRunSums& sums(const TickRun& run);
 
  private:
-  static constexpr size_t kSize = 1024;
+  static constexpr size_t kSize = 4096;  // the lines of a few fields (see RunBucketsCache)
   struct Entry {
     i128 offset = -1, step = 0, den = 0;
     uint64_t count = 0;

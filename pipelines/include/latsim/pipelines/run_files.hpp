@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -67,6 +68,10 @@ class StreamedFile {
   std::filesystem::path staged_;    // where it is written
   std::filesystem::path shown_as_;  // its place in the run directory (for messages)
   std::FILE* out_ = nullptr;
+  // The stream's buffer: large, so that a streamed timeline costs a write
+  // call per 256 KiB, not per 4 KiB.
+  static constexpr size_t kBufferBytes = size_t{1} << 18;
+  std::unique_ptr<char[]> buffer_;
 };
 
 /// A run's result files, owned by the run. Names are relative to the run
