@@ -148,7 +148,8 @@ void LatencyRecorder::on_field_start(int eye, int64_t field, des::Time retrace) 
   // the last field that wait for the newest orientation can be completed.
   flush_pending();
   close_field();
-  counters_["fields"] += 1;
+  if (fields_count_ == nullptr) fields_count_ = &counters_["fields"];
+  *fields_count_ += 1;
   open_field_ = field;
   open_retrace_ = retrace;
   new_in_open_field_ = false;
@@ -328,15 +329,15 @@ void LatencyRecorder::first_shown(const ImageRecord& img, const display::Scanout
   // swapped in at a retrace, the line being scanned for one shown at once
   // (tearing) or written just ahead of the beam (a strip)).
   const double render_latency_ms = (span.written_at - img.render_start).to_ms();
-  des::Distribution* none = nullptr;
-  record(none, "render_latency_ms", render_latency_ms);
-  none = nullptr;
-  record(none, "render_latency_fields", render_latency_ms / timing_.field_period_ms());
-  none = nullptr;
-  record(none, "tracker_to_render_ms", (img.render_start - img.sample.measured_at).to_ms());
+  record(render_latency_, "render_latency_ms", render_latency_ms);
+  record(render_latency_fields_, "render_latency_fields", render_latency_ms / timing_.field_period_ms());
+  record(tracker_to_render_, "tracker_to_render_ms", (img.render_start - img.sample.measured_at).to_ms());
   // A later strip of a refresh's image has its own latency but is not
   // another image in the frame rate.
-  if (!img.continues_image) counters_["images_shown"] += 1;
+  if (!img.continues_image) {
+    if (images_shown_count_ == nullptr) images_shown_count_ = &counters_["images_shown"];
+    *images_shown_count_ += 1;
+  }
   if (span.eye == 0) {
     if (!img.continues_image) ++first_shown_eye0_;
     if (span.field == open_field_) new_in_open_field_ = true;
@@ -418,12 +419,8 @@ void LatencyRecorder::pixel_age(const tracker::TrackerSample& s, des::Time photo
 
 void LatencyRecorder::record_carried(const tracker::TrackerSample& s, const tracker::Carriage& c, bool line) {
   ++records_offered_;
-  des::Distribution* none = nullptr;
-  record(none, "tracker_to_host_ms", (c.visible - s.measured_at).to_ms());
-  if (line) {
-    none = nullptr;
-    record(none, "line_wait_ms", (c.start - s.ready_at).to_ms());
-  }
+  record(tracker_to_host_, "tracker_to_host_ms", (c.visible - s.measured_at).to_ms());
+  if (line) record(line_wait_, "line_wait_ms", (c.start - s.ready_at).to_ms());
   if (ledger_on_)
     tracker_rows_.push_back({s.index, s.measured_at.ticks(), s.ready_at.ticks(), c.start.ticks(), c.end.ticks(),
                              c.visible.ticks()});

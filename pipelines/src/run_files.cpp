@@ -138,7 +138,8 @@ StreamedFile::~StreamedFile() { discard(); }
 
 void StreamedFile::write(std::string_view bytes) {
   if (out_ == nullptr) return;
-  if (std::fwrite(bytes.data(), 1, bytes.size(), out_) != bytes.size()) {
+  // Unlocked: a StreamedFile belongs to one run on one thread.
+  if (fwrite_unlocked(bytes.data(), 1, bytes.size(), out_) != bytes.size()) {
     const int e = errno;
     discard();
     throw WriteError(shown_as_, e);

@@ -1,7 +1,9 @@
 #include "latsim/pipelines/timeline.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
 #include <string_view>
 
@@ -9,58 +11,59 @@ namespace latsim::pipelines {
 
 namespace {
 
-uint64_t fnv1a(uint64_t h, const void* data, size_t n) {
-  const auto* p = static_cast<const unsigned char*>(data);
-  for (size_t i = 0; i < n; ++i) {
-    h ^= p[i];
-    h *= 1099511628211ull;
-  }
-  return h;
+// The formatters write at a cursor into a buffer sized beforehand for the
+// longest possible entry (entry_bytes()): no bounds checks, no string growth.
+void put(char*& p, std::string_view s) {
+  std::memcpy(p, s.data(), s.size());
+  p += s.size();
 }
 
-void append_int(std::string& out, int64_t v) {
-  char buf[24];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  out.append(buf, r.ptr);
-}
+void put_int(char*& p, int64_t v) { p = std::to_chars(p, p + 24, v).ptr; }
 
 // ticks / per_unit as a decimal with six digits after the point, from
 // integers: identical bytes on every platform, no rounding.
-void append_fixed6(std::string& out, int64_t ticks, int64_t per_unit) {
+void put_fixed6(char*& p, int64_t ticks, int64_t per_unit) {
   const uint64_t mag = ticks < 0 ? uint64_t{0} - static_cast<uint64_t>(ticks) : static_cast<uint64_t>(ticks);
-  if (ticks < 0) out += '-';
-  char buf[24];
-  const auto r = std::to_chars(buf, buf + sizeof buf, mag / static_cast<uint64_t>(per_unit));
-  out.append(buf, r.ptr);
-  out += '.';
+  if (ticks < 0) *p++ = '-';
+  p = std::to_chars(p, p + 24, mag / static_cast<uint64_t>(per_unit)).ptr;
+  *p++ = '.';
   uint64_t frac = mag % static_cast<uint64_t>(per_unit);
-  char digits[6];
-  for (int i = 5; i >= 0; --i, frac /= 10) digits[i] = static_cast<char>('0' + frac % 10);
-  out.append(digits, 6);
+  for (int i = 5; i >= 0; --i, frac /= 10) p[i] = static_cast<char>('0' + frac % 10);
+  p += 6;
 }
 
 // Milliseconds with nanosecond resolution (the CSV's established format).
-void append_ms(std::string& out, des::Time t) { append_fixed6(out, t.ticks() / 1000, 1'000'000); }
+void put_ms(char*& p, des::Time t) { put_fixed6(p, t.ticks() / 1000, 1'000'000); }
 // Microseconds with picosecond resolution: exact.
-void append_us(std::string& out, des::Time t) { append_fixed6(out, t.ticks(), 1'000'000); }
+void put_us(char*& p, des::Time t) { put_fixed6(p, t.ticks(), 1'000'000); }
 
-// s as a JSON string literal, appended to out.
-void append_json_string(std::string& out, std::string_view s) {
-  out += '"';
+// The characters of s as the inside of a JSON string literal.
+void put_json_chars(char*& p, std::string_view s) {
   for (const char c : s) {
     if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
+      *p++ = '\\';
+      *p++ = c;
     } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
-      out += buf;
+      constexpr char kHex[] = "0123456789abcdef";
+      put(p, "\\u00");
+      *p++ = kHex[static_cast<unsigned char>(c) >> 4];
+      *p++ = kHex[static_cast<unsigned char>(c) & 15];
     } else {
-      out += c;
+      *p++ = c;
     }
   }
-  out += '"';
 }
+
+void put_json_string(char*& p, std::string_view s) {
+  *p++ = '"';
+  put_json_chars(p, s);
+  *p++ = '"';
+}
+
+// An upper bound of the bytes of an entry in either format: every character
+// of the names escaped (six bytes), the numbers at their longest (20 digits
+// and a sign, or those and a point and six decimals), and the fixed text.
+size_t entry_bytes(std::string_view stage, std::string_view unit) { return 12 * (stage.size() + unit.size()) + 512; }
 
 }  // namespace
 
@@ -73,60 +76,61 @@ void Timeline::Writer::open(RunFiles& files) {
   json_.write("{\"displayTimeUnit\":\"ms\",\"traceEvents\":[");
 }
 
-void Timeline::Writer::write(const Entry& e) {
+void Timeline::Writer::write(std::string_view stage, int64_t frame, int eye, std::string_view unit, des::Time start,
+                             des::Time end) {
   std::string& b = buffer_;
-  b.clear();
-  b += e.stage;
-  b += ',';
-  append_int(b, e.frame);
-  b += ',';
-  append_int(b, e.eye);
-  b += ',';
-  b += e.unit;
-  b += ',';
-  append_ms(b, e.start);
-  b += ',';
-  append_ms(b, e.end);
-  b += '\n';
-  csv_.write(b);
+  if (b.size() < entry_bytes(stage, unit)) b.resize(entry_bytes(stage, unit));
+  char* p = b.data();
+  put(p, stage);
+  *p++ = ',';
+  put_int(p, frame);
+  *p++ = ',';
+  put_int(p, eye);
+  *p++ = ',';
+  put(p, unit);
+  *p++ = ',';
+  put_ms(p, start);
+  *p++ = ',';
+  put_ms(p, end);
+  *p++ = '\n';
+  csv_.write(std::string_view(b.data(), static_cast<size_t>(p - b.data())));
 
-  // Appended in place: no temporary strings (a few entries every field).
-  b.clear();
-  auto it = tids_.find(e.unit);
+  p = b.data();
+  // Thread ids in order of appearance; a handful of units, found by a scan.
+  auto it = std::find_if(tids_.begin(), tids_.end(), [&](const auto& t) { return t.first == unit; });
   if (it == tids_.end()) {
-    it = tids_.emplace(e.unit, static_cast<int>(tids_.size()) + 1).first;
-    b += first_event_ ? "\n" : ",\n";
-    b += "{\"args\":{\"name\":";
-    append_json_string(b, e.unit);
-    b += "},\"name\":\"thread_name\",\"ph\":\"M\",\"pid\":1,\"tid\":";
-    append_int(b, it->second);
-    b += '}';
+    tids_.emplace_back(unit, static_cast<int>(tids_.size()) + 1);
+    it = tids_.end() - 1;
+    put(p, first_event_ ? "\n" : ",\n");
+    put(p, "{\"args\":{\"name\":");
+    put_json_string(p, unit);
+    put(p, "},\"name\":\"thread_name\",\"ph\":\"M\",\"pid\":1,\"tid\":");
+    put_int(p, it->second);
+    *p++ = '}';
     first_event_ = false;
   }
-  b += first_event_ ? "\n" : ",\n";
-  b += "{\"args\":{\"eye\":";
-  append_int(b, e.eye);
-  b += ",\"frame\":";
-  append_int(b, e.frame);
-  b += "},\"cat\":";
-  append_json_string(b, e.stage);
-  b += ",\"dur\":";
-  append_us(b, e.end - e.start);
-  // The name, "<stage> <frame>[ L| R]", as a JSON string: the frame and
-  // the eye need no escaping.
-  b += ",\"name\":";
-  append_json_string(b, e.stage);
-  b.pop_back();
-  b += ' ';
-  append_int(b, e.frame);
-  if (e.eye >= 0) b += e.eye == 0 ? " L" : " R";
-  b += '"';
-  b += ",\"ph\":\"X\",\"pid\":1,\"tid\":";
-  append_int(b, it->second);
-  b += ",\"ts\":";
-  append_us(b, e.start);
-  b += '}';
-  json_.write(b);
+  put(p, first_event_ ? "\n" : ",\n");
+  put(p, "{\"args\":{\"eye\":");
+  put_int(p, eye);
+  put(p, ",\"frame\":");
+  put_int(p, frame);
+  put(p, "},\"cat\":");
+  put_json_string(p, stage);
+  put(p, ",\"dur\":");
+  put_us(p, end - start);
+  // The name, "<stage> <frame>[ L| R]", as a JSON string: the frame and the
+  // eye need no escaping.
+  put(p, ",\"name\":\"");
+  put_json_chars(p, stage);
+  *p++ = ' ';
+  put_int(p, frame);
+  if (eye >= 0) put(p, eye == 0 ? " L" : " R");
+  put(p, "\",\"ph\":\"X\",\"pid\":1,\"tid\":");
+  put_int(p, it->second);
+  put(p, ",\"ts\":");
+  put_us(p, start);
+  *p++ = '}';
+  json_.write(std::string_view(b.data(), static_cast<size_t>(p - b.data())));
   first_event_ = false;
 }
 
@@ -136,23 +140,19 @@ void Timeline::Writer::finish(RunFiles& files) {
   files.commit(json_, "timeline.json");
 }
 
-void Timeline::add(std::string stage, int64_t frame, int eye, std::string unit, des::Time start, des::Time end) {
+void Timeline::add(std::string_view stage, int64_t frame, int eye, std::string_view unit, des::Time start,
+                   des::Time end) {
   if (max_entries_ > 0 && accepted_ >= max_entries_) {
     ++dropped_;
     return;
   }
   ++accepted_;
-  fingerprint_ = fnv1a(fingerprint_, stage.data(), stage.size());
-  fingerprint_ = fnv1a(fingerprint_, unit.data(), unit.size());
-  const int64_t v[4] = {frame, eye, start.ticks(), end.ticks()};
-  fingerprint_ = fnv1a(fingerprint_, v, sizeof v);
-  Entry e{std::move(stage), frame, eye, std::move(unit), start, end};
   if (files_ == nullptr) {
-    entries_.push_back(std::move(e));
+    entries_.push_back(Entry{std::string(stage), frame, eye, std::string(unit), start, end});
     return;
   }
   if (!stream_.is_open()) stream_.open(*files_);
-  stream_.write(e);
+  stream_.write(stage, frame, eye, unit, start, end);
 }
 
 void Timeline::stream_to(RunFiles& files) {

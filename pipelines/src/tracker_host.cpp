@@ -120,9 +120,12 @@ void TrackerHost::prune() {
 
 std::optional<tracker::TrackerSample> TrackerHost::newest_at(des::Time t) const {
   // Delivery times never decrease, so the newest visible sample is the last
-  // entry delivered at or before t.
-  auto it = std::upper_bound(delivered_.begin(), delivered_.end(), t,
-                             [](des::Time v, const Delivered& d) { return v < d.at; });
+  // entry delivered at or before t. Pipelines ask about now or just before:
+  // a few steps back from the newest entry, then a binary search.
+  auto it = delivered_.end();
+  for (int k = 0; k < 4 && it != delivered_.begin(); ++k, --it)
+    if (std::prev(it)->at <= t) return std::prev(it)->sample;
+  it = std::upper_bound(delivered_.begin(), it, t, [](des::Time v, const Delivered& d) { return v < d.at; });
   if (it == delivered_.begin()) return std::nullopt;
   return std::prev(it)->sample;
 }

@@ -252,6 +252,11 @@ class LatencyRecorder : public display::ScanoutListener {
   des::Distribution* pixel_age_ = nullptr;
   des::Distribution* reg_arcmin_ = nullptr;
   des::Distribution* reg_px_ = nullptr;
+  des::Distribution* render_latency_ = nullptr;
+  des::Distribution* render_latency_fields_ = nullptr;
+  des::Distribution* tracker_to_render_ = nullptr;
+  des::Distribution* tracker_to_host_ = nullptr;
+  des::Distribution* line_wait_ = nullptr;
   bool predicting_ = false;
   std::optional<tracker::MotionPhaseClassifier> phases_;
   des::Distribution* prediction_horizon_ = nullptr;
@@ -260,6 +265,8 @@ class LatencyRecorder : public display::ScanoutListener {
   PhaseSplit reg_split_{};
   PhaseSplit prediction_split_{};
   std::map<std::string, int64_t> counters_;
+  int64_t* fields_count_ = nullptr;        // counters_["fields"] once counted
+  int64_t* images_shown_count_ = nullptr;  // counters_["images_shown"] once counted
   // The runs of the span figures, gathered across spans; closed whenever the
   // figures are read, so they are always complete (hence mutable).
   mutable des::RunFeed runs_;

@@ -68,9 +68,10 @@ class StreamedFile {
   std::filesystem::path staged_;    // where it is written
   std::filesystem::path shown_as_;  // its place in the run directory (for messages)
   std::FILE* out_ = nullptr;
-  // The stream's buffer: large, so that a streamed timeline costs a write
-  // call per 256 KiB, not per 4 KiB.
-  static constexpr size_t kBufferBytes = size_t{1} << 18;
+  // The stream's buffer: a streamed timeline costs a write call per 64 KiB,
+  // not per 4 KiB. (Larger buffers cost more than the calls they save: a
+  // run's hot data no longer fits the cache beside them.)
+  static constexpr size_t kBufferBytes = size_t{1} << 16;
   std::unique_ptr<char[]> buffer_;
 };
 

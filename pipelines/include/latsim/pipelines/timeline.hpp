@@ -2,8 +2,9 @@
 #pragma once
 
 #include <cstdint>
-#include <map>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "latsim/des/time.hpp"
@@ -32,13 +33,11 @@ class Timeline {
   /// Accepts at most `max_entries` (0 = no limit); later entries are counted, not kept.
   void set_max_entries(size_t max_entries) { max_entries_ = max_entries; }
   size_t dropped() const { return dropped_; }
-  void add(std::string stage, int64_t frame, int eye, std::string unit, des::Time start, des::Time end);
+  void add(std::string_view stage, int64_t frame, int eye, std::string_view unit, des::Time start, des::Time end);
   /// Entries accepted so far (kept or streamed).
   size_t size() const { return accepted_; }
   /// The entries held in memory (those added before stream_to(), none after).
   const std::vector<Entry>& entries() const { return entries_; }
-  /// Hash of all accepted entries in order (for fingerprint tests).
-  uint64_t fingerprint() const { return fingerprint_; }
 
   /// From now on write every entry to timeline.csv and timeline.json of
   /// `files` (temporary names until finish()); entries held so far go first.
@@ -52,22 +51,22 @@ class Timeline {
   class Writer {
    public:
     void open(RunFiles& files);
-    void write(const Entry& e);
+    void write(const Entry& e) { write(e.stage, e.frame, e.eye, e.unit, e.start, e.end); }
+    void write(std::string_view stage, int64_t frame, int eye, std::string_view unit, des::Time start, des::Time end);
     void finish(RunFiles& files);
     bool is_open() const { return csv_.is_open(); }
 
    private:
     StreamedFile csv_, json_;
-    std::map<std::string, int, std::less<>> tids_;  // thread id per unit, in order of appearance
+    std::vector<std::pair<std::string, int>> tids_;  // thread id per unit, in order of appearance
     bool first_event_ = true;
-    std::string buffer_;  // one formatted line, reused
+    std::string buffer_;  // one formatted entry, reused (its size is what is reserved, not what is used)
   };
 
   std::vector<Entry> entries_;
   size_t max_entries_ = 0;
   size_t dropped_ = 0;
   size_t accepted_ = 0;
-  uint64_t fingerprint_ = 1469598103934665603ull;
   RunFiles* files_ = nullptr;  // set by stream_to()
   Writer stream_;
 };
