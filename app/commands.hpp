@@ -3,6 +3,8 @@
 
 #include <optional>
 
+#include "latsim/run/exit_codes.hpp"
+
 namespace CLI {
 class App;
 }
@@ -10,9 +12,9 @@ class App;
 namespace latsim::app {
 
 /// Exit codes shared by every subcommand.
-inline constexpr int kExitOk = 0;
-inline constexpr int kExitFailure = 1;   ///< the run itself failed (a model error)
-inline constexpr int kExitBadInput = 2;  ///< bad scenario or command line: nothing was written
+using run::kExitBadInput;
+using run::kExitFailure;
+using run::kExitOk;
 
 /// Parses a subcommand's options: the exit code when the program should stop
 /// here (help printed: 0; bad options, message printed: 2), nothing otherwise.

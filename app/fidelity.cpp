@@ -12,12 +12,15 @@
 
 #include "child_process.hpp"
 #include "commands.hpp"
-#include "fidelity_table.hpp"
-#include "latsim/pipelines/runner.hpp"
+#include "latsim/results/run_files.hpp"
+#include "latsim/run/runner.hpp"
 #include "latsim/scenario/config.hpp"
-#include "run_table.hpp"
+#include "latsim/sweep/fidelity_table.hpp"
+#include "latsim/sweep/run_table.hpp"
 
 namespace latsim::app {
+
+using namespace sweep;  // the sweep engine this command drives
 
 namespace {
 
@@ -112,7 +115,7 @@ int command_fidelity(int argc, char** argv) {
     std::vector<std::string> overrides = request.sets;
     overrides.push_back(axis.pointer + "=" + value);
     try {
-      pipelines::validate_scenario(pipelines::load_scenario(request.scenario_file, overrides));
+      run::validate_scenario(run::load_scenario(request.scenario_file, overrides));
     } catch (const scenario::ScenarioError& e) {
       std::cerr << request.scenario_file << ": " << e.pointer() << ": " << e.message() << " (at " << axis.pointer
                 << "=" << value << ")\n";
@@ -142,8 +145,8 @@ int command_fidelity(int argc, char** argv) {
   const std::string markdown = fidelity_markdown(axis, request.metric, levels);
   std::fputs(markdown.c_str(), stdout);
   try {
-    pipelines::write_file_atomically(out_dir / "fidelity.csv", fidelity_csv(axis, request.metric, levels));
-    pipelines::write_file_atomically(out_dir / "fidelity.md", markdown);
+    results::write_file_atomically(out_dir / "fidelity.csv", fidelity_csv(axis, request.metric, levels));
+    results::write_file_atomically(out_dir / "fidelity.md", markdown);
     if (plot(out_dir) != 0) {
       std::cerr << "fidelity: the plot could not be drawn (python3 with matplotlib is needed); the tables are written\n";
       return kExitFailure;

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "latsim/run/runner.hpp"
 
 namespace {
 
@@ -40,7 +41,7 @@ int main(int argc, char** argv) {
     return kExitOk;
   }
   if (cmd == "--version") {
-    std::puts("latsim " LATSIM_VERSION " (" LATSIM_GIT_REVISION ")");
+    std::printf("latsim %s (%s)\n", latsim::run::latsim_version().c_str(), latsim::run::latsim_git_revision().c_str());
     return kExitOk;
   }
   // Each command sees its own name as argv[0].

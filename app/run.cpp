@@ -12,16 +12,19 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "latsim/pipelines/runner.hpp"
+#include "latsim/results/run_files.hpp"
+#include "latsim/run/runner.hpp"
 #include "latsim/scenario/config.hpp"
 #include "latsim/scenario/readable.hpp"
-#include "progress_line.hpp"
+#include "latsim/sweep/progress_line.hpp"
 #include "stop_signals.hpp"
-#include "sweep_common.hpp"
-#include "sweep_claims.hpp"
-#include "sweep_store.hpp"
+#include "latsim/sweep/claims.hpp"
+#include "latsim/sweep/common.hpp"
+#include "latsim/sweep/store.hpp"
 
 namespace latsim::app {
+
+using namespace sweep;  // the sweep engine this command drives
 
 namespace {
 
@@ -57,7 +60,7 @@ std::optional<std::string> output_dir_problem(const std::string& out_dir) {
 // staging directories "<out>.tmp.<pid>" of processes that are gone.
 void remove_stale_staging(const std::string& out_dir) {
   namespace fs = std::filesystem;
-  const fs::path mine = pipelines::staging_dir_of(out_dir, 0);
+  const fs::path mine = results::staging_dir_of(out_dir, 0);
   const std::string prefix = mine.filename().string().substr(0, mine.filename().string().size() - 1);
   std::error_code ec;
   for (fs::directory_iterator it(mine.parent_path(), ec), end; !ec && it != end; it.increment(ec)) {
@@ -99,7 +102,7 @@ int command_run(int argc, char** argv) {
   remove_stale_staging(out_dir);
   StopSignals signals;
   SimulationProgress shown(progress);
-  pipelines::RunOptions opt;
+  run::RunOptions opt;
   opt.command_start = std::chrono::steady_clock::now();
   if (*seed_opt) opt.seed = seed;
   opt.replication = replication;
@@ -109,17 +112,17 @@ int command_run(int argc, char** argv) {
   opt.profile = profile;
   opt.command_line = command_line_of(argc, argv);
   opt.stop = &signals.flag();
-  opt.progress = [&shown](const pipelines::RunProgress& p) { shown.update(p); };
+  opt.progress = [&shown](const run::RunProgress& p) { shown.update(p); };
   nlohmann::json summary;
   const std::string name = scenario::readable(file, 2 * scenario::kQuotedChars);
   try {
-    const auto doc = pipelines::load_scenario(file, sets);
+    const auto doc = run::load_scenario(file, sets);
     // Validate fully before touching the output directory: bad input writes nothing.
-    pipelines::validate_scenario(doc);
-    summary = pipelines::run_scenario(doc, opt);
+    run::validate_scenario(doc);
+    summary = run::run_scenario(doc, opt);
   } catch (const scenario::ScenarioError& e) {
     return bad_input(file, e);
-  } catch (const pipelines::RunInterrupted& e) {
+  } catch (const run::RunInterrupted& e) {
     shown.finish();
     std::fprintf(stderr, "%s: stopped by %s: %s; nothing written\n", name.c_str(), signals.name(), e.what());
     return signals.exit_code();
@@ -164,8 +167,8 @@ int command_validate(int argc, char** argv) {
         rc = std::max(rc, validate_sweep(file));
         continue;
       }
-      const auto doc = pipelines::load_scenario(file, sets);
-      print_warnings(file, pipelines::validate_scenario(doc));
+      const auto doc = run::load_scenario(file, sets);
+      print_warnings(file, run::validate_scenario(doc));
       if (resolved) std::printf("%s\n", doc.resolved().dump(2, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
       else std::printf("%s: ok\n", name.c_str());
     } catch (const scenario::ScenarioError& e) {
@@ -204,16 +207,16 @@ int command_capacity(int argc, char** argv) {
     const nlohmann::json doc{{"scenario", file},         {"pointer", pointer}, {"metric", metric},
                              {"threshold", threshold},   {"max_triangles_per_field", max_count},
                              {"note", note},             {"tried", tried},
-                             {"command_line", command_line_of(argc, argv)}, {"latsim", pipelines::latsim_version()},
-                             {"git_revision", pipelines::latsim_git_revision()}};
-    pipelines::write_file_atomically(std::filesystem::path(out_dir) / "capacity.json", doc.dump(2) + "\n");
+                             {"command_line", command_line_of(argc, argv)}, {"latsim", run::latsim_version()},
+                             {"git_revision", run::latsim_git_revision()}};
+    results::write_file_atomically(std::filesystem::path(out_dir) / "capacity.json", doc.dump(2) + "\n");
   };
   try {
     // Whether the scenario with count n keeps the metric within the threshold.
     auto fits = [&](int64_t n) {
       std::vector<std::string> s = sets;
       s.push_back(pointer + "=" + std::to_string(n));
-      const auto summary = pipelines::run_scenario(pipelines::load_scenario(file, s), pipelines::RunOptions{});
+      const auto summary = run::run_scenario(run::load_scenario(file, s), run::RunOptions{});
       const auto& f = summary["figures"];
       if (!f.contains(metric) || !f[metric].is_number())
         throw scenario::ScenarioError(pointer, "this pipeline reports no number \"" + metric + "\"");
@@ -251,7 +254,7 @@ int command_schema(int argc, char** argv) {
       ->check(CLI::IsMember({"json-schema", "markdown"}))
       ->capture_default_str();
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
-  const scenario::ObjectSchema schema = pipelines::scenario_schema();
+  const scenario::ObjectSchema schema = run::scenario_schema();
   if (format == "markdown") std::fputs(scenario::markdown_reference(schema).c_str(), stdout);
   else std::printf("%s\n", scenario::json_schema(schema).dump(2).c_str());
   return kExitOk;

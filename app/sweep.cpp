@@ -15,17 +15,19 @@
 #include <CLI/CLI.hpp>
 
 #include "commands.hpp"
-#include "parallel_for.hpp"
 #include "latsim/scenario/readable.hpp"
-#include "progress_line.hpp"
+#include "latsim/sweep/parallel_for.hpp"
+#include "latsim/sweep/progress_line.hpp"
 #include "stop_signals.hpp"
-#include "sweep_common.hpp"
-#include "sweep_cost.hpp"
-#include "sweep_mpi.hpp"
-#include "sweep_shard.hpp"
-#include "sweep_tables.hpp"
+#include "latsim/sweep/common.hpp"
+#include "latsim/sweep/cost.hpp"
+#include "latsim/sweep/mpi.hpp"
+#include "latsim/sweep/shard.hpp"
+#include "latsim/sweep/tables.hpp"
 
 namespace latsim::app {
+
+using namespace sweep;  // the sweep engine this command drives
 
 namespace {
 

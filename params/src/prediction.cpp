@@ -1,5 +1,6 @@
 // Bindings of /host/prediction and /motion_phases.
 #include <cmath>
+#include <numbers>
 #include <optional>
 
 #include "latsim/params/shared.hpp"
@@ -11,7 +12,7 @@ using scenario::Section;
 
 namespace {
 
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 /// Keys of the Kalman filter; its measurement noise defaults to the tracker's.
 void kalman(Section& s, tracker::KalmanParams& k, const tracker::TrackerParams& tracker) {

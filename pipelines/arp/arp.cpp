@@ -11,9 +11,10 @@
 #include "latsim/arp/memory_frames.hpp"
 #include "latsim/des/periodic.hpp"
 #include "latsim/des/process.hpp"
-#include "latsim/pipelines/latency_recorder.hpp"
-#include "latsim/pipelines/run_files.hpp"
-#include "latsim/pipelines/timeline.hpp"
+#include "latsim/pipelines/pipeline.hpp"
+#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/run_files.hpp"
+#include "latsim/results/timeline.hpp"
 
 namespace latsim::pipelines {
 namespace {
@@ -46,7 +47,7 @@ class ArpPipeline final : public Pipeline {
 
   void finish(RunContext& ctx) override {
     const double duration_s = ctx.duration.to_seconds();
-    LatencyRecorder& r = ctx.recorder;
+    results::LatencyRecorder& r = ctx.recorder;
     r.set("memories.0.update_rate_hz", static_cast<double>(renders_) / duration_s);
     r.set("memories.0.segments", object_count_);
     r.set("memories.0.renders", renders_);
@@ -81,7 +82,7 @@ class ArpPipeline final : public Pipeline {
   // The cube shown now: rendered from the position of the image in the front buffer.
   void write_frame() {
     const int64_t front = ctx_->display.front(0);
-    const ImageRecord* img = front >= 0 ? ctx_->recorder.image(front) : nullptr;
+    const results::ImageRecord* img = front >= 0 ? ctx_->images.find(front) : nullptr;
     // The orientation the next field is looked up with (its middle line).
     const auto newest = ctx_->host.pose_for(ctx_->sim.now(), ctx_->photon_time_after(ctx_->sim.now()));
     if (!img || !newest) return;

@@ -1,6 +1,7 @@
 #include "arp/frames.hpp"
 
 #include "latsim/params/shared.hpp"
+#include "latsim/pipelines/pipeline.hpp"
 
 namespace latsim::pipelines {
 

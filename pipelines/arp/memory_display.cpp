@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <string>
 
-#include "latsim/pipelines/timeline.hpp"
+#include "latsim/pipelines/pipeline.hpp"
+#include "latsim/results/timeline.hpp"
 
 namespace latsim::pipelines {
 

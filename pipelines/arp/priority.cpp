@@ -5,6 +5,7 @@
 // the redraws share the renderers, fastest memory first.
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -13,8 +14,9 @@
 #include "arp/render_keys.hpp"
 #include "latsim/arp/priority_system.hpp"
 #include "latsim/des/periodic.hpp"
-#include "latsim/pipelines/latency_recorder.hpp"
+#include "latsim/pipelines/pipeline.hpp"
 #include "latsim/renderer/scene_spec.hpp"
+#include "latsim/results/latency_recorder.hpp"
 #include "latsim/scenario/params.hpp"
 
 namespace latsim::pipelines {
@@ -69,7 +71,7 @@ class PriorityPipeline final : public Pipeline {
 
   void finish(RunContext& ctx) override {
     const double duration_s = ctx.duration.to_seconds();
-    LatencyRecorder& r = ctx.recorder;
+    results::LatencyRecorder& r = ctx.recorder;
     const arp::PriorityModel& model = system_->model();
     const arp::DisplayMemories& memories = system_->memories();
     int64_t rendered = 0;
@@ -149,7 +151,7 @@ class PriorityPipeline final : public Pipeline {
   SampleBook samples_;
 };
 
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 void bind(scenario::Section& s, PriorityPipeline::Params& p, const params::SharedParams& shared) {
   s.rate("max_update_rate_hz", p.model.base_period, {.unit = "Hz", .max = 1e4, .doc = "rate of the fastest display memory (and of the ticks)"});

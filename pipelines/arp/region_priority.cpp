@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,15 +18,16 @@
 #include "arp/region_run.hpp"
 #include "latsim/arp/memory_frames.hpp"
 #include "latsim/des/periodic.hpp"
-#include "latsim/pipelines/latency_recorder.hpp"
-#include "latsim/pipelines/run_files.hpp"
+#include "latsim/pipelines/pipeline.hpp"
 #include "latsim/renderer/scene_spec.hpp"
+#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/run_files.hpp"
 #include "latsim/scenario/params.hpp"
 
 namespace latsim::pipelines {
 namespace {
 
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+constexpr double kDegToRad = std::numbers::pi / 180.0;
 // Warping looks at every region within its falloff from each warped vertex.
 constexpr double kMaxWarpRegions = 16.0;
 // Every region is tracked and segmented: a floor cut into more than this is
@@ -97,7 +99,7 @@ class RegionPriorityPipeline final : public Pipeline {
   }
 
   void finish(RunContext& ctx) override {
-    LatencyRecorder& r = ctx.recorder;
+    results::LatencyRecorder& r = ctx.recorder;
     const RegionRun& primary = *runs_[0];
     primary.report(r, "", ctx.duration);
     r.set("region_swaps", primary.system().model().swaps());

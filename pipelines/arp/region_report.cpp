@@ -3,7 +3,7 @@
 #include <sstream>
 
 #include "latsim/arp/memory_frames.hpp"
-#include "latsim/pipelines/run_files.hpp"
+#include "latsim/results/run_files.hpp"
 
 namespace latsim::pipelines {
 namespace {
@@ -90,7 +90,7 @@ std::string memories_csv(const std::vector<const RegionRun*>& runs, des::Time du
 }
 
 RegionFrames::RegionFrames(const renderer::Camera& camera, const glm::dquat& head, const FrameOptions& options,
-                           RunFiles& files)
+                           results::RunFiles& files)
     : camera_(camera), head_(head), options_(options), files_(files) {}
 
 renderer::Frame RegionFrames::composite(const RegionRun& run, std::vector<renderer::CubeMap>* cubes_out) {

@@ -13,9 +13,11 @@
 #include "latsim/renderer/camera.hpp"
 #include "latsim/renderer/cube_map.hpp"
 
-namespace latsim::pipelines {
-
+namespace latsim::results {
 class RunFiles;
+}
+
+namespace latsim::pipelines {
 
 /// Per memory and run: average update rate and object segments per update;
 /// per run: render load, renderer use and what the seams look like.
@@ -26,7 +28,7 @@ std::string memories_csv(const std::vector<const RegionRun*>& runs, des::Time du
 /// Writes PNG pictures of what region priority memories show, seen with one head orientation.
 class RegionFrames {
  public:
-  RegionFrames(const renderer::Camera& camera, const glm::dquat& head, const FrameOptions& options, RunFiles& files);
+  RegionFrames(const renderer::Camera& camera, const glm::dquat& head, const FrameOptions& options, results::RunFiles& files);
   /// <stem>_memory<i>.png for each memory and <stem>_composite.png.
   void write_memories(const std::string& stem, const RegionRun& run);
   /// <stem>_torn.png / _warped.png and 8x close-ups at the widest tear the torn run shows.
@@ -40,7 +42,7 @@ class RegionFrames {
   const renderer::Camera& camera_;
   glm::dquat head_;
   const FrameOptions& options_;
-  RunFiles& files_;
+  results::RunFiles& files_;
 };
 
 }  // namespace latsim::pipelines

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "latsim/pipelines/latency_recorder.hpp"
+#include "latsim/results/latency_recorder.hpp"
 
 namespace latsim::pipelines {
 
@@ -39,7 +39,7 @@ void RegionRun::measure(const glm::dquat& head, const glm::dvec3& eye_m, const a
   for (double s : scratch_) stretch_px_.add(s);
 }
 
-void RegionRun::report(LatencyRecorder& r, const std::string& prefix, des::Time duration) const {
+void RegionRun::report(results::LatencyRecorder& r, const std::string& prefix, des::Time duration) const {
   const double duration_s = duration.to_seconds();
   const arp::DisplayMemories& memories = system_.memories();
   const arp::RegionPriorityModel& model = system_.model();

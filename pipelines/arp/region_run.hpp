@@ -12,9 +12,11 @@
 #include "latsim/arp/seam_meter.hpp"
 #include "latsim/des/stats.hpp"
 
-namespace latsim::pipelines {
-
+namespace latsim::results {
 class LatencyRecorder;
+}
+
+namespace latsim::pipelines {
 
 /// A RegionPrioritySystem plus its tear and stretch measurements.
 class RegionRun {
@@ -39,7 +41,7 @@ class RegionRun {
 
   /// Figures under `prefix` ("" or "variants.0."); says on the recorder's
   /// warnings when the renderers could not keep up.
-  void report(LatencyRecorder& r, const std::string& prefix, des::Time duration) const;
+  void report(results::LatencyRecorder& r, const std::string& prefix, des::Time duration) const;
 
  private:
   arp::RegionPrioritySystem system_;

@@ -8,10 +8,11 @@
 #include "double_buffer/analytic.hpp"
 #include "latsim/des/handoff.hpp"
 #include "latsim/des/process.hpp"
-#include "latsim/pipelines/latency_recorder.hpp"
-#include "latsim/pipelines/render_cost.hpp"
-#include "latsim/pipelines/run_clocks.hpp"
-#include "latsim/pipelines/timeline.hpp"
+#include "latsim/des/run_clocks.hpp"
+#include "latsim/params/render_cost.hpp"
+#include "latsim/pipelines/pipeline.hpp"
+#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/timeline.hpp"
 
 namespace latsim::pipelines {
 
@@ -23,8 +24,8 @@ class DoubleBufferPipeline final : public Pipeline {
   struct Params {
     bool vsync = true;
     int queued_frames = 0;
-    RenderCost::Params render;
-    RenderCost cost;  ///< the render terms applied to the scene and display
+    renderer::RenderCost::Params render;
+    renderer::RenderCost cost;  ///< the render terms applied to the scene and display
   };
 
   explicit DoubleBufferPipeline(const Params& p) : p_(p) {}
@@ -44,7 +45,7 @@ class DoubleBufferPipeline final : public Pipeline {
     if (!p_.vsync || p_.queued_frames != 0 || p_.cost.varies()) return;
     const auto a = analytic_double_buffer(analytic_inputs(ctx));
     if (!a) return;
-    LatencyRecorder& r = ctx.recorder;
+    results::LatencyRecorder& r = ctx.recorder;
     r.set("analytic.method", a->method);
     r.set("analytic.link", a->link);
     r.set("analytic.hyperperiod_s", a->hyperperiod_s);
@@ -65,8 +66,7 @@ class DoubleBufferPipeline final : public Pipeline {
     const des::Clock* poll = ctx.clocks.find("poll");
     auto varies = [](const des::Clock* c) { return c && (c->drawn || c->rate_error_ppm != 0.0); };
     AnalyticInputs in;
-    in.raster = ctx.display_params.raster;
-    in.raster.field_period = display ? display->nominal : in.raster.field_period;
+    in.raster = ctx.display_params.raster;  // the nominal periods
     in.tracker_period = ctx.tracker.period;
     in.tracker_delay = ctx.tracker.internal_delay;
     in.tracker_jitter = ctx.tracker.jitter;
@@ -133,8 +133,8 @@ class DoubleBufferPipeline final : public Pipeline {
     const des::Time now = ctx_->sim.now();
     Done done{{}, frame_, now};
     for (int eye = 0; eye < ctx_->display.eyes(); ++eye) {
-      ImageRecord rec = ctx_->image_record(frame_, eye, pose, start, now);
-      done.ids.push_back(ctx_->recorder.register_image(rec));
+      results::ImageRecord rec = ctx_->image_record(frame_, eye, pose, start, now);
+      done.ids.push_back(ctx_->images.add(rec));
     }
     if (ctx_->timeline) ctx_->timeline->add("RENDER", frame_, -1, "renderer", start, now);
     ++frame_;
@@ -167,10 +167,10 @@ void bind(scenario::Section& s, DoubleBufferPipeline::Params& p, const params::S
          {.doc = "swap at the next retrace after completion; false: swap at once (tearing; needs a render time above "
                  "zero)"});
   s.integer("queued_frames", p.queued_frames, {.min = 0.0, .max = 16.0, .doc = "render-ahead: frames that may wait for display"});
-  s.object("render", p.render, [](scenario::Section& r, RenderCost::Params& v) { bind(r, v); },
+  s.object("render", p.render, [](scenario::Section& r, renderer::RenderCost::Params& v) { params::bind(r, v); },
            {.required = true, .doc = "the renderer's cost per frame"});
   const display::RasterParams& raster = shared.display.raster;
-  p.cost = RenderCost::for_scene(p.render, shared.scene ? &*shared.scene : nullptr, raster.width_px, raster.height_px,
+  p.cost = params::render_cost_for_scene(p.render, shared.scene ? &*shared.scene : nullptr, raster.width_px, raster.height_px,
                                  shared.host.stereo ? 2 : 1);
   s.check("vsync", p.vsync || p.cost.nominal_frame_time() > des::Time::zero(),
           "without vsync the renderer runs back to back, so frames need a render time above zero");

@@ -5,7 +5,9 @@
 #include <vector>
 
 #include "frame_stages/frame_stages_pipeline.hpp"
+#include "latsim/params/render_cost.hpp"
 #include "latsim/params/shared.hpp"
+#include "latsim/pipelines/pipeline.hpp"
 #include "latsim/scenario/params.hpp"
 
 namespace latsim::pipelines::frame_stages {
@@ -30,7 +32,7 @@ struct StageKeys {
   des::Time lag;
   std::string until;
   bool samples_pose = false;
-  RenderCost::Params cost;
+  renderer::RenderCost::Params cost;
 };
 
 struct WarpKeys {
@@ -72,7 +74,7 @@ void bind(Section& s, StageKeys& st) {
   s.duration("lag_ms", st.lag, {.unit = "ms", .doc = "stream: how long the previous stage runs first"});
   s.text("until", st.until, {.doc = "late: the stage whose end must meet the deadline (default: this one)"});
   s.flag("samples_pose", st.samples_pose, {.doc = "reads the head pose when it begins (the last such stage's pose is drawn)"});
-  s.object("cost", st.cost, [](Section& c, RenderCost::Params& v) { pipelines::bind(c, v); },
+  s.object("cost", st.cost, [](Section& c, renderer::RenderCost::Params& v) { params::bind(c, v); },
            {.doc = "how long it takes (the render-cost model)"});
 }
 
@@ -109,7 +111,7 @@ std::vector<StageSpec> resolve(Section& s, const std::string& key, const std::ve
     StageSpec st;
     st.name = k.name;
     st.processors = it->second;
-    st.cost = RenderCost::for_scene(k.cost, shared.scene ? &*shared.scene : nullptr, raster.width_px,
+    st.cost = params::render_cost_for_scene(k.cost, shared.scene ? &*shared.scene : nullptr, raster.width_px,
                                     raster.height_px, eyes);
     switch (k.start) {
       case StartKey::automatic: st.start = i == 0 ? first_default : StartRule::after; break;
@@ -190,11 +192,11 @@ void bind(Section& s, FrameStagesPipeline::Params& p, const params::SharedParams
   std::optional<WarpKeys> warp;
   s.optional_object("timewarp", warp, [](Section& w, WarpKeys& v) { bind_warp(w, v); },
                     {.doc = "a compositor re-projecting the newest image just before it is scanned out"});
-  s.check("processors", true, "processor names are unique");
-  s.check("stages", true,
-          "each stage runs `on` a processor; a stream stage follows a stage on another processor; `until` names "
-          "this stage or a later one of a late stage; some stage `samples_pose`");
-  s.check("timewarp", true, "`strips` above 1 need line or pixel scanout, at most one strip per line");
+  s.rule("processors", "processor names are unique");
+  s.rule("stages",
+         "each stage runs `on` a processor; a stream stage follows a stage on another processor; `until` names "
+         "this stage or a later one of a late stage; some stage `samples_pose`");
+  s.rule("timewarp", "`strips` above 1 need line or pixel scanout, at most one strip per line");
   if (s.describing()) return;
   for (size_t i = 0; i < processors.size(); ++i)
     for (size_t j = 0; j < i; ++j)

@@ -2,7 +2,8 @@
 
 #include <algorithm>
 
-#include "latsim/pipelines/latency_recorder.hpp"
+#include "latsim/pipelines/pipeline.hpp"
+#include "latsim/results/latency_recorder.hpp"
 
 namespace latsim::pipelines::frame_stages {
 
@@ -76,20 +77,20 @@ bool Compositor::on_begin(JobRecord& warp) {
   return true;
 }
 
-ImageRecord Compositor::warped_record(const JobRecord& warp, int64_t frame, const EyeImage* src, int eye) const {
+results::ImageRecord Compositor::warped_record(const JobRecord& warp, int64_t frame, const EyeImage* src, int eye) const {
   const tracker::PosePrediction& now_pose = *warp.last_pose;
   const des::Time now = ctx_.sim.now();
   if (spec_.mode == Mode::render) return ctx_.image_record(warp.job, eye, now_pose, warp.last_sample_at, now);
   if (spec_.mode == Mode::positional) {
-    ImageRecord rec = ctx_.image_record(frame, eye, now_pose, warp.last_sample_at, now);
-    rec.warp = ImageRecord::Warp::positional;
+    results::ImageRecord rec = ctx_.image_record(frame, eye, now_pose, warp.last_sample_at, now);
+    rec.warp = results::ImageRecord::Warp::positional;
     rec.source_pose = src->eye_poses[static_cast<size_t>(eye)];
     return rec;
   }
   // Rotation only: the position (and the latency origin of the whole pose)
   // stays the rendered one; the orientation is the newest.
-  ImageRecord rec = ctx_.image_record(frame, eye, src->pose, warp.last_sample_at, now);
-  rec.warp = ImageRecord::Warp::rotation;
+  results::ImageRecord rec = ctx_.image_record(frame, eye, src->pose, warp.last_sample_at, now);
+  rec.warp = results::ImageRecord::Warp::rotation;
   rec.source_pose = src->eye_poses[static_cast<size_t>(eye)];
   rec.eye_pose.position_m = rec.source_pose.position_m;
   rec.eye_pose.orientation = ctx_.eye_pose(now_pose.pose, eye).orientation;
@@ -109,9 +110,9 @@ void Compositor::on_complete(JobRecord& warp) {
   const bool late = ctx_.sim.now() > warp.deadline;
   if (late) ++warps_late_;
   for (int eye = 0; eye < ctx_.display.eyes(); ++eye) {
-    ImageRecord rec = warped_record(warp, warp.tag, src, eye);
+    results::ImageRecord rec = warped_record(warp, warp.tag, src, eye);
     rec.continues_image = clock_.slot_of(warp.deadline).strip > 0;
-    const int64_t id = ctx_.recorder.register_image(rec);
+    const int64_t id = ctx_.images.add(rec);
     rewarps_.emplace(id, rewarps);
     // One strip: swapped in at the retrace (the next one if this warp is
     // late). Strips: written into the front buffer just ahead of the beam.

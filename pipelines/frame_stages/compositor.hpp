@@ -54,7 +54,7 @@ class Compositor {
   };
   void count_refresh(EyeImage& src, const JobRecord& warp);
   void release_if_unused(int64_t frame);
-  ImageRecord warped_record(const JobRecord& warp, int64_t frame, const EyeImage* src, int eye) const;
+  results::ImageRecord warped_record(const JobRecord& warp, int64_t frame, const EyeImage* src, int eye) const;
 
   RunContext& ctx_;
   WarpSpec spec_;

@@ -2,7 +2,8 @@
 
 #include <stdexcept>
 
-#include "latsim/pipelines/latency_recorder.hpp"
+#include "latsim/pipelines/pipeline.hpp"
+#include "latsim/results/latency_recorder.hpp"
 
 namespace latsim::pipelines::frame_stages {
 
@@ -93,7 +94,7 @@ void FrameStagesPipeline::start(RunContext& ctx) {
 }
 
 void FrameStagesPipeline::finish(RunContext& ctx) {
-  LatencyRecorder& r = ctx.recorder;
+  results::LatencyRecorder& r = ctx.recorder;
   r.set("frames_rendered", frames_completed_);
   r.set("application_frame_rate_hz", static_cast<double>(frames_completed_) / ctx.duration.to_seconds());
   if (swap_chain_) {

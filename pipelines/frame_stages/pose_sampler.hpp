@@ -13,7 +13,7 @@ namespace latsim::pipelines::frame_stages {
 /// Answers a stage's request for the pose to compute with.
 class PoseSampler {
  public:
-  explicit PoseSampler(const HostFeed& host) : host_(&host) {}
+  explicit PoseSampler(const results::HostFeed& host) : host_(&host) {}
 
   /// The pose a stage beginning at `now` uses for pixels expected to be lit
   /// at `photon_target`: from the newest sample the host can see, predicted
@@ -23,7 +23,7 @@ class PoseSampler {
   }
 
  private:
-  const HostFeed* host_;
+  const results::HostFeed* host_;
 };
 
 }  // namespace latsim::pipelines::frame_stages

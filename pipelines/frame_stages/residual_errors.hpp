@@ -7,7 +7,7 @@
 
 #include "frame_stages/compositor.hpp"
 #include "latsim/display/display.hpp"
-#include "latsim/pipelines/latency_recorder.hpp"
+#include "latsim/results/latency_recorder.hpp"
 #include "latsim/tracker/motion_source.hpp"
 
 namespace latsim::pipelines::frame_stages {
@@ -29,14 +29,14 @@ class ResidualErrors final : public display::ScanoutListener {
     int64_t samples() const { return static_cast<int64_t>(orientation_deg.count()); }
   };
 
-  ResidualErrors(const Compositor& compositor, LatencyRecorder& recorder, const tracker::MotionSource& motion,
+  ResidualErrors(const Compositor& compositor, results::LatencyRecorder& recorder, const tracker::MotionSource& motion,
                  double ipd_m, bool stereo);
   void on_scanout(const display::ScanoutSpan& span) override;
   const std::array<Bucket, kBuckets>& by_rewarps() const { return buckets_; }
 
  private:
   const Compositor& compositor_;
-  LatencyRecorder& recorder_;
+  results::LatencyRecorder& recorder_;
   const tracker::MotionSource& motion_;
   double ipd_m_;
   bool stereo_;

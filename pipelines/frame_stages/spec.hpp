@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "latsim/des/time.hpp"
-#include "latsim/pipelines/render_cost.hpp"
+#include "latsim/renderer/render_cost.hpp"
 
 namespace latsim::pipelines::frame_stages {
 
@@ -34,7 +34,7 @@ enum class StartRule {
 struct StageSpec {
   std::string name;
   std::vector<int> processors;  ///< indices into the processor list; several: used in turn (alternate frame rendering)
-  RenderCost cost;              ///< how long it takes
+  renderer::RenderCost cost;              ///< how long it takes
   StartRule start = StartRule::after;
   des::Time lag;                ///< stream: how long the previous stage runs before this one starts
   int until = -1;               ///< late: the stage whose end must meet the deadline (-1: this one)

@@ -16,7 +16,7 @@
 #include "frame_stages/spec.hpp"
 #include "latsim/des/random.hpp"
 #include "latsim/des/resource.hpp"
-#include "latsim/pipelines/timeline.hpp"
+#include "latsim/results/timeline.hpp"
 
 namespace latsim::pipelines::frame_stages {
 
@@ -61,7 +61,7 @@ struct FlowEnv {
   std::function<des::Time(des::Time)> next_retrace;  ///< first retrace at or after t
   const PoseSampler& poses;
   des::RandomStream& stream;                     ///< stage durations that vary
-  Timeline* timeline = nullptr;
+  results::Timeline* timeline = nullptr;
   /// Whether this flow's stages yield their processor between preemption
   /// slices (the application's do; the compositor's run to completion).
   bool yields = true;

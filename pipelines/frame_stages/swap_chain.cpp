@@ -1,7 +1,8 @@
 #include "frame_stages/swap_chain.hpp"
 
-#include "latsim/pipelines/latency_recorder.hpp"
-#include "latsim/pipelines/timeline.hpp"
+#include "latsim/pipelines/pipeline.hpp"
+#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/timeline.hpp"
 
 namespace latsim::pipelines::frame_stages {
 
@@ -10,8 +11,8 @@ SwapChain::SwapChain(RunContext& ctx, des::Resource& images, bool vsync) : ctx_(
 void SwapChain::on_frame_complete(const JobRecord& frame) {
   Done d{frame.job, {}, ctx_.sim.now()};
   for (int eye = 0; eye < ctx_.display.eyes(); ++eye) {
-    const ImageRecord rec = ctx_.image_record(frame.job, eye, *frame.last_pose, frame.last_sample_at, d.completed);
-    d.ids.push_back(ctx_.recorder.register_image(rec));
+    const results::ImageRecord rec = ctx_.image_record(frame.job, eye, *frame.last_pose, frame.last_sample_at, d.completed);
+    d.ids.push_back(ctx_.images.add(rec));
   }
   // Frames are presented in the order they were issued.
   early_.emplace(frame.job, std::move(d));

@@ -1,8 +1,9 @@
 // Pixel-Planes 5 Rendering Control as a latsim pipeline.
 #include <memory>
 
-#include "latsim/pipelines/latency_recorder.hpp"
+#include "latsim/pipelines/pipeline.hpp"
 #include "latsim/pxpl5/rc_engine.hpp"
+#include "latsim/results/latency_recorder.hpp"
 #include "pxpl5/wiring.hpp"
 
 namespace latsim::pipelines {

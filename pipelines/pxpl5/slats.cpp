@@ -2,8 +2,9 @@
 // by an asynchronous host.
 #include <memory>
 
-#include "latsim/pipelines/latency_recorder.hpp"
+#include "latsim/pipelines/pipeline.hpp"
 #include "latsim/pxpl5/slats_engine.hpp"
+#include "latsim/results/latency_recorder.hpp"
 #include "pxpl5/wiring.hpp"
 
 namespace latsim::pipelines {
@@ -44,7 +45,7 @@ class Pxpl5SlatsPipeline final : public Pipeline {
   void finish(RunContext& ctx) override {
     const pxpl5::FieldCounts& c = engine_->counts();
     wiring_->report(engine_->utilisation(ctx.duration), c.complete);
-    LatencyRecorder& r = ctx.recorder;
+    results::LatencyRecorder& r = ctx.recorder;
     r.set("missed_fields", c.missed);
     r.set("missed_field_fraction", c.missed_fraction());
     r.set("torn_fields", c.torn);

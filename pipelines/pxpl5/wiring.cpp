@@ -3,10 +3,11 @@
 
 #include <algorithm>
 
-#include "latsim/pipelines/latency_recorder.hpp"
-#include "latsim/pipelines/timeline.hpp"
+#include "latsim/pipelines/pipeline.hpp"
 #include "latsim/pxpl5/view_workload.hpp"
 #include "latsim/renderer/scene_spec.hpp"
+#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/timeline.hpp"
 
 namespace latsim::pipelines {
 
@@ -46,7 +47,7 @@ int64_t Pxpl5Wiring::remember(const tracker::TrackerSample& sample, des::Time t)
 tracker::Pose Pxpl5Wiring::eye_pose_of_token(int64_t token, int eye) const {
   const auto it = poses_.find(token);
   if (it != poses_.end()) return ctx_->eye_pose(it->second.pose, eye);
-  return eye_pose_of(ctx_->motion.pose_at(des::Time::zero()), eye, ctx_->ipd_m, ctx_->stereo);
+  return tracker::eye_pose(ctx_->motion.pose_at(des::Time::zero()), eye, ctx_->ipd_m, ctx_->stereo);
 }
 
 pxpl5::WorkloadSource& Pxpl5Wiring::workload(const Pxpl5Common& common) {
@@ -84,7 +85,7 @@ pxpl5::WorkloadSource& Pxpl5Wiring::workload(const Pxpl5Common& common) {
   workload_ = std::make_unique<pxpl5::ViewWorkload>(pxpl5::ViewBinner(std::move(triangles), screen),
                                                     [this](int64_t token, int eye) {
                                                       const tracker::Pose pose = eye_pose_of_token(token, eye);
-                                                      return pxpl5::ViewPose{pose.position_m, pose.orientation};
+                                                      return tracker::Pose{pose.position_m, pose.orientation};
                                                     });
   return *workload_;
 }
@@ -118,7 +119,7 @@ int64_t Pxpl5Wiring::image_id(int64_t frame, const pxpl5::EyeImage& e) {
   if (it == poses_.end()) {
     ++images_without_sample_;  // nothing tracked yet: the display keeps what it has
   } else {
-    id = ctx_->recorder.register_image(ctx_->image_record(frame, e.eye, it->second, e.transform_start, e.copy_end));
+    id = ctx_->images.add(ctx_->image_record(frame, e.eye, it->second, e.transform_start, e.copy_end));
   }
   image_ids_.emplace(key, id);
   while (image_ids_.size() > kImagesKept) image_ids_.erase(image_ids_.begin());
@@ -156,7 +157,7 @@ void Pxpl5Wiring::region_written(const pxpl5::RegionWrite& w) {
 }
 
 void Pxpl5Wiring::report(const pxpl5::Utilisation& u, int64_t frames_completed) const {
-  LatencyRecorder& r = ctx_->recorder;
+  results::LatencyRecorder& r = ctx_->recorder;
   r.object("stage_ms");
   for (const auto& [name, dist] : samples_by_name_) r.publish(name, dist);
   r.set("utilisation.gp", u.gp);

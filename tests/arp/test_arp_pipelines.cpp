@@ -5,12 +5,16 @@
 #include <fstream>
 #include <memory>
 
+#include "latsim/des/run_clocks.hpp"
 #include "latsim/des/simulator.hpp"
 #include "latsim/display/display.hpp"
-#include "latsim/pipelines/latency_recorder.hpp"
-#include "latsim/pipelines/run_clocks.hpp"
-#include "latsim/pipelines/run_files.hpp"
-#include "latsim/pipelines/tracker_host.hpp"
+#include "latsim/params/shared.hpp"
+#include "latsim/pipelines/pipeline.hpp"
+#include "latsim/results/image_book.hpp"
+#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/run_files.hpp"
+#include "latsim/run/builtin_pipelines.hpp"
+#include "latsim/run/tracker_host.hpp"
 #include "latsim/scenario/params.hpp"
 #include "latsim/tracker/motion_source.hpp"
 #include "latsim/tracker/tracker.hpp"
@@ -29,7 +33,7 @@ struct Harness {
         tracker(tracking, *motion, des::RandomStream(1, "tracker", 0)),
         host(sim, tracker, link),
         display(sim, display::RasterTiming(display::RasterParams{}), 1, display::ScanoutFidelity::Line),
-        recorder(sim, *motion, host, display.timing(), pipelines::ProbeSet{}, 0.064, false, false) {
+        recorder(sim, *motion, host, images, display.timing(), results::ProbeSet{}, 0.064, false, false) {
     display.add_listener(&recorder);
   }
 
@@ -44,10 +48,10 @@ struct Harness {
     if (doc.json().contains("display")) shared.display.hfov_deg = doc.json()["display"].value("hfov_deg", 90.0);
     const std::string type = doc.json()["pipeline"]["type"];
     scenario::Section section(doc.root().child("pipeline"));
-    const auto pipeline = pipelines::builtin_pipelines().find(type)->bind(section, shared)();
+    const auto pipeline = run::builtin_pipelines().find(type)->bind(section, shared)();
     pipelines::RunContext ctx{sim,     1,        0,       duration, *motion,         tracker_params,
                               link,    host,     display, shared.display, shared.scene ? &*shared.scene : nullptr,
-                              recorder, files,   clocks,  0.064,   false,    nullptr,         nullptr};
+                              images,  recorder, files,   clocks, 0.064,   false,    nullptr,         nullptr};
     pipeline->start(ctx);
     host.start(duration);
     display.start(duration);
@@ -58,15 +62,16 @@ struct Harness {
 
   scenario::ScenarioDocument doc;
   tracker::TrackerParams tracker_params;
-  pipelines::RunFiles files;
-  pipelines::RunClocks clocks{1, 0};
+  results::RunFiles files;
+  des::RunClocks clocks{1, 0};
   des::Simulator sim;
   std::unique_ptr<tracker::MotionSource> motion;
   tracker::DirectLink link;
   tracker::Tracker tracker;
-  pipelines::TrackerHost host;
+  run::TrackerHost host;
   display::Display display;
-  pipelines::LatencyRecorder recorder;
+  results::ImageBook images;
+  results::LatencyRecorder recorder;
 };
 
 std::unique_ptr<tracker::MotionSource> yaw_and_walk() {

@@ -6,14 +6,15 @@
 #include <optional>
 
 #include "frame_stages/frame_stages_pipeline.hpp"
+#include "latsim/des/run_clocks.hpp"
 #include "latsim/des/simulator.hpp"
 #include "latsim/display/display.hpp"
-#include "latsim/pipelines/latency_recorder.hpp"
-#include "latsim/pipelines/smear_recorder.hpp"
-#include "latsim/pipelines/tracker_host.hpp"
 #include "latsim/display/params.hpp"
-#include "latsim/pipelines/run_clocks.hpp"
-#include "latsim/pipelines/run_files.hpp"
+#include "latsim/results/image_book.hpp"
+#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/run_files.hpp"
+#include "latsim/results/smear_recorder.hpp"
+#include "latsim/run/tracker_host.hpp"
 #include "latsim/tracker/transport.hpp"
 
 namespace latsim::testing {
@@ -21,10 +22,10 @@ namespace latsim::testing {
 namespace fs = pipelines::frame_stages;
 
 /// Fixed-duration render cost.
-inline pipelines::RenderCost ms(double v) {
-  pipelines::RenderCost::Params p;
+inline renderer::RenderCost ms(double v) {
+  renderer::RenderCost::Params p;
   p.fixed_ms = v;
-  return pipelines::RenderCost(p, 0, 0);
+  return renderer::RenderCost(p, 0, 0);
 }
 
 inline fs::StageSpec stage(const char* name, std::vector<int> procs, double dur_ms,
@@ -72,15 +73,16 @@ struct Rig {
   tracker::TrackerParams tracker_params;
   tracker::Tracker tracker;
   tracker::DirectLink link;
-  pipelines::TrackerHost host;
+  run::TrackerHost host;
   display::DisplayParams display_params;
   display::Display display;
-  pipelines::LatencyRecorder recorder;
-  pipelines::RunFiles files;
-  pipelines::RunClocks clocks{1, 0};
+  results::ImageBook images;
+  results::LatencyRecorder recorder;
+  results::RunFiles files;
+  des::RunClocks clocks{1, 0};
   std::unique_ptr<pipelines::RunContext> ctx;
   fs::FrameStagesPipeline pipeline;
-  std::unique_ptr<pipelines::SmearRecorder> smear;
+  std::unique_ptr<results::SmearRecorder> smear;
   nlohmann::json figures;
 
   static tracker::TrackerParams tracker_of(int hz) {
@@ -108,17 +110,17 @@ struct Rig {
         host(sim, tracker, link),
         display_params(display_of(o)),
         display(sim, display::RasterTiming(display_params.raster), 1, display_params.fidelity),
-        recorder(sim, *motion, host, display.timing(), pipelines::ProbeSet{}, 0.064, false, false),
+        recorder(sim, *motion, host, images, display.timing(), results::ProbeSet{}, 0.064, false, false),
         pipeline(fs::FrameStagesPipeline::Params{std::move(spec)}) {
     display.add_listener(&recorder);
     if (o.persistence) {
       display.set_persistence(*o.persistence);
       recorder.set_persistence(&display.persistence());
-      smear = std::make_unique<pipelines::SmearRecorder>(recorder, *motion);
+      smear = std::make_unique<results::SmearRecorder>(recorder, *motion);
       display.add_listener(smear.get());
     }
     ctx.reset(new pipelines::RunContext{sim, 1, 0, des::Time::zero(), *motion, tracker_params, link, host, display,
-                                        display_params, nullptr, recorder, files, clocks, 0.064, false, nullptr,
+                                        display_params, nullptr, images, recorder, files, clocks, 0.064, false, nullptr,
                                         nullptr});
   }
 

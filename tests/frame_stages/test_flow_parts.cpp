@@ -108,11 +108,11 @@ TEST_CASE("late scheduling gives a stage whose time varies the longest time it r
   s.processors = {ProcessorSpec{"cpu1", {}}, ProcessorSpec{"cpu2", {}}, ProcessorSpec{"gpu", {}}};
   s.max_frames_in_flight = 3;
   StageSpec i = stage("I", {0}, 1, StartRule::late, true);
-  latsim::pipelines::RenderCost::Params varied;
+  latsim::renderer::RenderCost::Params varied;
   varied.fixed_ms = 1;
-  varied.variation = latsim::pipelines::RenderCost::Variation::Uniform;
+  varied.variation = latsim::renderer::RenderCost::Variation::Uniform;
   varied.variation_fraction = 0.3;
-  i.cost = latsim::pipelines::RenderCost(varied, 0, 0);
+  i.cost = latsim::renderer::RenderCost(varied, 0, 0);
   s.stages = {stage("S", {0}, 9, StartRule::retrace), i, stage("R", {1}, 9, StartRule::retrace), stage("G", {2}, 1)};
   Rig rig(s);
   rig.run(10.0);

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <numbers>
 
 #include "scenario_helpers.hpp"
 
@@ -12,7 +13,7 @@ using Json = nlohmann::json;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 /// The reference time warp (application read at V_k, warp read at
 /// V_{k+2} - 2) at 62.5 Hz on a 320 x 240, 90 degree display, with captures.

@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "latsim/des/random.hpp"
-#include "latsim/pipelines/runner.hpp"
+#include "latsim/run/runner.hpp"
 #include "latsim/scenario/config.hpp"
 
 namespace latsim::frames_test {
@@ -47,9 +47,9 @@ inline std::filesystem::path fresh_dir(const std::string& name) {
 
 /// Runs a scenario; with out_dir set, writes its result files there.
 inline nlohmann::json run(const nlohmann::json& scenario, const std::filesystem::path& out_dir = {}) {
-  pipelines::RunOptions options;
+  run::RunOptions options;
   options.out_dir = out_dir;
-  return pipelines::run_scenario(scenario::ScenarioDocument::from_json(scenario, LATSIM_SOURCE_DIR "/scenarios"),
+  return run::run_scenario(scenario::ScenarioDocument::from_json(scenario, LATSIM_SOURCE_DIR "/scenarios"),
                                  options);
 }
 

@@ -7,7 +7,9 @@
 #include "frames_helpers.hpp"
 #include "latsim/scenario/config.hpp"
 
-using namespace latsim;
+namespace des = latsim::des;
+namespace pipelines = latsim::pipelines;
+namespace scenario = latsim::scenario;
 using namespace latsim::frames_test;
 
 namespace {

@@ -4,12 +4,15 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <vector>
 
 #include "frames_helpers.hpp"
 #include "frameless/frameless_order.hpp"
 
-using namespace latsim;
+namespace des = latsim::des;
+namespace pipelines = latsim::pipelines;
+namespace scenario = latsim::scenario;
 using namespace latsim::frames_test;
 
 namespace {
@@ -32,7 +35,7 @@ std::filesystem::path write_cut_trace(const std::filesystem::path& dir) {
   std::filesystem::create_directories(dir);
   const auto file = dir / "cut.csv";
   std::ofstream out(file);
-  const double c = std::cos(3.14159265358979323846 / 4.0);
+  const double c = std::cos(std::numbers::pi / 4.0);
   out << "t_s,px,py,pz,qw,qx,qy,qz\n"
       << "0,0,0,0,1,0,0,0\n0.499,0,0,0,1,0,0,0\n"
       << "0.5,0,0,0," << c << ",0," << c << ",0\n3,0,0,0," << c << ",0," << c << ",0\n";
@@ -159,7 +162,7 @@ TEST_CASE("the frameless scenarios run and tell the two strategies apart", "[fra
   for (const char* name : {"side_by_side", "double_buffered"}) {
     auto doc = scenario::ScenarioDocument::load(LATSIM_SOURCE_DIR "/scenarios/frameless/" + std::string(name) + ".json",
                                                 {"/duration_s=1", "/frames/enabled=false"});
-    const auto summary = pipelines::run_scenario(doc, pipelines::RunOptions{});
+    const auto summary = latsim::run::run_scenario(doc, latsim::run::RunOptions{});
     const double mean = fig(summary, "pixel_age_ms")["mean"].get<double>();
     INFO(name << ": mean pixel age " << mean);
     if (std::string(name) == "side_by_side") CHECK((mean > 100.0 && mean < 140.0));

@@ -6,14 +6,14 @@
 #include <cstdint>
 
 #include "fuzz_inputs.hpp"
-#include "latsim/pipelines/runner.hpp"
+#include "latsim/run/runner.hpp"
 #include "latsim/scenario/config.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const auto file = latsim::fuzz::write_input("input.json", data, size);
   try {
-    const auto doc = latsim::pipelines::load_scenario(file, {});
-    (void)latsim::pipelines::validate_scenario(doc);
+    const auto doc = latsim::run::load_scenario(file, {});
+    (void)latsim::run::validate_scenario(doc);
   } catch (const latsim::scenario::ScenarioError&) {
     // Bad input, reported as the user would see it.
   }

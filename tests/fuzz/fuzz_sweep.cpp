@@ -7,10 +7,10 @@
 #include <string_view>
 
 #include "fuzz_inputs.hpp"
-#include "latsim/pipelines/runner.hpp"
+#include "latsim/run/runner.hpp"
 #include "latsim/scenario/config.hpp"
 #include "latsim/scenario/json_text.hpp"
-#include "sweep_plan.hpp"
+#include "latsim/sweep/plan.hpp"
 
 namespace {
 
@@ -19,7 +19,7 @@ using Json = nlohmann::json;
 // As the sweep command resolves a point: the runner's resolved scenario.
 Json resolve(const Json& scenario, const std::filesystem::path& base_dir) {
   auto doc = latsim::scenario::ScenarioDocument::from_json(scenario, base_dir);
-  (void)latsim::pipelines::validate_scenario(doc);
+  (void)latsim::run::validate_scenario(doc);
   return doc.resolved();
 }
 
@@ -32,10 +32,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     const Json sweep = latsim::scenario::parse_json(
         std::string_view(reinterpret_cast<const char*>(data), size), sweep_file.string());
-    const auto plan = latsim::app::SweepPlan::from_json(sweep, sweep_file, resolve);
+    const auto plan = latsim::sweep::SweepPlan::from_json(sweep, sweep_file, resolve);
     (void)plan.to_json();
   } catch (const latsim::scenario::ScenarioError&) {
-  } catch (const latsim::app::SweepError&) {
+  } catch (const latsim::sweep::SweepError&) {
   }
   return 0;
 }

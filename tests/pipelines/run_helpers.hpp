@@ -3,7 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "latsim/pipelines/runner.hpp"
+#include "latsim/run/runner.hpp"
 #include "latsim/scenario/config.hpp"
 
 namespace latsim::testing {
@@ -20,8 +20,8 @@ inline nlohmann::json base_scenario() {
 }
 
 inline nlohmann::json run(const nlohmann::json& scenario) {
-  return pipelines::run_scenario(scenario::ScenarioDocument::from_json(scenario, LATSIM_SOURCE_DIR "/scenarios"),
-                                 pipelines::RunOptions{});
+  return run::run_scenario(scenario::ScenarioDocument::from_json(scenario, LATSIM_SOURCE_DIR "/scenarios"),
+                                 run::RunOptions{});
 }
 
 inline const nlohmann::json& fig(const nlohmann::json& summary, const char* name) {

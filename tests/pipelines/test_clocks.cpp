@@ -15,9 +15,9 @@ using Json = nlohmann::json;
 namespace {
 
 Json run_file(const char* file, std::vector<std::string> sets, uint64_t replication) {
-  pipelines::RunOptions options;
+  run::RunOptions options;
   options.replication = replication;
-  return pipelines::run_scenario(pipelines::load_scenario(std::string(LATSIM_SOURCE_DIR "/scenarios/") + file, sets),
+  return run::run_scenario(run::load_scenario(std::string(LATSIM_SOURCE_DIR "/scenarios/") + file, sets),
                                  options);
 }
 
@@ -57,9 +57,9 @@ TEST_CASE("phases are drawn per replication from each clock's stream and recorde
 
   // The resolved scenario alone repeats the run: same seed and replication,
   // phases now fixed, figures identical.
-  const Json again = pipelines::run_scenario(
+  const Json again = run::run_scenario(
       scenario::ScenarioDocument::from_json(ra, LATSIM_SOURCE_DIR "/scenarios"), [] {
-        pipelines::RunOptions o;
+        run::RunOptions o;
         o.replication = 0;
         return o;
       }());

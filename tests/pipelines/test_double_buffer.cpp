@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <numbers>
 
 #include "latsim/display/raster_timing.hpp"
 #include "run_helpers.hpp"
@@ -108,7 +109,7 @@ TEST_CASE("constant yaw rate w gives registration error w times latency", "[doub
   const double w_deg_s = 30.0;
   Json ring = Json::array();
   for (int i = 0; i < 36; ++i) {
-    const double a = i * 10.0 * M_PI / 180.0;
+    const double a = i * 10.0 * std::numbers::pi / 180.0;
     ring.push_back({-2.0 * std::sin(a), 0.0, -2.0 * std::cos(a)});
   }
   s["probes"] = {{"points_m", ring}};

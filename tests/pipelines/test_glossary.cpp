@@ -8,8 +8,9 @@
 
 #include "latsim/des/simulator.hpp"
 #include "latsim/display/raster_timing.hpp"
-#include "latsim/pipelines/glossary.hpp"
-#include "latsim/pipelines/latency_recorder.hpp"
+#include "latsim/results/glossary.hpp"
+#include "latsim/results/image_book.hpp"
+#include "latsim/results/latency_recorder.hpp"
 #include "latsim/tracker/motion_phase.hpp"
 #include "latsim/tracker/motion_source.hpp"
 
@@ -18,7 +19,7 @@ using namespace latsim;
 namespace {
 
 /// A host that never sees a sample.
-class NoSamples final : public pipelines::HostFeed {
+class NoSamples final : public results::HostFeed {
  public:
   std::optional<tracker::TrackerSample> newest_at(des::Time) const override { return std::nullopt; }
   des::Time received_at(const tracker::TrackerSample& s) const override { return s.ready_at; }
@@ -32,7 +33,8 @@ struct Recorder {
   tracker::StillMotion motion{tracker::Pose{}};
   NoSamples host;
   display::RasterTiming timing{display::RasterParams{}};
-  pipelines::LatencyRecorder recorder{sim, motion, host, timing, pipelines::ProbeSet{}, 0.064, false, false};
+  results::ImageBook images;
+  results::LatencyRecorder recorder{sim, motion, host, images, timing, results::ProbeSet{}, 0.064, false, false};
 };
 
 }  // namespace
@@ -41,7 +43,7 @@ TEST_CASE("every glossary figure is defined in docs/figures.md", "[glossary]") {
   std::ifstream in(LATSIM_SOURCE_DIR "/docs/figures.md");
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   REQUIRE_FALSE(text.empty());
-  for (const auto& entry : pipelines::glossary()) {
+  for (const auto& entry : results::glossary()) {
     INFO(entry.name);
     CHECK(text.find("\n### " + std::string(entry.name) + "\n") != std::string::npos);
     CHECK_FALSE(entry.definition.empty());
@@ -50,7 +52,7 @@ TEST_CASE("every glossary figure is defined in docs/figures.md", "[glossary]") {
 
 TEST_CASE("a pipeline cannot report under a glossary name, nor set a figure twice", "[glossary]") {
   Recorder r;
-  pipelines::LatencyRecorder& rec = r.recorder;
+  results::LatencyRecorder& rec = r.recorder;
   CHECK_THROWS_AS(rec.add("motion_to_photon_ms", 1.0), std::logic_error);
   CHECK_THROWS_AS(rec.set("render_latency_fields", 2.99), std::logic_error);
   CHECK_THROWS_AS(rec.publish("render_latency_fields", des::Distribution{}), std::logic_error);
@@ -63,22 +65,22 @@ TEST_CASE("a pipeline cannot report under a glossary name, nor set a figure twic
   CHECK_THROWS_AS(rec.set("frames_rendered", int64_t{4}), std::logic_error);
   rec.add("tear_gap_px", 0.5);
   CHECK_THROWS_AS(rec.set("tear_gap_px", 1.0), std::logic_error);
-  CHECK(pipelines::is_glossary_figure("rotation_latency_ms"));
-  CHECK_FALSE(pipelines::is_glossary_figure("translation_latency_memory0_ms"));
+  CHECK(results::is_glossary_figure("rotation_latency_ms"));
+  CHECK_FALSE(results::is_glossary_figure("translation_latency_memory0_ms"));
 }
 
 TEST_CASE("the motion-phase parts of split figures are the recorder's", "[glossary]") {
   Recorder r;
-  CHECK(pipelines::is_glossary_figure("prediction_error_deg"));
-  CHECK(pipelines::is_glossary_figure("registration_error_arcmin_onset"));
-  CHECK(pipelines::is_glossary_figure("prediction_error_deg_still.mean"));
-  CHECK_FALSE(pipelines::is_glossary_figure("prediction_error_deg_early"));
-  CHECK_FALSE(pipelines::is_glossary_figure("registration_error_arcmin_onsets"));
-  CHECK_FALSE(pipelines::is_glossary_figure("prediction_error_mm_steady"));
+  CHECK(results::is_glossary_figure("prediction_error_deg"));
+  CHECK(results::is_glossary_figure("registration_error_arcmin_onset"));
+  CHECK(results::is_glossary_figure("prediction_error_deg_still.mean"));
+  CHECK_FALSE(results::is_glossary_figure("prediction_error_deg_early"));
+  CHECK_FALSE(results::is_glossary_figure("registration_error_arcmin_onsets"));
+  CHECK_FALSE(results::is_glossary_figure("prediction_error_mm_steady"));
   CHECK_THROWS_AS(r.recorder.add("registration_error_arcmin_steady", 1.0), std::logic_error);
   CHECK_THROWS_AS(r.recorder.add("prediction_horizon_ms", 1.0), std::logic_error);
   // The suffixes are the classifier's own phase names, in its order.
-  const auto phases = pipelines::motion_phase_suffixes();
+  const auto phases = results::motion_phase_suffixes();
   REQUIRE(phases.size() == 4);
   for (size_t i = 0; i < phases.size(); ++i) CHECK(tracker::phase_name(static_cast<tracker::MotionPhase>(i)) == phases[i]);
 }

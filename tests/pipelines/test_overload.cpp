@@ -14,8 +14,8 @@ using Json = nlohmann::json;
 namespace {
 
 Json run_poll_scenario(std::vector<std::string> sets) {
-  return pipelines::run_scenario(
-      pipelines::load_scenario(LATSIM_SOURCE_DIR "/scenarios/hmd_60hz_serial_poll.json", sets), pipelines::RunOptions{});
+  return run::run_scenario(
+      run::load_scenario(LATSIM_SOURCE_DIR "/scenarios/hmd_60hz_serial_poll.json", sets), run::RunOptions{});
 }
 
 bool has_warning(const Json& summary, const std::string& part) {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "latsim/pipelines/runner.hpp"
+#include "latsim/run/runner.hpp"
 #include "latsim/scenario/config.hpp"
 
 using Json = nlohmann::json;
@@ -16,8 +16,8 @@ using Json = nlohmann::json;
 namespace {
 
 Json run_file(const std::string& file, std::vector<std::string> overrides) {
-  const auto doc = latsim::pipelines::load_scenario(LATSIM_SOURCE_DIR "/scenarios/" + file, overrides);
-  return latsim::pipelines::run_scenario(doc, latsim::pipelines::RunOptions{});
+  const auto doc = latsim::run::load_scenario(LATSIM_SOURCE_DIR "/scenarios/" + file, overrides);
+  return latsim::run::run_scenario(doc, latsim::run::RunOptions{});
 }
 
 // Runs `file` at pixel fidelity both ways and compares every figure.

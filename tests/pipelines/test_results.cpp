@@ -8,8 +8,8 @@
 #include <fstream>
 #include <iterator>
 
-#include "latsim/pipelines/figures.hpp"
-#include "latsim/pipelines/run_files.hpp"
+#include "latsim/results/figures.hpp"
+#include "latsim/results/run_files.hpp"
 #include "run_helpers.hpp"
 
 using namespace latsim;
@@ -33,7 +33,7 @@ std::filesystem::path fresh(const std::string& name) {
 }  // namespace
 
 TEST_CASE("named figures nest by their dotted names; numeric parts are array elements", "[results]") {
-  pipelines::FigureTable t;
+  results::FigureTable t;
   t.set("utilisation.gp", 0.25);
   t.set("memories.1.renders", int64_t{7});
   t.set("memories.0.renders", int64_t{3});
@@ -59,7 +59,7 @@ TEST_CASE("every distribution has one format, whoever kept it", "[results]") {
   des::Distribution own(0.005, false), kept(0.005, false);
   for (double v : {1.0, 2.0, 3.0, 4.0}) own.add(v);
   for (double v : {10.0, 30.0}) kept.add(v);
-  pipelines::FigureTable t;
+  results::FigureTable t;
   t.publish("stage_ms.SEND", kept);
   t.publish("transform_to_copy_end_fields", kept);
   CHECK_THROWS_AS(t.publish("stage_ms.SEND", own), std::logic_error);
@@ -76,14 +76,14 @@ TEST_CASE("every distribution has one format, whoever kept it", "[results]") {
 }
 
 TEST_CASE("run files are written atomically into the run directory, or not at all", "[results]") {
-  pipelines::RunFiles none;
+  results::RunFiles none;
   CHECK_FALSE(none.enabled());
   none.write_text("x.txt", "nothing");
   CHECK(none.written().empty());
   const auto dir = fresh("files");
-  const auto staging = pipelines::staging_dir_of(dir, 4242);
+  const auto staging = results::staging_dir_of(dir, 4242);
   {
-    pipelines::RunFiles files(dir, staging);
+    results::RunFiles files(dir, staging);
     files.write_text("a.csv", "a,b\n1,2\n");
     files.write_text("sub/b.md", "# b\n");
     // Until the run commits, its files wait beside the run directory.
@@ -104,9 +104,9 @@ TEST_CASE("run files are written atomically into the run directory, or not at al
 
 TEST_CASE("a run that does not commit leaves no run directory and no staging directory", "[results]") {
   const auto dir = fresh("uncommitted");
-  const auto staging = pipelines::staging_dir_of(dir, 4243);
+  const auto staging = results::staging_dir_of(dir, 4243);
   {
-    pipelines::RunFiles files(dir, staging);
+    results::RunFiles files(dir, staging);
     files.write_text("timeline.csv", "t\n");
     CHECK(std::filesystem::exists(staging));
   }  // failed or interrupted: destroyed without commit
@@ -119,11 +119,11 @@ TEST_CASE("a write that fails names the file in the run directory and the system
   const auto blocker = fresh("unwritable");
   { std::ofstream(blocker) << "in the way"; }
   const auto dir = blocker / "run";
-  pipelines::RunFiles files(dir, pipelines::staging_dir_of(dir, 4244));
+  results::RunFiles files(dir, results::staging_dir_of(dir, 4244));
   try {
     files.write_text("figures.json", "{}");
     FAIL("no error");
-  } catch (const pipelines::WriteError& e) {
+  } catch (const results::WriteError& e) {
     CHECK(std::string(e.what()).find("cannot write") != std::string::npos);
     CHECK(e.error_number() != 0);
   }
@@ -152,9 +152,9 @@ TEST_CASE("the resolved scenario records host, output and transport defaults", "
 TEST_CASE("a pipeline's image files go through the run and figures.json stays byte-identical", "[results]") {
   const auto a = fresh("arp_a"), b = fresh("arp_b");
   for (const auto& dir : {a, b}) {
-    pipelines::RunOptions options;
+    run::RunOptions options;
     options.out_dir = dir;
-    pipelines::run_scenario(pipelines::load_scenario(LATSIM_SOURCE_DIR "/scenarios/arp/arp_basic.json",
+    run::run_scenario(run::load_scenario(LATSIM_SOURCE_DIR "/scenarios/arp/arp_basic.json",
                                                      {"/duration_s=0.6", "/pipeline/frame_times_s=[0.5]",
                                                       "/pipeline/face_px=32"}),
                             options);

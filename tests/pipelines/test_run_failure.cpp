@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "latsim/pipelines/pipeline.hpp"
+#include "latsim/run/builtin_pipelines.hpp"
 #include "run_helpers.hpp"
 
 using namespace latsim;
@@ -48,7 +49,7 @@ void bind(scenario::Section& s, FaultyPipeline::Params& p, const params::SharedP
 }
 
 pipelines::PipelineRegistry with_faulty() {
-  pipelines::PipelineRegistry r = pipelines::builtin_pipelines();
+  pipelines::PipelineRegistry r = run::builtin_pipelines();
   r.add(pipelines::pipeline_entry<FaultyPipeline>("faulty", "a stage that throws at fail_at_ms"));
   return r;
 }
@@ -62,14 +63,14 @@ TEST_CASE("a model failing mid-run is named with the simulated time, and the run
   Json s = testing::base_scenario();
   s["pipeline"] = {{"type", "faulty"}, {"fail_at_ms", 250}};
   const pipelines::PipelineRegistry registry = with_faulty();
-  pipelines::RunOptions opt;
+  run::RunOptions opt;
   opt.out_dir = parent / "run";
   opt.pipelines = &registry;
   const auto doc = scenario::ScenarioDocument::from_json(s, LATSIM_SOURCE_DIR "/scenarios");
   try {
-    pipelines::run_scenario(doc, opt);
+    run::run_scenario(doc, opt);
     FAIL("the run did not fail");
-  } catch (const pipelines::RunFailure& e) {
+  } catch (const run::RunFailure& e) {
     // The 26th stage event, at 25 × 10 ms: the kind's model and that time, exactly.
     CHECK(e.model() == "faulty");
     CHECK(e.at() == des::Time::from_seconds(0.25));
@@ -81,7 +82,7 @@ TEST_CASE("a model failing mid-run is named with the simulated time, and the run
 
   // The same pipeline failing after the run's end runs to completion.
   s["pipeline"]["fail_at_ms"] = 5000;
-  const auto ok = pipelines::run_scenario(scenario::ScenarioDocument::from_json(s, LATSIM_SOURCE_DIR "/scenarios"),
-                                          pipelines::RunOptions{.pipelines = &registry});
+  const auto ok = run::run_scenario(scenario::ScenarioDocument::from_json(s, LATSIM_SOURCE_DIR "/scenarios"),
+                                          run::RunOptions{.pipelines = &registry});
   CHECK(ok.at("events_per_model").contains("faulty"));
 }

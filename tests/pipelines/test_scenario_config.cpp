@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "latsim/pipelines/runner.hpp"
+#include "latsim/run/runner.hpp"
 #include "latsim/scenario/config.hpp"
 #include "run_helpers.hpp"
 
@@ -16,7 +16,7 @@ namespace {
 
 std::string error_pointer(const Json& scenario) {
   try {
-    latsim::pipelines::validate_scenario(ScenarioDocument::from_json(scenario, LATSIM_SOURCE_DIR "/scenarios"));
+    latsim::run::validate_scenario(ScenarioDocument::from_json(scenario, LATSIM_SOURCE_DIR "/scenarios"));
   } catch (const ScenarioError& e) {
     return e.pointer();
   }
@@ -103,7 +103,7 @@ TEST_CASE("malformed JSON reports the line", "[scenario]") {
 
 TEST_CASE("the resolved scenario records every default applied", "[scenario]") {
   const auto doc = ScenarioDocument::from_json(latsim::testing::base_scenario(), LATSIM_SOURCE_DIR "/scenarios");
-  latsim::pipelines::validate_scenario(doc);
+  latsim::run::validate_scenario(doc);
   CHECK(doc.resolved()["display"]["vblank_lines"] == 22);
   CHECK(doc.resolved()["display"]["scanout"] == "field");
   CHECK(doc.resolved()["pipeline"]["vsync"] == true);

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "latsim/pipelines/runner.hpp"
+#include "latsim/run/runner.hpp"
 #include "latsim/scenario/config.hpp"
 
 using Json = nlohmann::json;
@@ -17,10 +17,10 @@ using Json = nlohmann::json;
 namespace {
 
 Json run_file(const std::string& file, const std::vector<std::string>& overrides, bool ledger) {
-  const auto doc = latsim::pipelines::load_scenario(LATSIM_SOURCE_DIR "/scenarios/" + file, overrides);
-  latsim::pipelines::RunOptions options;
+  const auto doc = latsim::run::load_scenario(LATSIM_SOURCE_DIR "/scenarios/" + file, overrides);
+  latsim::run::RunOptions options;
   options.write_ledger = ledger;
-  return latsim::pipelines::run_scenario(doc, options);
+  return latsim::run::run_scenario(doc, options);
 }
 
 void check_same_figures(const std::string& file, std::vector<std::string> overrides) {

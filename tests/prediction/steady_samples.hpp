@@ -14,7 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "latsim/pipelines/runner.hpp"
+#include "latsim/run/runner.hpp"
 #include "latsim/scenario/config.hpp"
 
 namespace latsim::testing {
@@ -33,10 +33,10 @@ inline SteadyRun steady_samples(const scenario::ScenarioDocument& doc, double af
   const std::filesystem::path dir = std::filesystem::temp_directory_path() /
                                     ("latsim_steady_" + std::to_string(::getpid()) + "_" + std::to_string(calls++));
   std::filesystem::remove_all(dir);
-  pipelines::RunOptions options;
+  run::RunOptions options;
   options.out_dir = dir;
   options.write_samples = true;
-  SteadyRun run{pipelines::run_scenario(doc, options), {}};
+  SteadyRun run{run::run_scenario(doc, options), {}};
   SampleSeries& series = run.after;
   std::ifstream in(dir / "samples.csv");
   std::string line;

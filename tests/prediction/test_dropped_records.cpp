@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "latsim/des/simulator.hpp"
-#include "latsim/pipelines/tracker_host.hpp"
+#include "latsim/run/tracker_host.hpp"
 #include "latsim/tracker/host_prediction.hpp"
 #include "latsim/tracker/motion_source.hpp"
 #include "latsim/tracker/tracker.hpp"
@@ -30,7 +30,7 @@ TEST_CASE("a record dropped from the serial buffer never reaches the host's pred
   tracker::SerialLink link(sp);
   tracker::PredictionParams pp;
   pp.predictor.kind = tracker::PredictorKind::ConstantVelocity;
-  pipelines::TrackerHost host(sim, tracker, link, nullptr, pp);
+  run::TrackerHost host(sim, tracker, link, nullptr, pp);
   std::vector<int64_t> carried;
   host.on_carried([&](const tracker::TrackerSample& s, const tracker::Carriage&) { carried.push_back(s.index); });
   host.start(des::Time::s(2));

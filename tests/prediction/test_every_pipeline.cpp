@@ -4,9 +4,12 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <numbers>
+#include <set>
 #include <string>
 #include <vector>
 
+#include "latsim/run/builtin_pipelines.hpp"
 #include "run_helpers.hpp"
 #include "steady_samples.hpp"
 
@@ -27,7 +30,7 @@ constexpr double kRateDegS = 60.0;
 Json eye_level_probes() {
   Json points = Json::array();
   for (int i = 0; i < 24; ++i) {
-    const double yaw = i * 15.0 * 3.14159265358979323846 / 180.0;
+    const double yaw = i * 15.0 * std::numbers::pi / 180.0;
     points.push_back({-2.0 * std::sin(yaw), 1.6, -2.0 * std::cos(yaw)});
   }
   return {{"points_m", points}};
@@ -95,7 +98,7 @@ std::vector<Case> every_pipeline() {
 latsim::scenario::ScenarioDocument scenario_of(const Case& c, const std::string& predictor) {
   const std::vector<std::string> overrides = yaw_overrides(predictor);
   if (c.file != nullptr)
-    return latsim::pipelines::load_scenario(std::string(LATSIM_SOURCE_DIR "/scenarios/") + c.file, overrides);
+    return latsim::run::load_scenario(std::string(LATSIM_SOURCE_DIR "/scenarios/") + c.file, overrides);
   Json s = c.scenario;
   for (const std::string& o : overrides) latsim::scenario::apply_override(s, o);
   return latsim::scenario::ScenarioDocument::from_json(s, LATSIM_SOURCE_DIR "/scenarios");
@@ -145,6 +148,19 @@ double line_period_ms(const Json& summary) {
 }
 
 }  // namespace
+
+TEST_CASE("the cases below cover every registered pipeline", "[prediction]") {
+  // The pipelines come from the registry, not from a list kept here: a
+  // pipeline added to the registry without a case fails this test.
+  std::set<std::string> covered;
+  for (const Case& c : every_pipeline())
+    covered.insert(scenario_of(c, "none").resolved().at("pipeline").at("type").get<std::string>());
+  for (const std::string& name : latsim::run::builtin_pipelines().names()) {
+    INFO(name);
+    CHECK(covered.count(name) == 1);
+  }
+  CHECK(covered.size() == latsim::run::builtin_pipelines().names().size());
+}
 
 TEST_CASE("constant velocity cancels the registration error of a constant yaw in every pipeline", "[prediction]") {
   for (const Case& c : every_pipeline()) {

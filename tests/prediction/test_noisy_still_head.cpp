@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "kalman_steady_state.hpp"
@@ -15,7 +16,7 @@ using Json = nlohmann::json;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 constexpr double kNoiseDeg = 0.2;   // tracker orientation noise, per axis
 constexpr double kPsdDeg = 50.0;    // the filter's default process noise
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <string>
 
@@ -19,7 +20,7 @@ using Json = nlohmann::json;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 double mean_of(const Json& out, const char* name) { return fig(out, name).at("mean").get<double>(); }
 
@@ -69,10 +70,10 @@ TEST_CASE("the ledger records the instant each image was predicted for", "[predi
   s["host"] = {{"prediction", {{"type", "constant_velocity"}}}};
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / "latsim_prediction_ledger";
   std::filesystem::remove_all(dir);
-  latsim::pipelines::RunOptions options;
+  latsim::run::RunOptions options;
   options.out_dir = dir;
   options.write_ledger = true;
-  latsim::pipelines::run_scenario(latsim::scenario::ScenarioDocument::from_json(s, LATSIM_SOURCE_DIR "/scenarios"),
+  latsim::run::run_scenario(latsim::scenario::ScenarioDocument::from_json(s, LATSIM_SOURCE_DIR "/scenarios"),
                                   options);
   std::ifstream in(dir / "frames.csv");
   std::string header;

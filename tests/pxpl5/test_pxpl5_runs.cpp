@@ -14,7 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "latsim/pipelines/runner.hpp"
+#include "latsim/run/runner.hpp"
 #include "latsim/scenario/config.hpp"
 
 using namespace latsim;
@@ -73,17 +73,17 @@ Json slats_near_capacity(const fs::path& scene) {
 }
 
 /// Runs a scenario written next to its results (so that it may include shipped files).
-Json run(const Json& scenario, const fs::path& dir, const std::string& name) {
+Json run_into(const Json& scenario, const fs::path& dir, const std::string& name) {
   const fs::path file = dir / (name + ".json");
   std::ofstream(file) << scenario.dump(2);
-  pipelines::RunOptions options;
+  run::RunOptions options;
   options.out_dir = dir / name;
-  return pipelines::run_scenario(pipelines::load_scenario(file, {}), options);
+  return run::run_scenario(run::load_scenario(file, {}), options);
 }
 
 Json run_file(const std::string& file, const std::vector<std::string>& sets) {
-  return pipelines::run_scenario(pipelines::load_scenario(LATSIM_SOURCE_DIR "/scenarios/" + file, sets),
-                                 pipelines::RunOptions{});
+  return run::run_scenario(run::load_scenario(LATSIM_SOURCE_DIR "/scenarios/" + file, sets),
+                                 run::RunOptions{});
 }
 
 const Json& fig(const Json& summary, const char* name) { return summary.at("figures").at(name); }
@@ -130,7 +130,7 @@ std::map<int64_t, int> copies_per_field(const fs::path& timeline, const std::str
 
 TEST_CASE("Slats at 150 triangles of a view-dependent scene misses some fields but not all", "[pxpl5][slats][view]") {
   const fs::path dir = fresh_dir("near");
-  const Json r = run(slats_near_capacity(write_scene(dir)), dir, "run");
+  const Json r = run_into(slats_near_capacity(write_scene(dir)), dir, "run");
   CHECK(fig(r, "display_list_triangles") == 150);
   CHECK(fig(r, "triangles_on_screen")["max"].get<double>() == 150.0);
   CHECK(fig(r, "triangles_on_screen")["min"].get<double>() < 50.0);
@@ -151,7 +151,7 @@ TEST_CASE("Slats at 150 triangles of a view-dependent scene misses some fields b
 TEST_CASE("a torn Slats field shows the old region's pixels in a capture", "[pxpl5][slats][frames]") {
   const fs::path dir = fresh_dir("torn");
   Json s = slats_near_capacity(write_scene(dir));
-  run(s, dir, "scan");
+  run_into(s, dir, "scan");
   const std::map<int64_t, int> copies = copies_per_field(dir / "scan" / "timeline.csv", "FB1");
   // A late top region is never copied (ten per eye when complete; lower ones always are).
   int64_t torn = -1;
@@ -165,7 +165,7 @@ TEST_CASE("a torn Slats field shows the old region's pixels in a capture", "[pxp
   s["frames"] = {{"at_s", {(static_cast<double>(torn - 2) - 0.1) / 60.0, (static_cast<double>(torn) - 0.1) / 60.0}},
                  {"eye", 1},
                  {"threads", 1}};
-  run(s, dir, "capture");
+  run_into(s, dir, "capture");
   const Rgb before = read_png(dir / "capture" / "frames" / "0000_displayed.png");
   const Rgb after = read_png(dir / "capture" / "frames" / "0001_displayed.png");
   const int parity = static_cast<int>(torn % 2);

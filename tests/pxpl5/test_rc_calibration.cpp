@@ -88,10 +88,10 @@ TEST_CASE("per-eye latency has no spread for a still head and a spread for a wal
       const double x = 2.0 + 0.05 * i, y = -1.5 + 0.05 * j;
       wall.push_back({glm::dvec3(x, y, -4), glm::dvec3(x + 0.05, y, -4), glm::dvec3(x, y + 0.05, -4)});
     }
-  const auto still = [](int64_t, int) { return ViewPose{glm::dvec3(-8, 0, 0), glm::dquat(1, 0, 0, 0)}; };
+  const auto still = [](int64_t, int) { return latsim::tracker::Pose{glm::dvec3(-8, 0, 0), glm::dquat(1, 0, 0, 0)}; };
   // Sample k: 0.1 m further right, 6 m/s over the 4 s run.
   const auto walk = [](int64_t k, int) {
-    return ViewPose{glm::dvec3(-8.0 + 0.1 * static_cast<double>(k), 0, 0), glm::dquat(1, 0, 0, 0)};
+    return latsim::tracker::Pose{glm::dvec3(-8.0 + 0.1 * static_cast<double>(k), 0, 0), glm::dquat(1, 0, 0, 0)};
   };
   ViewWorkload still_work(ViewBinner(wall, ViewScreen{}), still);
   ViewWorkload walk_work(ViewBinner(wall, ViewScreen{}), walk);

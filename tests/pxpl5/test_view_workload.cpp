@@ -18,7 +18,7 @@ ViewScreen wide() {
   return s;
 }
 
-std::vector<int> regions(const WorldTriangle& t, const ViewPose& pose = {}) {
+std::vector<int> regions(const WorldTriangle& t, const latsim::tracker::Pose& pose = {}) {
   const ViewBinner binner({}, wide());
   std::vector<int> out;
   binner.regions_of(t, pose, out);
@@ -64,11 +64,11 @@ TEST_CASE("a triangle through the eye's plane is clipped at the near plane", "[p
 TEST_CASE("the binner follows the pose: turned left, the eye sees what lies to its left", "[pxpl5][view]") {
   const WorldTriangle left{glm::dvec3(-2, 0, 0), glm::dvec3(-2, 0, -0.5), glm::dvec3(-2, 0.5, 0)};
   CHECK(regions(left).empty());
-  ViewPose turned;
+  latsim::tracker::Pose turned;
   turned.orientation = glm::angleAxis(glm::radians(90.0), glm::dvec3(0, 1, 0));  // now looking down -x
   // Seen from there (X, Y, -d) = (-z, y, -2): x from 320 to 400, y from 160 to 240.
   CHECK(regions(left, turned) == std::vector<int>{7, 8});
-  ViewPose moved;
+  latsim::tracker::Pose moved;
   moved.position_m = glm::dvec3(0, 0, 5);  // stepped back: the triangle at z = -2 is 7 m away
   CHECK(regions({glm::dvec3(0, 0, -2), glm::dvec3(0.5, 0, -2), glm::dvec3(0, 0.5, -2)}, moved) == std::vector<int>{7});
 }
@@ -80,7 +80,7 @@ TEST_CASE("binning deals the display list round-robin and counts what each proce
     list.push_back({glm::dvec3(0, 0, z), glm::dvec3(0.5, 0, z), glm::dvec3(0, 0.5, z)});
   }
   const ViewBinner binner(list, wide());
-  const EyeWork w = binner.bin(ViewPose{}, 3);
+  const EyeWork w = binner.bin(latsim::tracker::Pose{}, 3);
   CHECK(w.on_screen_count == 4);
   CHECK(w.on_screen == std::vector<uint8_t>{1, 0, 1, 0, 1, 0, 1});
   // Processor p holds triangles p, p + 3, p + 6: 3, 2 and 2 of them.

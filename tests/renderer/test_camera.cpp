@@ -38,7 +38,7 @@ TEST_CASE("Camera follows the OpenGL head frame with row 0 at the top") {
 
 TEST_CASE("Projection inverts the pixel ray for any pose") {
   const Camera camera(70.0, 320, 200);
-  const EyePose pose{{1.5, -0.25, 3.0}, yaw_pitch_roll(0.7, -0.3, 0.2)};
+  const latsim::tracker::Pose pose{{1.5, -0.25, 3.0}, yaw_pitch_roll(0.7, -0.3, 0.2)};
   for (int y : {0, 17, 100, 199}) {
     for (int x : {0, 5, 160, 319}) {
       for (double distance_m : {0.3, 2.0, 40.0}) {

@@ -13,7 +13,7 @@ namespace {
 
 const glm::vec3 kSentinel(0.25f, 0.5f, 0.75f);
 
-EyePose room_pose() { return {{0.3, 1.6, 3.0}, glm::angleAxis(0.3, glm::dvec3(0, 1, 0))}; }
+latsim::tracker::Pose room_pose() { return {{0.3, 1.6, 3.0}, glm::angleAxis(0.3, glm::dvec3(0, 1, 0))}; }
 
 bool rows_equal(const Frame& a, const Frame& b, int y) {
   for (int x = 0; x < a.colour.width; ++x) {
@@ -36,7 +36,7 @@ TEST_CASE("Golden image: 64 x 48 test pattern from the origin") {
   const Camera camera(60.0, 64, 48);
   RenderOptions options;
   options.background = glm::vec3(1.0f);
-  const Frame frame = caster.render_frame(camera, EyePose{}, options);
+  const Frame frame = caster.render_frame(camera, latsim::tracker::Pose{}, options);
   const std::vector<uint8_t> pixels = to_srgb8(frame.colour);
   // Pinned values: a change means the scene, camera, shading or sRGB encoding changed, or
   // (for the PNG bytes) the zlib build. Embree's float results could in principle differ
@@ -101,7 +101,7 @@ TEST_CASE("Scanline rendering casts each row from its own pose") {
   const RayCaster caster(make_room());
   const Camera camera(75.0, 80, 60);
   RenderOptions options;
-  std::vector<EyePose> poses;
+  std::vector<latsim::tracker::Pose> poses;
   for (int y = 0; y < 60; ++y) {
     poses.push_back({{0.3 + 0.01 * y, 1.6, 3.0}, glm::angleAxis(0.3 + 0.005 * y, glm::dvec3(0, 1, 0))});
   }

@@ -5,18 +5,19 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "latsim/renderer/image_warp.hpp"
 
 using latsim::renderer::Camera;
-using latsim::renderer::EyePose;
+using latsim::tracker::Pose;
 using latsim::renderer::Frame;
 using latsim::renderer::inside_rotated_source;
 using latsim::renderer::warp_with_depth;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 constexpr int kW = 160, kH = 120;
 const glm::vec3 kUndefined(1.0f, 0.0f, 1.0f);
 
@@ -48,7 +49,7 @@ glm::dquat yaw(double deg) { return glm::angleAxis(deg * kPi / 180.0, glm::dvec3
 TEST_CASE("image warp: warping to the source pose gives the source back exactly") {
   const Camera cam(90.0, kW, kH);
   const Frame src = planes(cam, [](int x) { return x < kW / 2 ? 1.0 : 3.0; });
-  const EyePose pose{glm::dvec3(0.1, 1.6, -0.2), yaw(20.0)};
+  const latsim::tracker::Pose pose{glm::dvec3(0.1, 1.6, -0.2), yaw(20.0)};
   const auto out = warp_with_depth(src, cam, pose, pose, kUndefined);
   CHECK(out.undefined_px == 0);
   int mismatches = 0;
@@ -60,7 +61,7 @@ TEST_CASE("image warp: warping to the source pose gives the source back exactly"
 TEST_CASE("image warp: a rotation-only warp leaves the edge the head turns towards undefined") {
   const Camera cam(90.0, kW, kH);
   const double theta = 10.0;  // a yaw to the left: new pixels appear at the left edge
-  const EyePose from{glm::dvec3(0.0), yaw(0.0)}, to{glm::dvec3(0.0), yaw(theta)};
+  const latsim::tracker::Pose from{glm::dvec3(0.0), yaw(0.0)}, to{glm::dvec3(0.0), yaw(theta)};
   const auto out = warp_with_depth(sky(cam), cam, from, to, kUndefined);
   const int y = kH / 2;
   for (int x = 0; x < kW; ++x) {
@@ -94,7 +95,7 @@ TEST_CASE("image warp: a translated fronto-parallel plane shifts by focal x offs
   const double shift_px = 8.0;
   const double dx = shift_px * depth / cam.focal_px();  // eye moves right: the plane moves left
   const Frame src = planes(cam, [&](int) { return depth; });
-  const auto out = warp_with_depth(src, cam, EyePose{}, EyePose{glm::dvec3(dx, 0, 0), glm::dquat(1, 0, 0, 0)},
+  const auto out = warp_with_depth(src, cam, latsim::tracker::Pose{}, latsim::tracker::Pose{glm::dvec3(dx, 0, 0), glm::dquat(1, 0, 0, 0)},
                                    kUndefined);
   const int y = kH / 2;
   for (int x = 1; x + 10 < kW; ++x) {
@@ -112,7 +113,7 @@ TEST_CASE("image warp: a translation uncovers a gap behind a near surface as wid
   const double near_m = 1.0, far_m = 4.0;
   const double dx = 16.0 * near_m / cam.focal_px();  // near plane moves 16 px left, the far one 4 px
   const Frame src = planes(cam, [&](int x) { return x < kW / 2 ? near_m : far_m; });
-  const auto out = warp_with_depth(src, cam, EyePose{}, EyePose{glm::dvec3(dx, 0, 0), glm::dquat(1, 0, 0, 0)},
+  const auto out = warp_with_depth(src, cam, latsim::tracker::Pose{}, latsim::tracker::Pose{glm::dvec3(dx, 0, 0), glm::dquat(1, 0, 0, 0)},
                                    kUndefined);
   const int y = kH / 2;
   // The near half ends at column 80 - 16 = 64, the far half starts at 80 - 4 = 76: 12 columns of gap.

@@ -7,7 +7,7 @@
 #include <set>
 #include <sstream>
 
-#include "latsim/pipelines/runner.hpp"
+#include "latsim/run/runner.hpp"
 
 using latsim::scenario::KeySchema;
 using latsim::scenario::ObjectSchema;
@@ -82,7 +82,7 @@ int count_keys(const ObjectSchema& s) {
 }  // namespace
 
 TEST_CASE("the schema declares no key twice for one mode", "[schema]") {
-  const ObjectSchema schema = latsim::pipelines::scenario_schema();
+  const ObjectSchema schema = latsim::run::scenario_schema();
   check_unique(schema, "");
   // Every section and every pipeline's keys are there (a count well above the top-level keys).
   CHECK(count_keys(schema) > 150);
@@ -92,7 +92,7 @@ TEST_CASE("the schema declares no key twice for one mode", "[schema]") {
 }
 
 TEST_CASE("every key of every shipped scenario has exactly one declaration", "[schema]") {
-  const ObjectSchema schema = latsim::pipelines::scenario_schema();
+  const ObjectSchema schema = latsim::run::scenario_schema();
   int scenarios = 0;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(LATSIM_SOURCE_DIR "/scenarios")) {
     const std::string file = entry.path().string();
@@ -104,8 +104,8 @@ TEST_CASE("every key of every shipped scenario has exactly one declaration", "[s
     // A sweep file (a base scenario and axes) is not a scenario, wherever it lives.
     std::ifstream in(entry.path());
     if (nlohmann::json::parse(in).contains("axes")) continue;
-    const auto doc = latsim::pipelines::load_scenario(entry.path(), {});
-    latsim::pipelines::validate_scenario(doc);
+    const auto doc = latsim::run::load_scenario(entry.path(), {});
+    latsim::run::validate_scenario(doc);
     walk(doc.resolved(), schema, "");
     ++scenarios;
   }

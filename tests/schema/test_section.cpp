@@ -2,7 +2,7 @@
 // struct and describes it for the schema.
 #include <catch2/catch.hpp>
 
-#include "latsim/pipelines/runner.hpp"
+#include "latsim/run/runner.hpp"
 #include "latsim/scenario/params.hpp"
 
 using namespace latsim;
@@ -129,7 +129,7 @@ TEST_CASE("a key of another mode is a warning when the schema knows it, an error
 }
 
 TEST_CASE("an override creates an optional section the schema declares, and nothing else", "[params]") {
-  const ObjectSchema schema = pipelines::scenario_schema();
+  const ObjectSchema schema = run::scenario_schema();
   Json doc = {{"display", Json::object()}};
   scenario::apply_override(doc, "/output/timeline=false", &schema);
   CHECK(doc["output"]["timeline"] == false);

@@ -5,13 +5,13 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "fidelity_table.hpp"
+#include "latsim/sweep/fidelity_table.hpp"
 
-using latsim::app::compute_errors;
-using latsim::app::fidelity_csv;
-using latsim::app::FidelityLevel;
-using latsim::app::level_dir_name;
-using latsim::app::parse_vary;
+using latsim::sweep::compute_errors;
+using latsim::sweep::fidelity_csv;
+using latsim::sweep::FidelityLevel;
+using latsim::sweep::level_dir_name;
+using latsim::sweep::parse_vary;
 
 TEST_CASE("the vary option splits a pointer and its levels, coarsest first", "[fidelity]") {
   const auto axis = parse_vary("/display/scanout=field,line,pixel");

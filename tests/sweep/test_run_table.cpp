@@ -12,18 +12,18 @@
 #include <sstream>
 #include <string>
 
-#include "results_db.hpp"
+#include "latsim/sweep/results_db.hpp"
 #include "scratch_dir.hpp"
-#include "run_table.hpp"
-#include "sweep_store.hpp"
+#include "latsim/sweep/run_table.hpp"
+#include "latsim/sweep/store.hpp"
 
-using latsim::app::csv_field;
-using latsim::app::find_figure;
-using latsim::app::format_number;
-using latsim::app::is_temporary_name;
-using latsim::app::results_csv;
-using latsim::app::RunRecord;
-using latsim::app::SweepStore;
+using latsim::sweep::csv_field;
+using latsim::sweep::find_figure;
+using latsim::sweep::format_number;
+using latsim::sweep::is_temporary_name;
+using latsim::sweep::results_csv;
+using latsim::sweep::RunRecord;
+using latsim::sweep::SweepStore;
 using latsim::test::scratch_dir;
 using Json = nlohmann::json;
 namespace fs = std::filesystem;
@@ -99,7 +99,7 @@ TEST_CASE("results.csv has one row per run in the given order with the headline 
 TEST_CASE("results.sqlite holds runs, figures, distributions, histograms and models", "[sweep]") {
   const fs::path dir = scratch_dir("latsim_results_db");
   const fs::path file = dir / "results.sqlite";
-  latsim::app::write_results_db(file, {"/display/refresh_hz"}, two_records());
+  latsim::sweep::write_results_db(file, {"/display/refresh_hz"}, two_records());
   REQUIRE(fs::exists(file));
   for (const auto& entry : fs::directory_iterator(dir)) CHECK_FALSE(is_temporary_name(entry.path().filename().string()));
   sqlite3* db = nullptr;
@@ -113,7 +113,7 @@ TEST_CASE("results.sqlite holds runs, figures, distributions, histograms and mod
   CHECK(count_rows(db, "SELECT COUNT(*) FROM models WHERE model = 'tracker' AND events = 600") == 2);
   sqlite3_close(db);
   // Writing again replaces the file whole.
-  latsim::app::write_results_db(file, {"/display/refresh_hz"}, {two_records()[0]});
+  latsim::sweep::write_results_db(file, {"/display/refresh_hz"}, {two_records()[0]});
   REQUIRE(sqlite3_open_v2(file.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK);
   CHECK(count_rows(db, "SELECT COUNT(*) FROM runs") == 1);
   sqlite3_close(db);
@@ -164,13 +164,13 @@ TEST_CASE("a sweep directory: finished means summary.json exists, stray temporar
 TEST_CASE("plan.json is rewritten only when its content changes", "[sweep]") {
   const fs::path dir = scratch_dir("latsim_write_if_changed");
   const fs::path file = dir / "plan.json";
-  latsim::app::write_file_if_changed(file, "{}\n");
+  latsim::sweep::write_file_if_changed(file, "{}\n");
   const auto first = fs::last_write_time(file);
   // Set the time back by hand: the test must not depend on the clock's resolution.
   fs::last_write_time(file, first - std::chrono::hours(1));
-  latsim::app::write_file_if_changed(file, "{}\n");
+  latsim::sweep::write_file_if_changed(file, "{}\n");
   CHECK(fs::last_write_time(file) == first - std::chrono::hours(1));
-  latsim::app::write_file_if_changed(file, "{\"runs\": []}\n");
+  latsim::sweep::write_file_if_changed(file, "{\"runs\": []}\n");
   std::ifstream in(file);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   CHECK(text == "{\"runs\": []}\n");

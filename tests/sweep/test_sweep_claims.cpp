@@ -16,13 +16,13 @@
 #include <vector>
 
 #include "scratch_dir.hpp"
-#include "sweep_claims.hpp"
-#include "sweep_journal.hpp"
+#include "latsim/sweep/claims.hpp"
+#include "latsim/sweep/journal.hpp"
 
-using latsim::app::ClaimHolder;
-using latsim::app::ClaimOutcome;
-using latsim::app::RunClaims;
-using latsim::app::stale_reason;
+using latsim::sweep::ClaimHolder;
+using latsim::sweep::ClaimOutcome;
+using latsim::sweep::RunClaims;
+using latsim::sweep::stale_reason;
 using latsim::test::scratch_dir;
 namespace fs = std::filesystem;
 using Kind = ClaimOutcome::Kind;
@@ -88,11 +88,11 @@ TEST_CASE("a claim from another host is stale when its heartbeat is older than t
 
 TEST_CASE("process_alive: this process, a reused pid, a dead one", "[sweep][claims]") {
   const ClaimHolder me = ClaimHolder::self();
-  CHECK(latsim::app::process_alive(me.pid, me.pid_start));
-  CHECK(latsim::app::process_alive(me.pid, 0));
-  if (me.pid_start != 0) CHECK_FALSE(latsim::app::process_alive(me.pid, me.pid_start + 1));
-  CHECK_FALSE(latsim::app::process_alive(dead_pid(), 0));
-  CHECK_FALSE(latsim::app::process_alive(0, 0));
+  CHECK(latsim::sweep::process_alive(me.pid, me.pid_start));
+  CHECK(latsim::sweep::process_alive(me.pid, 0));
+  if (me.pid_start != 0) CHECK_FALSE(latsim::sweep::process_alive(me.pid, me.pid_start + 1));
+  CHECK_FALSE(latsim::sweep::process_alive(dead_pid(), 0));
+  CHECK_FALSE(latsim::sweep::process_alive(0, 0));
 }
 
 TEST_CASE("one holder per run: held, released, taken again, finished", "[sweep][claims]") {
@@ -199,11 +199,11 @@ TEST_CASE("the heartbeat refreshes every claim held", "[sweep][claims]") {
 TEST_CASE("the journal appends one line per event to its process's own file", "[sweep][claims]") {
   const fs::path dir = scratch_dir("latsim_journal");
   {
-    latsim::app::SweepJournal journal(dir, "hostA", 42);
+    latsim::sweep::SweepJournal journal(dir, "hostA", 42);
     journal.record("start", "r1");
     journal.record("fail", "r1", "bad\nthing");
   }
-  latsim::app::SweepJournal again(dir, "hostA", 42);
+  latsim::sweep::SweepJournal again(dir, "hostA", 42);
   again.record("start", "r1");
   std::ifstream in(dir / "journal" / "hostA.42.log");
   std::vector<std::string> lines;

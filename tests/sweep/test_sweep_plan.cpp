@@ -9,13 +9,13 @@
 #include <set>
 #include <string>
 
-#include "sweep_plan.hpp"
+#include "latsim/sweep/plan.hpp"
 
-using latsim::app::expand_points;
-using latsim::app::expand_range;
-using latsim::app::run_id_of;
-using latsim::app::SweepError;
-using latsim::app::SweepPlan;
+using latsim::sweep::expand_points;
+using latsim::sweep::expand_range;
+using latsim::sweep::run_id_of;
+using latsim::sweep::SweepError;
+using latsim::sweep::SweepPlan;
 using Json = nlohmann::json;
 namespace fs = std::filesystem;
 

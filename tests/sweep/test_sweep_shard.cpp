@@ -5,14 +5,14 @@
 #include <map>
 #include <string>
 
-#include "sweep_shard.hpp"
+#include "latsim/sweep/shard.hpp"
 
-using latsim::app::parse_shard;
-using latsim::app::Shard;
+using latsim::sweep::parse_shard;
+using latsim::sweep::Shard;
 
 namespace {
 
-latsim::app::EnvLookup env_of(std::map<std::string, std::string> vars) {
+latsim::sweep::EnvLookup env_of(std::map<std::string, std::string> vars) {
   return [vars](const std::string& name) -> std::optional<std::string> {
     const auto it = vars.find(name);
     if (it == vars.end()) return std::nullopt;
@@ -20,7 +20,7 @@ latsim::app::EnvLookup env_of(std::map<std::string, std::string> vars) {
   };
 }
 
-std::string error_of(const std::string& text, const latsim::app::EnvLookup& env = env_of({})) {
+std::string error_of(const std::string& text, const latsim::sweep::EnvLookup& env = env_of({})) {
   try {
     (void)parse_shard(text, env);
   } catch (const std::invalid_argument& e) {

@@ -2,6 +2,8 @@
 // host knew then, fixed horizons, forgetting, and no cost without prediction.
 #include <catch2/catch.hpp>
 
+#include <numbers>
+
 #include "latsim/tracker/host_prediction.hpp"
 
 using namespace latsim::tracker;
@@ -23,7 +25,7 @@ TrackerSample sample_at(int64_t index, Time t, const Pose& pose) {
 Pose yaw_with_reversal(Time t) {
   const double s = t.to_seconds();
   const double deg = s <= 0.03 ? 100.0 * s : 3.0 - 50.0 * (s - 0.03);
-  return Pose{{0.0, 1.6, 0.0}, quat_from_yaw_pitch(deg * 3.14159265358979323846 / 180.0, 0.0)};
+  return Pose{{0.0, 1.6, 0.0}, quat_from_yaw_pitch(deg * std::numbers::pi / 180.0, 0.0)};
 }
 
 }  // namespace
@@ -42,10 +44,10 @@ TEST_CASE("a basis predicts from what the host knew after its own sample", "[hos
   CHECK(p3.target == Time::ms(50));
   CHECK(p3.horizon() == Time::ms(20));
   CHECK(p3.sample.index == 3);
-  CHECK(yaw_of(p3.pose.orientation) * 180.0 / 3.14159265358979323846 == Approx(5.0).epsilon(1e-12));
+  CHECK(yaw_of(p3.pose.orientation) * 180.0 / std::numbers::pi == Approx(5.0).epsilon(1e-12));
   // Sample 6 (60 ms) has seen the reversal: at 80 ms it expects 3 - 50 * 0.05 = 0.5 degrees.
   const PosePrediction p6 = host.basis_of(samples[6]).for_photon_time(Time::ms(80));
-  CHECK(yaw_of(p6.pose.orientation) * 180.0 / 3.14159265358979323846 == Approx(0.5).epsilon(1e-9));
+  CHECK(yaw_of(p6.pose.orientation) * 180.0 / std::numbers::pi == Approx(0.5).epsilon(1e-9));
 }
 
 TEST_CASE("a fixed horizon ignores the photon time asked for", "[host_prediction]") {

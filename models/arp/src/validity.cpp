@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
@@ -13,7 +14,7 @@ namespace {
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 void check_threshold(double threshold_rad) {
-  if (!(threshold_rad > 0.0) || !(threshold_rad < 3.14159)) {
+  if (!(threshold_rad > 0.0) || !(threshold_rad < std::numbers::pi)) {
     throw std::invalid_argument("validity: threshold angle must lie in (0, pi) rad");
   }
 }

@@ -2,20 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 namespace latsim::pxpl5 {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 /// A corner in eye space as (x, y, d): d = distance in front of the eye.
 struct EyePoint {
   double x, y, d;
 };
 
-EyePoint to_eye(const glm::dvec3& p, const ViewPose& pose, const glm::dquat& inverse) {
+EyePoint to_eye(const glm::dvec3& p, const tracker::Pose& pose, const glm::dquat& inverse) {
   const glm::dvec3 e = inverse * (p - pose.position_m);
   return {e.x, e.y, -e.z};
 }
@@ -59,7 +60,7 @@ ViewBinner::ViewBinner(std::vector<WorldTriangle> triangles, ViewScreen screen)
   tan_half_v_ = tan_half_h_ * screen_.height_px / screen_.width_px;
 }
 
-void ViewBinner::regions_of(const WorldTriangle& triangle, const ViewPose& pose, std::vector<int>& out) const {
+void ViewBinner::regions_of(const WorldTriangle& triangle, const tracker::Pose& pose, std::vector<int>& out) const {
   out.clear();
   const glm::dquat inverse = glm::conjugate(pose.orientation);
   const std::array<EyePoint, 3> c{to_eye(triangle[0], pose, inverse), to_eye(triangle[1], pose, inverse),
@@ -93,7 +94,7 @@ void ViewBinner::regions_of(const WorldTriangle& triangle, const ViewPose& pose,
     for (int col = c0; col <= c1; ++col) out.push_back(row * cols + col);
 }
 
-EyeWork ViewBinner::bin(const ViewPose& pose, int processors) const {
+EyeWork ViewBinner::bin(const tracker::Pose& pose, int processors) const {
   EyeWork w;
   w.bins = BinCounts(processors, screen_.regions());
   w.on_screen.assign(triangles_.size(), 0);
@@ -108,7 +109,7 @@ EyeWork ViewBinner::bin(const ViewPose& pose, int processors) const {
   return w;
 }
 
-ViewWorkload::ViewWorkload(ViewBinner binner, std::function<ViewPose(int64_t, int)> pose_of)
+ViewWorkload::ViewWorkload(ViewBinner binner, std::function<tracker::Pose(int64_t, int)> pose_of)
     : binner_(std::move(binner)), pose_of_(std::move(pose_of)) {}
 
 const EyeWork& ViewWorkload::work(int64_t sample_token, int eye, int processors) {

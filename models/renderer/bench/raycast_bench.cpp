@@ -18,7 +18,7 @@
 namespace {
 
 using latsim::renderer::Camera;
-using latsim::renderer::EyePose;
+using latsim::tracker::Pose;
 using latsim::renderer::Frame;
 using latsim::renderer::RayCaster;
 using latsim::renderer::RenderOptions;
@@ -43,7 +43,7 @@ Timing time_runs(int repeats, const std::function<void()>& run) {
 }
 
 // The naive baseline: one rtcIntersect1 query per pixel, on the calling thread.
-Frame naive_frame(const RayCaster& caster, const Camera& camera, const EyePose& pose) {
+Frame naive_frame(const RayCaster& caster, const Camera& camera, const latsim::tracker::Pose& pose) {
   Frame frame = Frame::cleared(camera.width_px(), camera.height_px(), glm::vec3(0.0f));
   for (int y = 0; y < camera.height_px(); ++y) {
     for (int x = 0; x < camera.width_px(); ++x) {
@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
   const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 9;
   const Camera camera(60.0, 640, 480);
   // Standing by the south wall, turned slightly left: furniture, walls, floor, ceiling.
-  const EyePose pose{{0.0, 1.6, 3.5}, glm::angleAxis(0.2, glm::dvec3(0.0, 1.0, 0.0))};
+  const latsim::tracker::Pose pose{{0.0, 1.6, 3.5}, glm::angleAxis(0.2, glm::dvec3(0.0, 1.0, 0.0))};
   const RayCaster caster(latsim::renderer::make_room());
   const double rays = static_cast<double>(camera.width_px()) * camera.height_px();
 

@@ -44,7 +44,7 @@ glm::dvec3 Camera::pixel_ray(int x, int y, const glm::dquat& orientation) const 
   return ray_direction(x + 0.5, y + 0.5, orientation);
 }
 
-std::optional<glm::dvec2> Camera::project(const glm::dvec3& point_m, const EyePose& pose) const {
+std::optional<glm::dvec2> Camera::project(const glm::dvec3& point_m, const tracker::Pose& pose) const {
   // Into the head frame: the inverse of a unit quaternion is its conjugate; normalising
   // guards against poses whose quaternion has drifted from unit length.
   const glm::dquat to_head = glm::conjugate(glm::normalize(pose.orientation));

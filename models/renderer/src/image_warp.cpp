@@ -30,7 +30,7 @@ struct Projected {
 
 class Warper {
  public:
-  Warper(const Frame& source, const Camera& camera, const EyePose& from, const EyePose& to, const glm::vec3& undefined,
+  Warper(const Frame& source, const Camera& camera, const tracker::Pose& from, const tracker::Pose& to, const glm::vec3& undefined,
          double break_ratio)
       : src_(source), cam_(camera), w_(camera.width_px()), h_(camera.height_px()), break_ratio_(break_ratio) {
     if (source.colour.width != w_ || source.colour.height != h_ || source.depth.width != w_ || source.depth.height != h_)
@@ -55,7 +55,7 @@ class Warper {
  private:
   size_t idx(int x, int y) const { return static_cast<size_t>(y) * static_cast<size_t>(w_) + static_cast<size_t>(x); }
 
-  void project_all(const EyePose& from, const EyePose& to) {
+  void project_all(const tracker::Pose& from, const tracker::Pose& to) {
     grid_.resize(static_cast<size_t>(w_) * static_cast<size_t>(h_));
     const glm::dquat to_head = glm::conjugate(glm::normalize(to.orientation));
     for (int y = 0; y < h_; ++y)
@@ -176,8 +176,8 @@ class Warper {
 
 }  // namespace
 
-WarpedFrame warp_with_depth(const Frame& source, const Camera& camera, const EyePose& source_pose,
-                            const EyePose& shown_pose, const glm::vec3& undefined, double break_ratio) {
+WarpedFrame warp_with_depth(const Frame& source, const Camera& camera, const tracker::Pose& source_pose,
+                            const tracker::Pose& shown_pose, const glm::vec3& undefined, double break_ratio) {
   if (!(break_ratio >= 1.0)) throw std::invalid_argument("warp_with_depth: break_ratio must be at least 1");
   return Warper(source, camera, source_pose, shown_pose, undefined, break_ratio).run();
 }

@@ -225,7 +225,7 @@ struct RayCaster::Impl {
   }
 
   // Casts the pixels (x, row) for x in [0, width) from one pose as one coherent stream.
-  void cast_row(const Camera& camera, const EyePose& pose, int row, Frame& frame,
+  void cast_row(const Camera& camera, const tracker::Pose& pose, int row, Frame& frame,
                 const RenderOptions& options) const {
     const int width = camera.width_px();
     std::vector<RTCRayHit> rays(static_cast<size_t>(width));
@@ -281,13 +281,13 @@ void RayCaster::cast_rays(std::span<const Ray> rays, std::span<Hit> hits, const 
   });
 }
 
-Frame RayCaster::render_frame(const Camera& camera, const EyePose& pose, const RenderOptions& options) const {
+Frame RayCaster::render_frame(const Camera& camera, const tracker::Pose& pose, const RenderOptions& options) const {
   Frame frame = Frame::cleared(camera.width_px(), camera.height_px(), options.background);
   render_rows(camera, pose, RowSet::all(camera.height_px()), frame, options);
   return frame;
 }
 
-void RayCaster::render_rows(const Camera& camera, const EyePose& pose, const RowSet& rows, Frame& frame,
+void RayCaster::render_rows(const Camera& camera, const tracker::Pose& pose, const RowSet& rows, Frame& frame,
                             const RenderOptions& options) const {
   check_frame(camera, frame);
   check_rows(camera, rows);
@@ -297,7 +297,7 @@ void RayCaster::render_rows(const Camera& camera, const EyePose& pose, const Row
   });
 }
 
-void RayCaster::render_scanlines(const Camera& camera, std::span<const EyePose> row_poses, const RowSet& rows,
+void RayCaster::render_scanlines(const Camera& camera, std::span<const tracker::Pose> row_poses, const RowSet& rows,
                                  Frame& frame, const RenderOptions& options) const {
   check_frame(camera, frame);
   check_rows(camera, rows);

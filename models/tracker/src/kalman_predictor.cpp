@@ -1,6 +1,7 @@
 #include "latsim/tracker/kalman_predictor.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -15,7 +16,7 @@ using Vector6 = Eigen::Matrix<double, 6, 1>;
 using Matrix3 = Eigen::Matrix3d;
 using Vector3 = Eigen::Vector3d;
 
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 Vector3 to_eigen(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 glm::dvec3 to_glm(const Vector3& v) { return {v(0), v(1), v(2)}; }

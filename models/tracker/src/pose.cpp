@@ -6,6 +6,14 @@
 
 namespace latsim::tracker {
 
+Pose eye_pose(const Pose& head, int eye, double ipd_m, bool stereo) {
+  if (!stereo) return head;
+  const double offset = (eye == 0 ? -0.5 : 0.5) * ipd_m;
+  Pose p = head;
+  p.position_m += head.orientation * glm::dvec3(offset, 0.0, 0.0);
+  return p;
+}
+
 double angle_between(const glm::dquat& q1, const glm::dquat& q2) {
   const glm::dquat d = glm::conjugate(q1) * q2;
   const double vec_norm = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);

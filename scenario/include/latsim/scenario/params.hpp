@@ -160,6 +160,12 @@ class Section {
   void check(std::string_view key, bool ok, std::string_view message);
   /// The same for a key elsewhere in the scenario, by its absolute JSON pointer.
   void check_pointer(std::string_view pointer, bool ok, std::string_view message);
+  /// Documents a rule at `key` that is checked elsewhere, item by item and
+  /// with each item's own pointer (check_pointer): the rule appears in the
+  /// schema and the reference; reading does nothing here.
+  void rule(std::string_view key, std::string_view message) {
+    if (describing()) check(key, true, message);
+  }
   /// A cross-field rule on time: `per_item_s` (what the value of `key` costs) times
   /// `items` (described by `items_text`, such as "/scene/triangles × 2 eyes")
   /// must not exceed the longest span a scenario may imply, 1e6 s, so that

@@ -13,17 +13,12 @@
 #include <glm/vec3.hpp>
 
 #include "latsim/pxpl5/workload.hpp"
+#include "latsim/tracker/pose.hpp"
 
 namespace latsim::pxpl5 {
 
 /// A display-list triangle: three corners in world metres.
 using WorldTriangle = std::array<glm::dvec3, 3>;
-
-/// Where an eye is and where it looks (head frame: x right, y up, looking down -z).
-struct ViewPose {
-  glm::dvec3 position_m{0.0};
-  glm::dquat orientation{1.0, 0.0, 0.0, 0.0};
-};
 
 /// The screen a view is binned onto: a pinhole with square pixels, tiled by
 /// regions of region_px x region_px from the top left.
@@ -54,9 +49,9 @@ class ViewBinner {
   int64_t triangles() const { return static_cast<int64_t>(triangles_.size()); }
   const ViewScreen& screen() const { return screen_; }
   /// Regions (row * columns + column) that `triangle` covers seen from `pose`; empty when outside the view.
-  void regions_of(const WorldTriangle& triangle, const ViewPose& pose, std::vector<int>& out) const;
+  void regions_of(const WorldTriangle& triangle, const tracker::Pose& pose, std::vector<int>& out) const;
   /// Every triangle binned for `processors` display lists (dealt round-robin).
-  EyeWork bin(const ViewPose& pose, int processors) const;
+  EyeWork bin(const tracker::Pose& pose, int processors) const;
 
  private:
   std::vector<WorldTriangle> triangles_;
@@ -70,13 +65,13 @@ class ViewBinner {
 class ViewWorkload final : public WorkloadSource {
  public:
   /// `pose_of(token, eye)` is the eye pose of a host sample (-1: the starting view).
-  ViewWorkload(ViewBinner binner, std::function<ViewPose(int64_t token, int eye)> pose_of);
+  ViewWorkload(ViewBinner binner, std::function<tracker::Pose(int64_t token, int eye)> pose_of);
   int64_t triangles() const override { return binner_.triangles(); }
   const EyeWork& work(int64_t sample_token, int eye, int processors) override;
 
  private:
   ViewBinner binner_;
-  std::function<ViewPose(int64_t, int)> pose_of_;
+  std::function<tracker::Pose(int64_t, int)> pose_of_;
   // RC asks for each eye once per frame and Slats for both eyes once per
   // field; a few recent results cover every repeat.
   std::map<std::tuple<int64_t, int, int>, EyeWork> recent_;

@@ -7,14 +7,9 @@
 
 #include <optional>
 
-namespace latsim::renderer {
+#include "latsim/tracker/pose.hpp"
 
-/// Where an eye is and where it looks. The head frame follows the OpenGL camera
-/// convention: x right, y up, looking down -z; orientation rotates head to world.
-struct EyePose {
-  glm::dvec3 position_m{0.0};
-  glm::dquat orientation{1.0, 0.0, 0.0, 0.0};  // glm order: w, x, y, z (identity)
-};
+namespace latsim::renderer {
 
 /// Maps between pixels and viewing directions of a pinhole camera with square pixels.
 ///
@@ -43,7 +38,7 @@ class Camera {
   glm::dvec3 pixel_ray(int x, int y, const glm::dquat& orientation) const;
   /// Continuous pixel coordinates of a world point seen from the pose; empty when the point
   /// is not in front of the eye. The result may lie outside the image.
-  std::optional<glm::dvec2> project(const glm::dvec3& point_m, const EyePose& pose) const;
+  std::optional<glm::dvec2> project(const glm::dvec3& point_m, const tracker::Pose& pose) const;
 
  private:
   double hfov_deg_;

@@ -35,7 +35,7 @@ struct WarpedFrame {
 /// stay `undefined` (disocclusion gaps), as do the edges no source pixel
 /// reaches; a pixel no quad covers takes the source pixel whose centre lands
 /// in it, if any. With `shown` == `source` the result equals the source exactly.
-WarpedFrame warp_with_depth(const Frame& source, const Camera& camera, const EyePose& source_pose,
-                            const EyePose& shown_pose, const glm::vec3& undefined, double break_ratio = 1.1);
+WarpedFrame warp_with_depth(const Frame& source, const Camera& camera, const tracker::Pose& source_pose,
+                            const tracker::Pose& shown_pose, const glm::vec3& undefined, double break_ratio = 1.1);
 
 }  // namespace latsim::renderer

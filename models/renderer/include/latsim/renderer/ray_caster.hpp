@@ -66,7 +66,7 @@ struct RowSet {
 struct PixelRequest {
   int x = 0;
   int y = 0;
-  EyePose pose;
+  tracker::Pose pose;
 };
 
 /// Owns an Embree device and scene built from a copy of a Scene, and casts rays into it.
@@ -93,14 +93,14 @@ class RayCaster {
   void cast_rays(std::span<const Ray> rays, std::span<Hit> hits, const RenderOptions& options) const;
 
   /// (a) A whole frame from one pose, sized to the camera.
-  Frame render_frame(const Camera& camera, const EyePose& pose, const RenderOptions& options) const;
+  Frame render_frame(const Camera& camera, const tracker::Pose& pose, const RenderOptions& options) const;
   /// (b) Only the given rows, from one pose, into an existing frame; other rows keep
   /// their contents. The frame must match the camera's size.
-  void render_rows(const Camera& camera, const EyePose& pose, const RowSet& rows, Frame& frame,
+  void render_rows(const Camera& camera, const tracker::Pose& pose, const RowSet& rows, Frame& frame,
                    const RenderOptions& options) const;
   /// (c) Just-in-time scanline: row y is cast from row_poses[y]; only rows in the set are
   /// touched. row_poses must hold one pose per camera row.
-  void render_scanlines(const Camera& camera, std::span<const EyePose> row_poses, const RowSet& rows,
+  void render_scanlines(const Camera& camera, std::span<const tracker::Pose> row_poses, const RowSet& rows,
                         Frame& frame, const RenderOptions& options) const;
   /// (d) Individual pixels, each from its own pose. Requests are cast in parallel and
   /// written in request order, so a pixel requested twice keeps the later result.

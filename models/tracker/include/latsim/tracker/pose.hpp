@@ -18,6 +18,12 @@ struct Pose {
   glm::dquat orientation{1.0, 0.0, 0.0, 0.0};
 };
 
+/// The pose of one eye of a head: stereo eyes sit ipd_m / 2 either side of
+/// the head origin along the head's x axis (eye 0, the left, at -x), looking
+/// the same way as the head; mono (and any eye of a mono head) is the head
+/// pose itself.
+Pose eye_pose(const Pose& head, int eye, double ipd_m, bool stereo);
+
 /// The rotation angle in radians, in [0, pi], between two unit quaternions,
 /// short arc (q and -q are the same orientation). Computed as
 /// 2*atan2(|vec(q1^-1 q2)|, |w|), which keeps full relative precision for tiny

@@ -26,7 +26,7 @@ struct Carriage {
 /// A link from the tracker to the host application. A record occupies the
 /// link for occupancy() from its start; records that find the link busy wait
 /// in a buffer of buffer_records() (the caller keeps that queue: see
-/// pipelines::TrackerHost). Links keep state (a busy interrupt handler), so
+/// run::TrackerHost). Links keep state (a busy interrupt handler), so
 /// records must be carried in order of start.
 class Transport {
  public:

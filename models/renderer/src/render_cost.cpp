@@ -1,0 +1,30 @@
+#include "latsim/renderer/render_cost.hpp"
+
+#include <algorithm>
+
+namespace latsim::renderer {
+
+RenderCost::RenderCost(Params params, int64_t primitives, int64_t covered_pixels) : params_(params) {
+  const double ms = params_.fixed_ms + params_.per_primitive_us * 1e-3 * static_cast<double>(primitives) +
+                    params_.per_pixel_ns * 1e-6 * static_cast<double>(covered_pixels);
+  nominal_ = des::Time::from_ms(ms);
+}
+
+RenderCost RenderCost::for_scene(const Params& params, int64_t triangles, double coverage, int width_px, int height_px,
+                                 int eyes) {
+  const int64_t pixels = static_cast<int64_t>(coverage * width_px * height_px) * eyes;
+  return RenderCost(params, triangles * eyes, pixels);
+}
+
+des::Time RenderCost::frame_time(des::RandomStream& stream) const {
+  if (!varies()) return nominal_;
+  double factor = 1.0;
+  if (params_.variation == Variation::Uniform)
+    factor = 1.0 + stream.uniform(-params_.variation_fraction, params_.variation_fraction);
+  else
+    factor = 1.0 + stream.normal(0.0, params_.variation_fraction);
+  factor = std::max(factor, 0.0);
+  return des::Time::from_seconds(nominal_.to_seconds() * factor);
+}
+
+}  // namespace latsim::renderer

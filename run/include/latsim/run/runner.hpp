@@ -1,0 +1,105 @@
+// Runs one scenario end to end and writes its self-describing results.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "latsim/des/time.hpp"
+#include "latsim/scenario/config.hpp"
+#include "latsim/scenario/schema.hpp"
+
+namespace latsim::pipelines {
+class PipelineRegistry;
+}
+
+namespace latsim::run {
+
+/// How far a running simulation got, for a progress display.
+struct RunProgress {
+  des::Time now;          ///< simulated time reached
+  des::Time end;          ///< simulated time the run stops at
+  uint64_t events = 0;    ///< events executed so far
+};
+
+/// How to run a scenario and what to write.
+struct RunOptions {
+  std::optional<uint64_t> seed;           ///< overrides /seed when set
+  uint64_t replication = 0;               ///< independent random streams per replication
+  std::filesystem::path out_dir;          ///< empty: write nothing, only return the summary
+  /// Where the files wait until the run commits them to out_dir (empty:
+  /// "<out_dir>.tmp.<pid>"); a sweep names one per run, which its claim guards.
+  std::filesystem::path staging_dir;
+  bool write_samples = false;             ///< samples.csv
+  bool write_ledger = false;              ///< frames.csv, the per-frame ledger
+  bool profile = false;                   ///< wall time per event kind (two clock reads per event)
+  std::vector<std::string> command_line;  ///< recorded in the summary
+  /// When the command began (reading the scenario included); command_wall_s
+  /// runs from here. Unset: from the start of run_scenario.
+  std::optional<std::chrono::steady_clock::time_point> command_start;
+  /// Set from outside (a signal): the simulation stops at the next event and
+  /// run_scenario throws RunInterrupted, writing nothing.
+  const std::atomic<bool>* stop = nullptr;
+  /// Called every few thousand events while simulating.
+  std::function<void(const RunProgress&)> progress;
+  /// The pipelines /pipeline/type may name; null: builtin_pipelines(). A
+  /// program that embeds latsim runs its own pipelines through this.
+  const pipelines::PipelineRegistry* pipelines = nullptr;
+};
+
+/// The simulation failed, not the input: which model's event, when, and why.
+class RunFailure : public std::runtime_error {
+ public:
+  RunFailure(std::string model, des::Time at, const std::string& cause);
+  const std::string& model() const { return model_; }
+  des::Time at() const { return at_; }
+
+ private:
+  std::string model_;
+  des::Time at_;
+};
+
+/// The run was stopped from outside (RunOptions::stop) before it finished.
+class RunInterrupted : public std::runtime_error {
+ public:
+  RunInterrupted(des::Time at, des::Time end);
+  des::Time at() const { return at_; }
+
+ private:
+  des::Time at_;
+};
+
+/// Builds the models a scenario asks for, runs it, and returns summary.json's
+/// content; when out_dir is set, writes every result file atomically into a
+/// staging directory renamed to out_dir at the end (RunFiles). Throws
+/// scenario::ScenarioError on bad input, RunFailure when the simulation
+/// fails, RunInterrupted when stopped and WriteError when a result cannot be
+/// written; in every case nothing is left in out_dir.
+nlohmann::json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& options);
+
+/// Reads and builds everything without running (for `latsim validate`);
+/// returns the warnings about legal but doubtful input.
+std::vector<std::string> validate_scenario(const scenario::ScenarioDocument& doc);
+
+/// Every key a scenario may hold, from the parameter declarations of the
+/// shared sections and of every registered pipeline. Built once per process:
+/// it depends on nothing but the code.
+const scenario::ObjectSchema& scenario_schema();
+
+/// Loads a scenario file with overrides; an override may create an optional
+/// section the scenario left out ("--set /output/timeline=false").
+scenario::ScenarioDocument load_scenario(const std::filesystem::path& file, const std::vector<std::string>& overrides);
+
+/// latsim's version string and the git revision it was built from.
+std::string latsim_version();
+std::string latsim_git_revision();
+
+}  // namespace latsim::run

@@ -1,0 +1,194 @@
+#include "latsim/run/builder.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "latsim/run/builtin_pipelines.hpp"
+#include "latsim/tracker/params.hpp"
+
+namespace latsim::run {
+
+using namespace results;
+using pipelines::PipelineFactory;
+using pipelines::PipelineRegistry;
+using pipelines::RunContext;
+
+namespace {
+
+/// A ring of points 2 m around the start position, every 15 degrees of yaw at
+/// three heights, so that some are in view whatever the head does.
+ProbeSet default_probes(const tracker::Pose& start, double hfov_deg) {
+  ProbeSet p;
+  p.hfov_deg = hfov_deg;
+  for (int i = 0; i < 24; ++i)
+    for (int k = -1; k <= 1; ++k) {
+      const double yaw = i * 15.0 * std::numbers::pi / 180.0, pitch = k * 15.0 * std::numbers::pi / 180.0;
+      const glm::dvec3 dir(-std::sin(yaw) * std::cos(pitch), std::sin(pitch), -std::cos(yaw) * std::cos(pitch));
+      p.points_m.push_back(start.position_m + 2.0 * dir);
+    }
+  return p;
+}
+
+/// Declares (reading mode: reads) the whole scenario: the shared sections,
+/// then /pipeline through the declaration of the pipeline its "type" names.
+PipelineFactory bind_scenario(scenario::Section& root, params::SharedParams& shared, const PipelineRegistry& registry) {
+  params::bind(root, shared);
+  PipelineFactory factory;
+  std::vector<scenario::ModeDecl> modes;
+  for (const auto& named : registry.entries()) {
+    // A reference, not a structured binding: clang before 16 cannot capture bindings in a lambda.
+    const auto& entry = named.second;
+    modes.push_back(
+        {named.first, entry.doc, [&factory, &shared, &entry](scenario::Section& p) { factory = entry.bind(p, shared); }});
+  }
+  int unused = 0;
+  root.object("pipeline", unused,
+              [&modes](scenario::Section& p, int&) {
+                p.doc("The display strategy: which pose each image is computed from, when it is ready, and when it "
+                      "goes into a front buffer. `type` selects the pipeline; each reads its own keys.");
+                p.modes("type", "", modes, {.doc = "which pipeline"});
+              },
+              {.required = true, .doc = "the display strategy"});
+  return factory;
+}
+
+// Every clock of the shared models gets the phase the scenario fixes or one
+// drawn for this replication. The parameters keep the nominal periods; the
+// display's raster is built with the display clock's actual period (the
+// tracker and the link apply their rate errors themselves).
+void resolve_clocks(Run& run, uint64_t replication) {
+  params::SharedParams& p = run.shared;
+  run.clocks = std::make_unique<des::RunClocks>(run.seed, replication);
+  // A rate error that leaves a period no 64-bit fraction holds is the scenario's problem, at its key.
+  auto resolve = [&run](const char* name, const std::string& prefix, des::RationalSeconds period,
+                        des::ClockSettings& settings) -> const des::Clock& {
+    try {
+      return run.clocks->resolve(name, prefix + "phase_ms", period, settings);
+    } catch (const std::invalid_argument& e) {
+      throw scenario::ScenarioError(prefix + "rate_error_ppm", e.what());
+    }
+  };
+  resolve("tracker", "/tracker/", p.tracker.period, p.tracker.clock);
+  tracker::SerialLinkParams& serial = p.transport.serial;
+  if (p.transport.type == tracker::TransportParams::Type::Serial && serial.host_mode == tracker::SerialLinkParams::Poll)
+    resolve("poll", "/transport/poll_", tracker::exact_period(serial.poll_interval), serial.poll_clock);
+  resolve("display", "/display/", p.display.raster.field_period, p.display.clock);
+}
+
+// Builds one part of a run. Building depends on the scenario alone, so
+// anything it throws is a problem of the scenario at `pointer`: `validate`
+// reports it exactly as `run` does, exit 2, and never a library's raw text.
+template <class F>
+void built_from(const char* pointer, const char* what, F&& make) {
+  try {
+    make();
+  } catch (const scenario::ScenarioError&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw scenario::ScenarioError(pointer, std::string("not enough memory to build the ") + what);
+  } catch (const std::exception& e) {
+    throw scenario::ScenarioError(pointer, std::string("cannot build the ") + what + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+scenario::ObjectSchema schema_of(const PipelineRegistry& registry) {
+  scenario::ObjectSchema root;
+  scenario::Section s(root);
+  params::SharedParams shared;
+  (void)bind_scenario(s, shared, registry);
+  return root;
+}
+
+ProbeSet probes_of(const Run& run) {
+  const double hfov_deg = run.shared.display.hfov_deg;
+  if (!run.shared.probes) return default_probes(run.motion->pose_at(des::Time::zero()), hfov_deg);
+  return ProbeSet{run.shared.probes->points_m, hfov_deg};
+}
+
+void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& options) {
+  const PipelineRegistry builtin = options.pipelines ? PipelineRegistry{} : builtin_pipelines();
+  const PipelineRegistry& registry = options.pipelines ? *options.pipelines : builtin;
+  PipelineFactory make_pipeline;
+  built_from("", "scenario", [&] {
+    scenario::Section root(doc.root());
+    make_pipeline = bind_scenario(root, run.shared, registry);
+    if (options.pipelines) {
+      const scenario::ObjectSchema schema = schema_of(registry);
+      doc.check_unknown_keys(&schema, &run.input_warnings);
+    } else {
+      doc.check_unknown_keys(&scenario_schema(), &run.input_warnings);
+    }
+  });
+
+  run.duration = des::Time::from_seconds(run.shared.duration_s);
+  run.seed = options.seed ? *options.seed : static_cast<uint64_t>(run.shared.seed);
+  resolve_clocks(run, options.replication);
+  const params::SharedParams& p = run.shared;
+  built_from("/motion", "head motion", [&] { run.motion = tracker::make_motion(p.motion); });
+  built_from("/tracker", "tracker", [&] {
+    run.tracker = std::make_unique<tracker::Tracker>(p.tracker, *run.motion,
+                                                     des::RandomStream(run.seed, "tracker", options.replication));
+  });
+  built_from("/transport", "transport", [&] { run.transport = tracker::make_transport(p.transport); });
+  Timeline* timeline = p.output.timeline ? &run.timeline : nullptr;
+  run.timeline.set_max_entries(static_cast<size_t>(p.output.timeline_max_entries));
+  run.host = std::make_unique<TrackerHost>(run.sim, *run.tracker, *run.transport, timeline, p.host.prediction);
+  const bool stereo = p.host.stereo;
+  built_from("/display", "display", [&] {
+    display::RasterParams raster = p.display.raster;
+    raster.field_period = run.clocks->find("display")->period;
+    run.display = std::make_unique<display::Display>(run.sim,
+                                                     display::RasterTiming(raster, *p.display.clock.phase),
+                                                     stereo ? 2 : 1, p.display.fidelity, p.display.pixel_stride,
+                                                     p.display.pixel_events);
+  });
+  built_from("/probes", "registration probes", [&] {
+    run.recorder = std::make_unique<LatencyRecorder>(run.sim, *run.motion, *run.host, run.images, run.display->timing(),
+                                                     probes_of(run), p.host.ipd_m, stereo, p.output.keep_samples);
+  });
+  for (const auto& w : run.input_warnings) run.recorder->warn(w);
+  run.recorder->enable_prediction(p.host.prediction.has_value());
+  if (p.motion_phases) run.recorder->split_by_phase(*p.motion_phases);
+  run.recorder->enable_ledger(options.write_ledger);
+  run.recorder->enable_sample_log(options.write_samples);
+  run.display->add_listener(run.recorder.get());
+  if (p.display.persistence) {
+    run.display->set_persistence(*p.display.persistence);
+    run.recorder->set_persistence(&run.display->persistence());
+    run.smear = std::make_unique<SmearRecorder>(*run.recorder, *run.motion);
+    run.display->add_listener(run.smear.get());
+  }
+  run.files = RunFiles(options.out_dir, options.staging_dir);
+  if (p.frames && p.frames->enabled) {
+    built_from("/frames", "frame capture", [&] {
+      run.frames = std::make_unique<FrameCapture>(
+          *p.frames, p.scene ? p.scene->geometry : renderer::SceneSpec{},
+          FrameCaptureInputs{*run.recorder, *run.host, *run.motion, run.display->timing(), p.display.hfov_deg,
+                             p.host.ipd_m, stereo, run.files,
+                             p.display.persistence ? &run.display->persistence() : nullptr});
+    });
+    run.display->add_listener(run.frames.get());
+  }
+  LatencyRecorder* rec = run.recorder.get();
+  rec->set_timeline(timeline);
+  const bool line = run.transport->occupancy() > des::Time::zero();
+  run.host->on_carried([rec, line](const tracker::TrackerSample& s, const tracker::Carriage& c) {
+    rec->record_carried(s, c, line);
+  });
+
+  built_from("/pipeline", "pipeline", [&] {
+    run.pipeline = make_pipeline();
+    run.ctx = std::unique_ptr<RunContext>(new RunContext{
+        run.sim, run.seed, options.replication, run.duration, *run.motion, p.tracker, *run.transport, *run.host,
+        *run.display, p.display, p.scene ? &*p.scene : nullptr, run.images, *run.recorder, run.files, *run.clocks, p.host.ipd_m,
+        stereo, timeline, run.frames.get()});
+    run.pipeline->start(*run.ctx);
+  });
+  // The phases used, drawn or fixed, make the resolved scenario reproduce this run.
+  for (const auto& [pointer, ms] : run.clocks->phases_ms()) doc.resolve(pointer, ms);
+}
+
+}  // namespace latsim::run

@@ -1,0 +1,97 @@
+#include "latsim/run/runner.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <stdexcept>
+
+#include "latsim/run/builder.hpp"
+#include "latsim/run/builtin_pipelines.hpp"
+#include "latsim/run/result_writer.hpp"
+
+namespace latsim::run {
+
+using Json = nlohmann::json;
+
+namespace {
+
+// Simulated seconds for a message, as precise as a picosecond needs.
+std::string seconds_text(des::Time t) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.12g s", t.to_seconds());
+  return buf;
+}
+
+// Progress is reported this often; checking the clock costs a few ns per call.
+constexpr uint64_t kEventsPerProgress = 1 << 14;
+
+// Runs the simulation; a model that throws becomes a RunFailure naming it
+// and the simulated time, a stop request a RunInterrupted. A result file
+// streamed during the run (the timeline) that cannot be written stays a
+// WriteError: the storage failed, not the model.
+void simulate(Run& run) {
+  try {
+    run.host->start(run.duration);
+    run.display->start(run.duration);
+    run.sim.run_until(run.duration);
+  } catch (const results::WriteError&) {
+    throw;
+  } catch (const std::exception& e) {
+    const auto kind = run.sim.failed_kind();
+    const std::string name = kind ? run.sim.kind_name(*kind) : std::string("start");
+    throw RunFailure(name.substr(0, name.find('.')), run.sim.now(),
+                     dynamic_cast<const std::bad_alloc*>(&e) ? std::string("out of memory") : std::string(e.what()));
+  }
+  if (run.sim.interrupted()) throw RunInterrupted(run.sim.now(), run.duration);
+}
+
+}  // namespace
+
+RunFailure::RunFailure(std::string model, des::Time at, const std::string& cause)
+    : std::runtime_error("run failed in " + model + " at simulated t = " + seconds_text(at) + ": " + cause),
+      model_(std::move(model)),
+      at_(at) {}
+
+RunInterrupted::RunInterrupted(des::Time at, des::Time end)
+    : std::runtime_error("interrupted at simulated t = " + seconds_text(at) + " of " + seconds_text(end)), at_(at) {}
+
+std::string latsim_version() { return LATSIM_VERSION; }
+std::string latsim_git_revision() { return LATSIM_GIT_REVISION; }
+
+const scenario::ObjectSchema& scenario_schema() {
+  static const scenario::ObjectSchema schema = schema_of(builtin_pipelines());
+  return schema;
+}
+
+scenario::ScenarioDocument load_scenario(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  return scenario::ScenarioDocument::load(file, overrides, &scenario_schema());
+}
+
+std::vector<std::string> validate_scenario(const scenario::ScenarioDocument& doc) {
+  Run run;
+  build(run, doc, RunOptions{});
+  return run.recorder->warnings();
+}
+
+Json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& options) {
+  const auto command_start = options.command_start.value_or(std::chrono::steady_clock::now());
+  Run run;
+  build(run, doc, options);
+  run.files.prepare();
+  // Written as it is produced: memory does not grow with the run's length.
+  if (run.files.enabled()) run.timeline.stream_to(run.files);
+  // Per-event timing costs two clock reads per event: only when asked.
+  run.sim.set_profiling(options.profile);
+  run.sim.watch_stop_flag(options.stop);
+  if (options.progress)
+    run.sim.watch_progress(kEventsPerProgress, [&run, &options] {
+      options.progress(RunProgress{run.sim.now(), run.duration, run.sim.events_executed()});
+    });
+  const auto t0 = std::chrono::steady_clock::now();
+  simulate(run);
+  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  Json figures = figures_of(run);
+
+  return write_results(run, doc, options, figures, wall_s, command_start);
+}
+
+}  // namespace latsim::run

@@ -1,0 +1,113 @@
+// What the backends of `latsim sweep` (threads, shards, MPI ranks) share:
+// the request, checking the plan's scenarios, and accounting for the runs.
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "latsim/sweep/execution.hpp"
+#include "latsim/sweep/plan.hpp"
+
+namespace latsim::sweep {
+
+/// What `latsim sweep` was asked to do.
+struct SweepRequest {
+  std::string sweep_file;
+  std::string out_dir;
+  unsigned jobs = 1;
+  bool write_samples = false;
+  bool write_ledger = false;
+  std::string shard;          ///< --shard text: "I/N" or "env"; empty: the whole plan
+  bool collect = false;       ///< --collect: run nothing, write the tables
+  bool check = false;         ///< --check: run nothing, write nothing: check every point
+  bool mpi = false;           ///< --mpi: rank 0 hands runs out to the ranks of an MPI job
+  bool timings = false;       ///< --timings: also print where the time per run went
+  unsigned stale_after_s = 600;  ///< a claim from another host without a heartbeat this long is stale
+  const std::atomic<bool>* stop = nullptr;  ///< a stop signal's flag: runs end at their next event
+};
+
+/// The CPUs this process may run on (its affinity mask, which batch
+/// schedulers restrict to the allocation), at least 1.
+unsigned available_cpus();
+
+/// Reads the sweep file; on bad input prints the one-line error and returns nothing.
+std::optional<SweepPlan> load_plan(const SweepRequest& request);
+
+/// Whether `file` holds a sweep (a JSON object with "axes" and "base") rather
+/// than a scenario; false when it is not readable JSON (the scenario reader
+/// then says why).
+bool is_sweep_file(const std::string& file);
+
+/// `latsim validate` of a sweep file: reads it and builds every distinct
+/// point without running or writing anything; prints "FILE: ok (sweep of N
+/// runs, M points)" or the first problem in one line. Returns the exit code.
+int validate_sweep(const std::string& file);
+
+/// The outcome of building the scenarios of some runs without running them.
+struct PointCheck {
+  std::optional<std::string> problem;  ///< the first bad point in plan order, as the error line shows it
+  std::vector<double> cost_of_run;     ///< expected cost by plan index (0 for runs not checked)
+  size_t points = 0;                   ///< distinct points built
+  double wall_s = 0.0;                 ///< building them took
+};
+
+/// Builds every distinct scenario among `run_indices` (once per point) on
+/// `jobs` threads, so that a bad value is reported before anything is written,
+/// and estimates each run's cost from the resolved scenario.
+PointCheck check_points(const SweepPlan& plan, const std::vector<size_t>& run_indices, unsigned jobs);
+
+/// What each run records and writes: the command line recorded is the sweep
+/// as invoked less -j, --shard, --mpi and the like, which must not make one
+/// run's files differ from another's.
+RunSettings run_settings(const SweepRequest& request);
+
+/// The sweep directory as one process works in it: its claims, its journal
+/// and the executor that runs runs there. Creates the directory.
+struct SweepWorkspace {
+  explicit SweepWorkspace(const SweepRequest& request);
+
+  SweepStore store;
+  RunClaims claims;
+  SweepJournal journal;
+  RunExecutor executor;
+};
+
+/// How the runs of one process (or of a whole MPI job) went.
+struct SweepTally {
+  size_t resumed = 0;             ///< finished before we started
+  size_t ran = 0;
+  size_t finished_elsewhere = 0;  ///< finished by another process while we waited to claim it
+  size_t busy = 0;                ///< held by another live process: left to it
+  size_t stopped = 0;             ///< ended midway by a stop signal (nothing of them kept)
+  size_t not_started = 0;         ///< not begun because the sweep was stopping
+  std::vector<std::string> failures;  ///< one message per failed run, in plan order
+  /// Why the sweep directory could not be written, when that stopped the sweep.
+  std::optional<std::string> storage_problem;
+  std::vector<std::string> holders;   ///< who held the busy runs, distinct
+  RunTimes times;
+
+  /// Adds the attempts (indexed like `indices`) in plan order.
+  void add(const SweepPlan& plan, const std::vector<size_t>& indices, const std::vector<RunAttempt>& attempts);
+  /// "(3 resumed, 29 run now, 0 failed)", with the rarer counts only when not zero.
+  std::string counts() const;
+  /// Runs finished now or before.
+  size_t finished() const { return resumed + ran + finished_elsewhere; }
+  /// Prints the failures, the runs left to others and removed temporaries.
+  void print_notes(size_t temporaries_removed) const;
+};
+
+/// Where a sweep process's time went, printed with --timings.
+struct PhaseTimes {
+  double plan_s = 0.0;    ///< reading the sweep file and expanding the plan
+  double check_s = 0.0;   ///< building every point once (PointCheck)
+  size_t points = 0;
+  double runs_s = 0.0;    ///< running the runs
+  double tables_s = 0.0;  ///< writing results.csv and results.sqlite
+  /// Two lines: the phases, and the time per run from `times`.
+  void print(const RunTimes& times, unsigned workers) const;
+};
+
+}  // namespace latsim::sweep

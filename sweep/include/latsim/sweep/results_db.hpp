@@ -1,0 +1,23 @@
+// results.sqlite: every figure of every run of a sweep, for ad-hoc queries.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "latsim/sweep/run_table.hpp"
+
+namespace latsim::sweep {
+
+/// Writes `file` atomically (a temporary database, then rename) with tables
+///   axes(axis, pointer)
+///   runs(run_id, plan_index, point, seed, replication, events, wall_s, peak_rss_mb, fingerprint, "<axis pointer>"...)
+///   figures(run_id, name, value)                 scalar figures by dotted name
+///   distributions(run_id, name, stat, value)     count, mean, p99, ... of each distribution
+///   histograms(run_id, name, bucket, edge, count)
+///   models(run_id, model, events, wall_s)
+/// Throws std::runtime_error naming the file on any SQLite failure.
+void write_results_db(const std::filesystem::path& file, const std::vector<std::string>& axis_pointers,
+                      const std::vector<RunRecord>& records);
+
+}  // namespace latsim::sweep

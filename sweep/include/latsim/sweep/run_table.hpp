@@ -1,0 +1,79 @@
+// Tables of finished runs: the headline figures of each run's summary.json,
+// flattened for results.csv, results.sqlite and the fidelity table.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace latsim::sweep {
+
+/// One finished run as the result tables see it.
+struct RunRecord {
+  std::string run_id;
+  size_t point = 0;
+  uint64_t seed = 0;
+  uint64_t replication = 0;
+  std::vector<nlohmann::json> values;  ///< one per sweep axis
+  nlohmann::json summary;              ///< the run's summary.json
+};
+
+/// One headline column: its name in the tables and where it comes from.
+struct HeadlineColumn {
+  std::string name;    ///< e.g. "mtp_p99_ms"
+  std::string figure;  ///< dotted path looked up by find_figure, e.g. "motion_to_photon_ms.p99"
+};
+
+/// The headline columns of results.csv, in order.
+std::vector<HeadlineColumn> headline_columns();
+
+/// A number by dotted path: first under the summary's "figures", then from its
+/// root ("events", "figures.frame_rate_hz"). A distribution without a stat
+/// ("render_latency_ms") means its mean. Empty when absent or not a number.
+std::optional<double> find_figure(const nlohmann::json& summary, const std::string& path);
+
+/// Shortest text that reads back as the same double (std::to_chars).
+std::string format_number(double value);
+
+/// A CSV field, quoted when it holds a comma, quote or line break.
+std::string csv_field(const std::string& text);
+
+/// results.csv: run_id, point, one column per axis pointer, seed, replication,
+/// then the headline columns; one row per record, in the order given.
+std::string results_csv(const std::vector<std::string>& axis_pointers, const std::vector<RunRecord>& records);
+
+/// A scalar figure of a run, flattened to a dotted name.
+struct FigureValue {
+  std::string name;
+  double value;
+};
+
+/// One statistic of a distribution figure (count, mean, p99, ...).
+struct DistributionStat {
+  std::string name;
+  std::string stat;
+  double value;
+};
+
+/// One histogram bucket of a distribution figure.
+struct HistogramBucket {
+  std::string name;
+  size_t bucket;
+  double edge;
+  double count;
+};
+
+/// Every number under a summary's "figures", sorted into scalars,
+/// distribution statistics and histogram buckets.
+struct FlatFigures {
+  std::vector<FigureValue> scalars;
+  std::vector<DistributionStat> stats;
+  std::vector<HistogramBucket> buckets;
+};
+
+FlatFigures flatten_figures(const nlohmann::json& figures);
+
+}  // namespace latsim::sweep

@@ -1,0 +1,160 @@
+#include "latsim/results/run_files.hpp"
+#include "latsim/sweep/execution.hpp"
+
+#include <chrono>
+#include <cstdio>
+
+#include "latsim/run/runner.hpp"
+#include "latsim/scenario/config.hpp"
+#include "latsim/scenario/readable.hpp"
+
+namespace latsim::sweep {
+
+namespace {
+
+using Json = nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+}  // namespace
+
+RunTask RunTask::of(const SweepPlan& plan, const SweepRun& run) {
+  return RunTask{run.index, run.run_id, run.seed, run.replication, run.scenario, plan.base_dir()};
+}
+
+Json RunTask::to_json() const {
+  return {{"index", index}, {"run_id", run_id}, {"seed", seed}, {"replication", replication},
+          {"scenario", scenario}, {"base_dir", base_dir.string()}};
+}
+
+RunTask RunTask::from_json(const Json& j) {
+  return RunTask{j.at("index").get<size_t>(), j.at("run_id").get<std::string>(), j.at("seed").get<uint64_t>(),
+                 j.at("replication").get<uint64_t>(), j.at("scenario"), j.at("base_dir").get<std::string>()};
+}
+
+Json RunAttempt::to_json() const {
+  return {{"result", static_cast<int>(result)}, {"message", message}, {"storage_unusable", storage_unusable},
+          {"resolve_s", resolve_s}, {"run_s", run_s}, {"simulate_s", simulate_s}, {"claim_s", claim_s}};
+}
+
+RunAttempt RunAttempt::from_json(const Json& j) {
+  RunAttempt a;
+  a.result = static_cast<Result>(j.at("result").get<int>());
+  a.message = j.at("message").get<std::string>();
+  a.storage_unusable = j.value("storage_unusable", false);
+  a.resolve_s = j.at("resolve_s").get<double>();
+  a.run_s = j.at("run_s").get<double>();
+  a.simulate_s = j.at("simulate_s").get<double>();
+  a.claim_s = j.at("claim_s").get<double>();
+  return a;
+}
+
+RunExecutor::RunExecutor(const SweepStore& store, RunClaims& claims, const SweepJournal& journal, RunSettings settings)
+    : store_(store), claims_(claims), journal_(journal), settings_(std::move(settings)) {}
+
+RunAttempt RunExecutor::execute(const RunTask& task) {
+  try {
+    return claim_and_run(task);
+  } catch (const std::exception& e) {
+    // The sweep directory failed us (a claim or the journal could not be written).
+    claims_.release(task.run_id, false);
+    RunAttempt attempt;
+    attempt.message = e.what();
+    attempt.storage_unusable = true;
+    return attempt;
+  }
+}
+
+RunAttempt RunExecutor::claim_and_run(const RunTask& task) {
+  const auto start = Clock::now();
+  const ClaimOutcome claim = claims_.claim(task.run_id);
+  RunAttempt attempt;
+  if (claim.kind == ClaimOutcome::Kind::busy) {
+    journal_.record("busy", task.run_id, claim.other.name());
+    attempt.result = RunAttempt::Result::busy;
+    attempt.message = claim.reason.empty() ? claim.other.name() : claim.reason;
+    attempt.claim_s = seconds_since(start);
+    return attempt;
+  }
+  if (claim.kind == ClaimOutcome::Kind::retaken) {
+    std::fprintf(stderr, "sweep: warning: run %s: took over the claim of %s: %s\n", task.run_id.c_str(),
+                 claim.other.name().c_str(), claim.reason.c_str());
+    journal_.record("retake", task.run_id, claim.other.name());
+  }
+  // Another process may have finished it between our look and our claim.
+  if (store_.is_finished(task.run_id)) {
+    claims_.release(task.run_id, true);
+    journal_.record("skip", task.run_id);
+    attempt.result = RunAttempt::Result::finished_already;
+    attempt.claim_s = seconds_since(start);
+    return attempt;
+  }
+  temporaries_removed_ += store_.remove_run_temporaries(task.run_id);
+  journal_.record("start", task.run_id);
+  const double before_run_s = seconds_since(start);
+  attempt = run_claimed(task);
+  const auto after_run = Clock::now();
+  const bool ran = attempt.result == RunAttempt::Result::ran;
+  const bool stopped = attempt.result == RunAttempt::Result::stopped;
+  journal_.record(ran ? "finish" : stopped ? "stop" : "fail", task.run_id);
+  claims_.release(task.run_id, ran);
+  attempt.claim_s = before_run_s + seconds_since(after_run);
+  return attempt;
+}
+
+RunAttempt RunExecutor::run_claimed(const RunTask& task) {
+  RunAttempt attempt;
+  run::RunOptions options;
+  options.seed = task.seed;
+  options.replication = task.replication;
+  options.out_dir = store_.run_dir(task.run_id);
+  options.staging_dir = store_.staging_dir(task.run_id);
+  options.write_samples = settings_.write_samples;
+  options.write_ledger = settings_.write_ledger;
+  options.command_line = settings_.command_line;
+  options.stop = settings_.stop;
+  try {
+    auto t0 = Clock::now();
+    const auto doc = scenario::ScenarioDocument::from_json(task.scenario, task.base_dir);
+    attempt.resolve_s = seconds_since(t0);
+    t0 = Clock::now();
+    const Json summary = run::run_scenario(doc, options);
+    attempt.run_s = seconds_since(t0);
+    attempt.simulate_s = summary.value("wall_s", 0.0);
+    attempt.result = RunAttempt::Result::ran;
+  } catch (const scenario::ScenarioError& e) {
+    attempt.message = e.what();
+  } catch (const run::RunInterrupted& e) {
+    attempt.result = RunAttempt::Result::stopped;
+    attempt.message = e.what();
+  } catch (const results::WriteError& e) {
+    attempt.message = e.what();
+    attempt.storage_unusable = e.storage_unusable();
+  } catch (const std::exception& e) {
+    attempt.message = scenario::readable(e.what());
+  }
+  return attempt;
+}
+
+void RunTimes::add(const RunAttempt& attempt) {
+  if (attempt.result != RunAttempt::Result::ran) return;
+  ++runs;
+  resolve_s += attempt.resolve_s;
+  run_s += attempt.run_s;
+  simulate_s += attempt.simulate_s;
+  claim_s += attempt.claim_s;
+}
+
+std::string RunTimes::describe() const {
+  if (runs == 0) return "no runs";
+  const double n = static_cast<double>(runs);
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "per run: %.2f ms simulating, %.2f ms building models and writing results, %.2f ms reading the "
+                "scenario, %.2f ms claiming",
+                1e3 * simulate_s / n, 1e3 * (run_s - simulate_s) / n, 1e3 * resolve_s / n, 1e3 * claim_s / n);
+  return text;
+}
+
+}  // namespace latsim::sweep

@@ -1,0 +1,180 @@
+#include "latsim/sweep/results_db.hpp"
+
+#include <unistd.h>
+
+#include <memory>
+#include <stdexcept>
+
+#include <sqlite3.h>
+
+namespace latsim::sweep {
+
+namespace {
+
+using Json = nlohmann::json;
+namespace fs = std::filesystem;
+
+/// An open SQLite database that closes itself; every failure throws with the file name.
+class Database {
+ public:
+  explicit Database(const fs::path& file) : file_(file) {
+    if (sqlite3_open_v2(file.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) != SQLITE_OK) {
+      const std::string message = db_ ? sqlite3_errmsg(db_) : "out of memory";
+      sqlite3_close(db_);
+      throw std::runtime_error(file.string() + ": cannot create database: " + message);
+    }
+  }
+  Database(const Database&) = delete;
+  Database& operator=(const Database&) = delete;
+  ~Database() { sqlite3_close(db_); }
+
+  void exec(const std::string& sql) {
+    char* error = nullptr;
+    if (sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &error) != SQLITE_OK) {
+      const std::string message = error ? error : "unknown error";
+      sqlite3_free(error);
+      fail(message);
+    }
+  }
+  sqlite3* handle() { return db_; }
+  [[noreturn]] void fail(const std::string& message) const {
+    throw std::runtime_error(file_.string() + ": " + message);
+  }
+
+ private:
+  fs::path file_;
+  sqlite3* db_ = nullptr;
+};
+
+/// A prepared INSERT whose parameters are bound by position and reset after each row.
+class Insert {
+ public:
+  Insert(Database& db, const std::string& sql) : db_(db) {
+    if (sqlite3_prepare_v2(db.handle(), sql.c_str(), -1, &stmt_, nullptr) != SQLITE_OK)
+      db.fail(sqlite3_errmsg(db.handle()));
+  }
+  Insert(const Insert&) = delete;
+  Insert& operator=(const Insert&) = delete;
+  ~Insert() { sqlite3_finalize(stmt_); }
+
+  /// Binds without a copy: `v` must live until run() (every caller's string
+  /// does: a record's, its flattened figures', or one inside its summary).
+  Insert& text(const std::string& v) {
+    sqlite3_bind_text(stmt_, ++param_, v.c_str(), static_cast<int>(v.size()), SQLITE_STATIC);
+    return *this;
+  }
+  /// Binds a copy, for a string about to go.
+  Insert& text_copy(const std::string& v) {
+    sqlite3_bind_text(stmt_, ++param_, v.c_str(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
+    return *this;
+  }
+  Insert& integer(int64_t v) {
+    sqlite3_bind_int64(stmt_, ++param_, v);
+    return *this;
+  }
+  Insert& real(double v) {
+    sqlite3_bind_double(stmt_, ++param_, v);
+    return *this;
+  }
+  Insert& null() {
+    sqlite3_bind_null(stmt_, ++param_);
+    return *this;
+  }
+  /// Binds a JSON value with its own SQLite type: numbers stay numbers, strings text.
+  Insert& value(const Json& v) {
+    if (v.is_number_integer()) return integer(v.get<int64_t>());
+    if (v.is_number()) return real(v.get<double>());
+    if (v.is_boolean()) return integer(v.get<bool>() ? 1 : 0);
+    if (v.is_string()) return text(v.get_ref<const std::string&>());
+    if (v.is_null()) return null();
+    return text_copy(v.dump());
+  }
+  Insert& optional_number(const Json& object, const char* key) {
+    return object.contains(key) && object[key].is_number() ? value(object[key]) : null();
+  }
+  void run() {
+    if (sqlite3_step(stmt_) != SQLITE_DONE) db_.fail(sqlite3_errmsg(db_.handle()));
+    // Every row binds every parameter again, so the old bindings need no clearing.
+    sqlite3_reset(stmt_);
+    param_ = 0;
+  }
+
+ private:
+  Database& db_;
+  sqlite3_stmt* stmt_ = nullptr;
+  int param_ = 0;
+};
+
+std::string quoted_identifier(const std::string& name) {
+  std::string q = "\"";
+  for (char c : name) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+void create_tables(Database& db, const std::vector<std::string>& axis_pointers) {
+  std::string runs = "CREATE TABLE runs (run_id TEXT PRIMARY KEY, plan_index INTEGER, point INTEGER, seed INTEGER, "
+                     "replication INTEGER, events INTEGER, wall_s REAL, peak_rss_mb REAL, fingerprint TEXT";
+  for (const auto& pointer : axis_pointers) runs += ", " + quoted_identifier(pointer);
+  db.exec(runs + ");");
+  db.exec("CREATE TABLE axes (axis INTEGER, pointer TEXT);"
+          "CREATE TABLE figures (run_id TEXT, name TEXT, value REAL);"
+          "CREATE TABLE distributions (run_id TEXT, name TEXT, stat TEXT, value REAL);"
+          "CREATE TABLE histograms (run_id TEXT, name TEXT, bucket INTEGER, edge REAL, count REAL);"
+          "CREATE TABLE models (run_id TEXT, model TEXT, events INTEGER, wall_s REAL);");
+}
+
+void insert_records(Database& db, const std::vector<std::string>& axis_pointers, const std::vector<RunRecord>& records) {
+  std::string sql = "INSERT INTO runs VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?";
+  for (size_t a = 0; a < axis_pointers.size(); ++a) sql += ", ?";
+  Insert run(db, sql + ");");
+  Insert figure(db, "INSERT INTO figures VALUES (?, ?, ?);");
+  Insert stat(db, "INSERT INTO distributions VALUES (?, ?, ?, ?);");
+  Insert bucket(db, "INSERT INTO histograms VALUES (?, ?, ?, ?, ?);");
+  Insert model(db, "INSERT INTO models VALUES (?, ?, ?, ?);");
+  for (size_t i = 0; i < records.size(); ++i) {
+    const RunRecord& r = records[i];
+    const Json& s = r.summary;
+    run.text(r.run_id).integer(static_cast<int64_t>(i)).integer(static_cast<int64_t>(r.point));
+    run.integer(static_cast<int64_t>(r.seed)).integer(static_cast<int64_t>(r.replication));
+    run.optional_number(s, "events").optional_number(s, "wall_s").optional_number(s, "peak_rss_mb");
+    if (s.contains("fingerprint") && s["fingerprint"].is_string()) run.text(s["fingerprint"].get_ref<const std::string&>());
+    else run.null();
+    for (const auto& v : r.values) run.value(v);
+    run.run();
+    const FlatFigures flat = flatten_figures(s.value("figures", Json::object()));
+    for (const auto& f : flat.scalars) figure.text(r.run_id).text(f.name).real(f.value).run();
+    for (const auto& d : flat.stats) stat.text(r.run_id).text(d.name).text(d.stat).real(d.value).run();
+    for (const auto& b : flat.buckets)
+      bucket.text(r.run_id).text(b.name).integer(static_cast<int64_t>(b.bucket)).real(b.edge).real(b.count).run();
+    if (s.contains("models") && s["models"].is_object())
+      for (auto it = s["models"].begin(); it != s["models"].end(); ++it)
+        model.text(r.run_id).text(it.key()).optional_number(it.value(), "events").optional_number(it.value(), "wall_s").run();
+  }
+}
+
+}  // namespace
+
+void write_results_db(const fs::path& file, const std::vector<std::string>& axis_pointers,
+                      const std::vector<RunRecord>& records) {
+  const fs::path temp = file.string() + ".tmp." + std::to_string(::getpid());
+  std::error_code ignored;
+  fs::remove(temp, ignored);
+  try {
+    {
+      Database db(temp);
+      // The file is private until renamed, so no journal is needed for atomicity.
+      db.exec("PRAGMA journal_mode=OFF; PRAGMA synchronous=OFF; BEGIN;");
+      create_tables(db, axis_pointers);
+      Insert axis(db, "INSERT INTO axes VALUES (?, ?);");
+      for (size_t a = 0; a < axis_pointers.size(); ++a) axis.integer(static_cast<int64_t>(a)).text(axis_pointers[a]).run();
+      insert_records(db, axis_pointers, records);
+      db.exec("COMMIT;");
+    }
+    fs::rename(temp, file);
+  } catch (...) {
+    fs::remove(temp, ignored);
+    throw;
+  }
+}
+
+}  // namespace latsim::sweep

@@ -1,0 +1,131 @@
+#include "latsim/sweep/run_table.hpp"
+
+#include <charconv>
+#include <cmath>
+
+#include "latsim/sweep/plan.hpp"
+
+namespace latsim::sweep {
+
+namespace {
+
+using Json = nlohmann::json;
+
+const Json* walk(const Json& root, const std::string& path) {
+  const Json* node = &root;
+  size_t start = 0;
+  while (start <= path.size()) {
+    const size_t dot = path.find('.', start);
+    const std::string key = path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    if (!node->is_object() || !node->contains(key)) return nullptr;
+    node = &(*node)[key];
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  return node;
+}
+
+std::optional<double> as_number(const Json* node) {
+  if (!node) return std::nullopt;
+  // A distribution named without a statistic stands for its mean.
+  if (node->is_object() && node->contains("mean")) node = &(*node)["mean"];
+  if (!node->is_number()) return std::nullopt;
+  return node->get<double>();
+}
+
+bool is_distribution(const Json& node) { return node.is_object() && node.contains("count") && node.contains("mean"); }
+
+void flatten(const Json& node, const std::string& name, FlatFigures& out) {
+  if (node.is_number() || node.is_boolean()) {
+    out.scalars.push_back({name, node.is_boolean() ? (node.get<bool>() ? 1.0 : 0.0) : node.get<double>()});
+  } else if (is_distribution(node)) {
+    for (auto it = node.begin(); it != node.end(); ++it) {
+      if (it.value().is_number()) out.stats.push_back({name, it.key(), it.value().get<double>()});
+    }
+    if (node.contains("histogram") && node["histogram"].is_array()) {
+      const Json& hist = node["histogram"];
+      for (size_t b = 0; b < hist.size(); ++b)
+        if (hist[b].is_array() && hist[b].size() == 2 && hist[b][0].is_number() && hist[b][1].is_number())
+          out.buckets.push_back({name, b, hist[b][0].get<double>(), hist[b][1].get<double>()});
+    }
+  } else if (node.is_object()) {
+    for (auto it = node.begin(); it != node.end(); ++it) flatten(it.value(), name.empty() ? it.key() : name + "." + it.key(), out);
+  }
+}
+
+}  // namespace
+
+std::vector<HeadlineColumn> headline_columns() {
+  return {
+      {"mtp_mean_ms", "motion_to_photon_ms.mean"},
+      {"mtp_p50_ms", "motion_to_photon_ms.p50"},
+      {"mtp_p99_ms", "motion_to_photon_ms.p99"},
+      {"mtp_max_ms", "motion_to_photon_ms.max"},
+      {"render_latency_ms", "render_latency_ms"},
+      {"render_latency_fields", "render_latency_fields"},
+      {"frame_rate_hz", "frame_rate_hz"},
+      {"missed_refreshes", "missed_refreshes"},
+      {"registration_error_mean_arcmin", "registration_error_arcmin.mean"},
+      {"registration_error_p99_arcmin", "registration_error_arcmin.p99"},
+      {"events", "events"},
+      {"wall_s", "wall_s"},
+  };
+}
+
+std::optional<double> find_figure(const Json& summary, const std::string& path) {
+  if (summary.contains("figures")) {
+    if (auto v = as_number(walk(summary["figures"], path))) return v;
+  }
+  return as_number(walk(summary, path));
+}
+
+std::string format_number(double value) {
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char buf[64];
+  const auto result = std::to_chars(buf, buf + sizeof buf, value);
+  return std::string(buf, result.ptr);
+}
+
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+std::string results_csv(const std::vector<std::string>& axis_pointers, const std::vector<RunRecord>& records) {
+  // Cells are appended one by one: building "," + cell temporaries trips
+  // GCC 12's -Wrestrict false positive at -O2.
+  std::string text = "run_id,point";
+  auto cell = [&text](const std::string& value) {
+    text += ',';
+    text += value;
+  };
+  for (const auto& pointer : axis_pointers) cell(csv_field(pointer));
+  text += ",seed,replication";
+  const auto columns = headline_columns();
+  for (const auto& column : columns) cell(column.name);
+  text += '\n';
+  for (const auto& record : records) {
+    text += record.run_id;
+    cell(std::to_string(record.point));
+    for (const auto& value : record.values) cell(csv_field(value_text(value)));
+    cell(std::to_string(record.seed));
+    cell(std::to_string(record.replication));
+    for (const auto& column : columns) {
+      const auto v = find_figure(record.summary, column.figure);
+      cell(v ? format_number(*v) : std::string());
+    }
+    text += '\n';
+  }
+  return text;
+}
+
+FlatFigures flatten_figures(const Json& figures) {
+  FlatFigures out;
+  flatten(figures, "", out);
+  return out;
+}
+
+}  // namespace latsim::sweep

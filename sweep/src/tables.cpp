@@ -1,0 +1,107 @@
+#include "latsim/results/run_files.hpp"
+#include "latsim/sweep/tables.hpp"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <optional>
+#include <stdexcept>
+
+#include "latsim/run/runner.hpp"
+#include "latsim/sweep/parallel_for.hpp"
+#include "latsim/sweep/results_db.hpp"
+#include "latsim/sweep/run_table.hpp"
+
+namespace latsim::sweep {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Claim files of finished runs: left by a process killed between writing a
+// summary and removing its claim. Claim names start with the run id.
+void remove_finished_claims(const SweepStore& store) {
+  std::error_code ec;
+  std::vector<fs::path> leftovers;
+  for (fs::directory_iterator it(store.claims_dir(), ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    const auto dot = name.find('.');
+    if (dot == 0 || dot == std::string::npos) continue;  // .clock files belong to live processes
+    if (store.is_finished(name.substr(0, dot))) leftovers.push_back(it->path());
+  }
+  for (const auto& file : leftovers) fs::remove(file, ec);
+}
+
+/// Holds DIR/.tables.lock (flock) while the tables are written: several
+/// processes may finish a sweep at once, and each rewrites the same files and
+/// clears their temporaries. The kernel drops the lock when its holder dies.
+class TablesLock {
+ public:
+  explicit TablesLock(const fs::path& out_dir) {
+    const fs::path file = out_dir / ".tables.lock";
+    fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ >= 0 && ::flock(fd_, LOCK_EX) == 0) return;
+    // A file system without locks (NFS mounted nolock): carry on, but say so.
+    std::fprintf(stderr, "sweep: warning: cannot lock %s (%s); do not write this sweep's tables from two processes at once\n",
+                 file.c_str(), std::strerror(errno));
+  }
+  TablesLock(const TablesLock&) = delete;
+  TablesLock& operator=(const TablesLock&) = delete;
+  ~TablesLock() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+
+ private:
+  int fd_ = -1;
+};
+
+}  // namespace
+
+size_t write_tables(const SweepPlan& plan, const SweepStore& store, unsigned threads, size_t& temporaries_removed) {
+  const TablesLock lock(store.out_dir());
+  // Parsing the summaries is most of the reading, and independent per run.
+  const auto& runs = plan.runs();
+  std::vector<std::optional<nlohmann::json>> summaries(runs.size());
+  std::vector<std::string> errors(runs.size());
+  parallel_for(runs.size(), threads, [&](size_t i) {
+    try {
+      summaries[i] = store.load_summary(runs[i].run_id);
+    } catch (const std::exception& e) {
+      errors[i] = e.what();
+    }
+  });
+  for (const auto& error : errors)
+    if (!error.empty()) throw std::runtime_error(error);
+  std::vector<RunRecord> records;
+  for (const auto& run : runs) {
+    auto& summary = summaries[run.index];
+    if (!summary) continue;
+    RunRecord record{run.run_id, run.point, run.seed, run.replication, {}, std::move(*summary)};
+    for (size_t a = 0; a < plan.axes().size(); ++a) record.values.push_back(plan.axes()[a].values[run.value_indices[a]]);
+    records.push_back(std::move(record));
+  }
+  std::vector<std::string> pointers;
+  for (const auto& axis : plan.axes()) pointers.push_back(axis.pointer);
+  temporaries_removed += store.remove_table_temporaries();
+  results::write_file_atomically(store.out_dir() / "results.csv", results_csv(pointers, records));
+  write_results_db(store.out_dir() / "results.sqlite", pointers, records);
+  remove_finished_claims(store);
+  return records.size();
+}
+
+std::vector<std::string> missing_runs(const SweepPlan& plan, const SweepStore& store, RunClaims& claims) {
+  std::vector<std::string> lines;
+  for (const auto& run : plan.runs()) {
+    if (store.is_finished(run.run_id)) continue;
+    std::string line = run.run_id + " (" + plan.describe(run) + ")";
+    if (const auto holder = claims.holder_of(run.run_id)) line += ": running in " + holder->name();
+    lines.push_back(std::move(line));
+  }
+  return lines;
+}
+
+}  // namespace latsim::sweep
