@@ -11,6 +11,7 @@
 #include "latsim/des/run_clocks.hpp"
 #include "latsim/params/render_cost.hpp"
 #include "latsim/pipelines/pipeline.hpp"
+#include "latsim/results/frame_recorder.hpp"
 #include "latsim/results/latency_recorder.hpp"
 #include "latsim/results/timeline.hpp"
 
@@ -35,12 +36,12 @@ class DoubleBufferPipeline final : public Pipeline {
     stream_ = std::make_unique<des::RandomStream>(ctx.stream("renderer"));
     const des::KindId kind_frame = ctx.sim.kind("renderer.frame");
     ctx.recorder.expects_images();
+    ctx.app_frames.declare({});
     if (p_.vsync) ctx.display.on_retrace([this](int64_t, des::Time now) { retrace(now); });
     ctx.sim.start(renderer(), kind_frame);
   }
 
   void finish(RunContext& ctx) override {
-    ctx.recorder.set("frames_rendered", frames_done_);
     ctx.recorder.set("nominal_frame_time_ms", p_.cost.nominal_frame_time().to_ms());
     if (!p_.vsync || p_.queued_frames != 0 || p_.cost.varies()) return;
     const auto a = analytic_double_buffer(analytic_inputs(ctx));
@@ -138,7 +139,7 @@ class DoubleBufferPipeline final : public Pipeline {
     }
     if (ctx_->timeline) ctx_->timeline->add("RENDER", frame_, -1, "renderer", start, now);
     ++frame_;
-    ++frames_done_;
+    ctx_->app_frames.rendered();
     return done;
   }
 
@@ -159,7 +160,6 @@ class DoubleBufferPipeline final : public Pipeline {
   des::Handoff retrace_;
   std::deque<Done> queue_;
   int64_t frame_ = 0;
-  int64_t frames_done_ = 0;
 };
 
 void bind(scenario::Section& s, DoubleBufferPipeline::Params& p, const params::SharedParams& shared) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "latsim/pipelines/pipeline.hpp"
+#include "latsim/results/frame_recorder.hpp"
 #include "latsim/results/latency_recorder.hpp"
 
 namespace latsim::pipelines::frame_stages {
@@ -51,7 +52,7 @@ void Compositor::count_refresh(EyeImage& src, const JobRecord& warp) {
   ++frames_rewarped_;
   // At half rate every image is planned to be shown twice.
   if (spec_.half_rate && before == 1) ++frames_synthesised_;
-  else ++frames_missed_;
+  else ctx_.app_frames.missed();
 }
 
 bool Compositor::on_begin(JobRecord& warp) {
@@ -68,7 +69,7 @@ bool Compositor::on_begin(JobRecord& warp) {
   EyeImage& src = images_.at(*newest_);
   if (!spec_.asynchronous && src.refreshes > 0) {
     // Synchronous warp: no new image, no warp; the display shows the last one again.
-    if (clock_.slot_of(warp.deadline).strip == 0) ++frames_missed_;
+    if (clock_.slot_of(warp.deadline).strip == 0) ctx_.app_frames.missed();
     return false;
   }
   count_refresh(src, warp);

@@ -38,7 +38,6 @@ class Compositor {
 
   int64_t warps() const { return warps_; }
   int64_t frames_rewarped() const { return frames_rewarped_; }
-  int64_t frames_missed() const { return frames_missed_; }
   int64_t frames_synthesised() const { return frames_synthesised_; }
   int64_t warps_late() const { return warps_late_; }
   int64_t refreshes_without_image() const { return refreshes_without_image_; }
@@ -65,7 +64,6 @@ class Compositor {
   std::map<int64_t, int> rewarps_;      ///< image id -> rewarps (recent images only)
   int64_t warps_ = 0;
   int64_t frames_rewarped_ = 0;
-  int64_t frames_missed_ = 0;
   int64_t frames_synthesised_ = 0;
   int64_t warps_late_ = 0;
   int64_t refreshes_without_image_ = 0;

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "latsim/pipelines/pipeline.hpp"
+#include "latsim/results/frame_recorder.hpp"
 #include "latsim/results/latency_recorder.hpp"
 
 namespace latsim::pipelines::frame_stages {
@@ -39,7 +40,7 @@ FlowHooks FrameStagesPipeline::app_hooks() {
   h.photon_for_completion = [this](des::Time t) { return app_photon_target(t); };
   h.image_buffers = image_buffers_.get();
   h.on_complete = [this](JobRecord& frame) {
-    ++frames_completed_;
+    ctx_->app_frames.rendered();
     if (compositor_) compositor_->on_frame_complete(frame);
     else swap_chain_->on_frame_complete(frame);
   };
@@ -63,6 +64,7 @@ FlowHooks FrameStagesPipeline::warp_hooks() {
 void FrameStagesPipeline::start(RunContext& ctx) {
   ctx_ = &ctx;
   ctx.recorder.expects_images();
+  ctx.app_frames.declare({.missed = true, .rate = true});
   for (const ProcessorSpec& p : spec_.processors) processors_.push_back(std::make_unique<des::Resource>(ctx.sim, 1, p.name));
   retraces_ = std::make_unique<Progress>(ctx.sim);
   poses_ = std::make_unique<PoseSampler>(ctx.host);
@@ -95,13 +97,8 @@ void FrameStagesPipeline::start(RunContext& ctx) {
 
 void FrameStagesPipeline::finish(RunContext& ctx) {
   results::LatencyRecorder& r = ctx.recorder;
-  r.set("frames_rendered", frames_completed_);
-  r.set("application_frame_rate_hz", static_cast<double>(frames_completed_) / ctx.duration.to_seconds());
-  if (swap_chain_) {
-    r.set("frames_missed", swap_chain_->frames_missed());
-    return;
-  }
-  r.set("frames_missed", compositor_->frames_missed());
+  // frames_rendered, application_frame_rate_hz and frames_missed are ctx.app_frames'.
+  if (swap_chain_) return;
   r.set("frames_rewarped", compositor_->frames_rewarped());
   r.set("frames_synthesised", compositor_->frames_synthesised());
   r.set("warps", compositor_->warps());

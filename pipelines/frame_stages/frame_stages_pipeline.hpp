@@ -53,7 +53,6 @@ class FrameStagesPipeline final : public Pipeline {
   std::unique_ptr<Compositor> compositor_;
   std::unique_ptr<ResidualErrors> residuals_;
   std::unique_ptr<StageFlow> app_, warp_;
-  int64_t frames_completed_ = 0;
 };
 
 }  // namespace latsim::pipelines::frame_stages

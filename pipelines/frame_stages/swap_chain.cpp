@@ -1,6 +1,7 @@
 #include "frame_stages/swap_chain.hpp"
 
 #include "latsim/pipelines/pipeline.hpp"
+#include "latsim/results/frame_recorder.hpp"
 #include "latsim/results/latency_recorder.hpp"
 #include "latsim/results/timeline.hpp"
 
@@ -30,7 +31,7 @@ void SwapChain::on_retrace(int64_t) {
   // every refresh: the recorder counts the refreshes that show none.
   if (on_screen_) ctx_.recorder.image_due(ctx_.sim.now());
   if (queue_.empty()) {
-    if (on_screen_) ++frames_missed_;
+    if (on_screen_) ctx_.app_frames.missed();
     return;
   }
   const Done d = std::move(queue_.front());

@@ -28,7 +28,6 @@ class SwapChain {
 
   int64_t frames_shown() const { return frames_shown_; }
   /// Refreshes at which no new frame was ready (the last one was shown again).
-  int64_t frames_missed() const { return frames_missed_; }
 
  private:
   struct Done {
@@ -46,7 +45,6 @@ class SwapChain {
   std::deque<Done> queue_;
   bool on_screen_ = false;
   int64_t frames_shown_ = 0;
-  int64_t frames_missed_ = 0;
 };
 
 }  // namespace latsim::pipelines::frame_stages

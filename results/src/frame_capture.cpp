@@ -73,7 +73,6 @@ struct FrameCapture::Impl {
   std::optional<Collection> current;
   int64_t captures_begun = 0;
   std::optional<renderer::RayCaster> caster;
-  int64_t casters_built = 0;
   std::optional<renderer::Camera> camera;
   // Persistent across fields: an interlaced field replaces only its own rows.
   renderer::Frame displayed;
@@ -147,7 +146,6 @@ struct FrameCapture::Impl {
   void ensure_renderer() {
     if (caster) return;
     caster.emplace(renderer::make_scene(scene_spec));
-    ++casters_built;
     camera.emplace(in.hfov_deg, width(), height());
     displayed = renderer::Frame::cleared(width(), height(), background);
     unwarped = renderer::Frame::cleared(width(), height(), background);
@@ -375,7 +373,5 @@ void FrameCapture::finish() {
   m.in.recorder.list("frames");
   m.in.recorder.set("frames_mean_image_error", m.entries == 0 ? 0.0 : m.error_sum / static_cast<double>(m.entries));
 }
-
-int64_t FrameCapture::renderers_built() const { return impl_->casters_built; }
 
 }  // namespace latsim::results

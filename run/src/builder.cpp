@@ -183,7 +183,7 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
     run.pipeline = make_pipeline();
     run.ctx = std::unique_ptr<RunContext>(new RunContext{
         run.sim, run.seed, options.replication, run.duration, *run.motion, p.tracker, *run.transport, *run.host,
-        *run.display, p.display, p.scene ? &*p.scene : nullptr, run.images, *run.recorder, run.files, *run.clocks, p.host.ipd_m,
+        *run.display, p.display, p.scene ? &*p.scene : nullptr, run.images, *run.recorder, run.app_frames, run.files, *run.clocks, p.host.ipd_m,
         stereo, timeline, run.frames.get()});
     run.pipeline->start(*run.ctx);
   });

@@ -94,6 +94,7 @@ RunTotals totals_of(const Run& run) {
 Json figures_of(Run& run) {
   LatencyRecorder& rec = *run.recorder;
   run.pipeline->finish(*run.ctx);
+  run.app_frames.finish(rec, run.duration);
   if (run.frames) run.frames->finish();
   rec.finish(totals_of(run));
   Json figures = rec.figures();

@@ -82,28 +82,10 @@ void ConfigNode::fail(std::string_view key, const std::string& message) const {
   throw ScenarioError(key.empty() ? pointer_ : join_pointer(pointer_, key), message);
 }
 
-void ConfigNode::mark_all_read() const {
-  std::vector<std::pair<const Json*, std::string>> stack{{node_, pointer_}};
-  while (!stack.empty()) {
-    auto [n, p] = stack.back();
-    stack.pop_back();
-    log_->read_pointers.insert(p);
-    if (n->is_object())
-      for (auto it = n->begin(); it != n->end(); ++it) stack.emplace_back(&*it, join_pointer(p, it.key()));
-    else if (n->is_array())
-      for (size_t i = 0; i < n->size(); ++i) stack.emplace_back(&(*n)[i], join_pointer(p, std::to_string(i)));
-  }
-}
-
 ConfigNode ConfigNode::child(std::string_view key) const {
   const Json& v = require(key);
   if (!v.is_object()) fail(key, "expected an object, got " + json_type_name(v));
   return ConfigNode(&v, join_pointer(pointer_, key), log_);
-}
-
-std::optional<ConfigNode> ConfigNode::optional_child(std::string_view key) const {
-  if (!has(key)) return std::nullopt;
-  return child(key);
 }
 
 std::vector<ConfigNode> ConfigNode::objects(std::string_view key) const {
@@ -141,19 +123,6 @@ double ConfigNode::positive(std::string_view key) const {
 double ConfigNode::positive(std::string_view key, double def) const {
   const double x = number(key, def);
   if (!(x > 0)) fail(key, "must be greater than zero, got " + format_number(x));
-  return x;
-}
-
-double ConfigNode::non_negative(std::string_view key, double def) const {
-  const double x = number(key, def);
-  if (x < 0) fail(key, "must not be negative, got " + format_number(x));
-  return x;
-}
-
-double ConfigNode::number_in(std::string_view key, double def, double lo, double hi) const {
-  const double x = number(key, def);
-  if (x < lo || x > hi)
-    fail(key, "must lie in [" + format_number(lo) + ", " + format_number(hi) + "], got " + format_number(x));
   return x;
 }
 

@@ -10,6 +10,7 @@
 #include "latsim/display/display.hpp"
 #include "latsim/params/shared.hpp"
 #include "latsim/pipelines/pipeline.hpp"
+#include "latsim/results/frame_recorder.hpp"
 #include "latsim/results/image_book.hpp"
 #include "latsim/results/latency_recorder.hpp"
 #include "latsim/results/run_files.hpp"
@@ -51,12 +52,13 @@ struct Harness {
     const auto pipeline = run::builtin_pipelines().find(type)->bind(section, shared)();
     pipelines::RunContext ctx{sim,     1,        0,       duration, *motion,         tracker_params,
                               link,    host,     display, shared.display, shared.scene ? &*shared.scene : nullptr,
-                              images,  recorder, files,   clocks, 0.064,   false,    nullptr,         nullptr};
+                              images,  recorder, app_frames, files,   clocks, 0.064,   false,    nullptr,         nullptr};
     pipeline->start(ctx);
     host.start(duration);
     display.start(duration);
     sim.run_until(duration);
     pipeline->finish(ctx);
+    app_frames.finish(recorder, duration);
     return recorder.figures();
   }
 
@@ -72,6 +74,7 @@ struct Harness {
   display::Display display;
   results::ImageBook images;
   results::LatencyRecorder recorder;
+  results::FrameRecorder app_frames;
 };
 
 std::unique_ptr<tracker::MotionSource> yaw_and_walk() {

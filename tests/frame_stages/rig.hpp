@@ -10,6 +10,7 @@
 #include "latsim/des/simulator.hpp"
 #include "latsim/display/display.hpp"
 #include "latsim/display/params.hpp"
+#include "latsim/results/frame_recorder.hpp"
 #include "latsim/results/image_book.hpp"
 #include "latsim/results/latency_recorder.hpp"
 #include "latsim/results/run_files.hpp"
@@ -78,6 +79,7 @@ struct Rig {
   display::Display display;
   results::ImageBook images;
   results::LatencyRecorder recorder;
+  results::FrameRecorder app_frames;
   results::RunFiles files;
   des::RunClocks clocks{1, 0};
   std::unique_ptr<pipelines::RunContext> ctx;
@@ -120,7 +122,7 @@ struct Rig {
       display.add_listener(smear.get());
     }
     ctx.reset(new pipelines::RunContext{sim, 1, 0, des::Time::zero(), *motion, tracker_params, link, host, display,
-                                        display_params, nullptr, images, recorder, files, clocks, 0.064, false, nullptr,
+                                        display_params, nullptr, images, recorder, app_frames, files, clocks, 0.064, false, nullptr,
                                         nullptr});
   }
 
@@ -133,6 +135,7 @@ struct Rig {
     pipeline.start(*ctx);
     sim.run_until(end);
     pipeline.finish(*ctx);
+    app_frames.finish(recorder, end);
     figures = recorder.figures();
   }
 

@@ -26,10 +26,6 @@ double Camera::vfov_deg() const {
   return 2.0 * std::atan(0.5 * height_px_ / focal_px_) * 180.0 / std::numbers::pi;
 }
 
-double Camera::centre_pixel_angle_rad() const {
-  return 2.0 * std::atan(0.5 / focal_px_);
-}
-
 glm::dvec3 Camera::head_direction(double px, double py) const {
   // Image y grows downwards while head-frame y grows upwards, hence the sign flip.
   const glm::dvec3 d((px - 0.5 * width_px_) / focal_px_, (0.5 * height_px_ - py) / focal_px_, -1.0);

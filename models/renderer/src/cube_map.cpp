@@ -81,14 +81,6 @@ CubeTexel CubeMap::lookup(const glm::dvec3& d) const {
   return texels_[index(face, texel_of(sc), texel_of(tc))];
 }
 
-ImageRGB CubeMap::face_image(int face) const {
-  ImageRGB image = ImageRGB::filled(face_px_, face_px_, glm::vec3(0.0f));
-  for (int j = 0; j < face_px_; ++j) {
-    for (int i = 0; i < face_px_; ++i) image.at(i, j) = texel(face, i, j).colour;
-  }
-  return image;
-}
-
 CubeMap render_cube(const RayCaster& caster, const glm::dvec3& eye_m, int face_px, const RenderOptions& options) {
   CubeMap cube(eye_m, face_px, options.background);
   std::vector<Ray> rays;

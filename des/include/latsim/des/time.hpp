@@ -43,7 +43,6 @@ class Time {
   constexpr int64_t ticks() const { return ticks_; }
   constexpr double to_seconds() const { return static_cast<double>(ticks_) * 1e-12; }
   constexpr double to_ms() const { return static_cast<double>(ticks_) * 1e-9; }
-  constexpr double to_us() const { return static_cast<double>(ticks_) * 1e-6; }
   /// Human-readable, e.g. "16.683333 ms".
   std::string str() const;
 

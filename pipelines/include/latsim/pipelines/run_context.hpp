@@ -27,6 +27,7 @@ class ImageBook;
 class LatencyRecorder;
 class Timeline;
 class FrameCapture;
+class FrameRecorder;
 class RunFiles;
 }  // namespace latsim::results
 
@@ -48,6 +49,7 @@ struct RunContext {
   const params::SceneParams* scene;            ///< /scene, when the scenario has one
   results::ImageBook& images;                  ///< every image shown is registered here first
   results::LatencyRecorder& recorder;          ///< every figure and warning goes here
+  results::FrameRecorder& app_frames;          ///< the application's frames: rendered, missed
   results::RunFiles& files;                    ///< every result file goes here
   des::RunClocks& clocks;                      ///< every clock of the run, with its phase
   double ipd_m = 0.064;

@@ -83,8 +83,6 @@ class FrameCapture final : public display::ScanoutListener {
   /// (one entry per capture) and "frames_mean_image_error".
   void finish();
 
-  /// How many ray casters were built (0 until the first field is cast).
-  int64_t renderers_built() const;
 
  private:
   struct Impl;

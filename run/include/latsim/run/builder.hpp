@@ -15,6 +15,7 @@
 #include "latsim/params/shared.hpp"
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/results/frame_capture.hpp"
+#include "latsim/results/frame_recorder.hpp"
 #include "latsim/results/image_book.hpp"
 #include "latsim/results/latency_recorder.hpp"
 #include "latsim/results/run_files.hpp"
@@ -42,6 +43,7 @@ struct Run {
   std::unique_ptr<display::Display> display;
   results::ImageBook images;
   std::unique_ptr<results::LatencyRecorder> recorder;
+  results::FrameRecorder app_frames;
   std::unique_ptr<results::FrameCapture> frames;  // only when the scenario asks for frames
   std::unique_ptr<results::SmearRecorder> smear;  // only on a display with persistence
   results::RunFiles files;

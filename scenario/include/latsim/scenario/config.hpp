@@ -61,15 +61,12 @@ class ConfigNode {
   bool has(std::string_view key) const;
 
   ConfigNode child(std::string_view key) const;
-  std::optional<ConfigNode> optional_child(std::string_view key) const;
   std::vector<ConfigNode> objects(std::string_view key) const;
 
   double number(std::string_view key) const;
   double number(std::string_view key, double def) const;
   double positive(std::string_view key) const;
   double positive(std::string_view key, double def) const;
-  double non_negative(std::string_view key, double def) const;
-  double number_in(std::string_view key, double def, double lo, double hi) const;
   int64_t integer(std::string_view key, int64_t lo, int64_t hi) const;
   int64_t integer(std::string_view key, int64_t def, int64_t lo, int64_t hi) const;
   bool boolean(std::string_view key, bool def) const;
@@ -93,8 +90,6 @@ class ConfigNode {
   const std::shared_ptr<ReadLog>& log() const { return log_; }
   /// Raw access; marks nothing as read.
   const nlohmann::json& json() const { return *node_; }
-  /// Marks this whole subtree as read (for free-form data a model consumes itself).
-  void mark_all_read() const;
 
  private:
   const nlohmann::json* find(std::string_view key) const;

@@ -60,8 +60,6 @@ class PriorityModel {
 
   const HarmonicMemories& memories() const { return memories_; }
   int memory_of(size_t object) const { return memory_of_.at(object); }
-  /// The memory an object waits to move to at the slower memory's next slot (-1: none).
-  int pending_move(size_t object) const { return pending_.at(object); }
   const std::vector<int>& assignment() const { return memory_of_; }
   std::vector<std::vector<uint32_t>> objects_per_memory() const;
   const std::vector<MemoryCounters>& counters() const { return counters_; }

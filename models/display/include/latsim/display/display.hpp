@@ -123,7 +123,6 @@ class Display {
   /// before now are handed over first. Only batched pixel scanout needs this.
   void split_scanout();
   int64_t front(int eye) const { return front_.at(eye); }
-  bool has_pending(int eye) const { return pending_.at(eye) >= 0; }
 
   /// Called at every retrace after pending swaps, before scanout of the field.
   void on_retrace(std::function<void(int64_t field, des::Time retrace)> fn);

@@ -60,15 +60,15 @@ class RasterTiming {
   /// Photon times of `count` samples from pixel x of the field's j-th line on,
   /// `slot_step` pixel times apart (pixels_per_line() steps line by line).
   des::TickRun photon_run(int64_t field, int j, int x, int64_t slot_step, uint64_t count) const;
-  /// The pixel-time fraction K / D (ticks per pixel time).
-  des::i128 ticks_per_slot_num() const { return k_; }
-  des::i128 ticks_per_slot_den() const { return d_; }
 
+
+  /// Ticks per pixel time, K / D; the numerator K (what a pixel or line step
+  /// is a multiple of).
+  des::i128 ticks_per_slot_num() const { return k_; }
   /// The field whose retrace is the first at or after t.
   int64_t field_at_or_after(des::Time t) const { return schedule_.index_at_or_after(t); }
   /// The field whose retrace is the last at or before t.
   int64_t field_at_or_before(des::Time t) const { return schedule_.index_at_or_before(t); }
-  double field_period_s() const { return p_.field_period.to_seconds(); }
   double field_period_ms() const { return p_.field_period.to_seconds() * 1e3; }
 
  private:

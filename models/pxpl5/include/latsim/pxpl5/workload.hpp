@@ -59,8 +59,6 @@ struct EyeWork {
   BinCounts bins;
   std::vector<uint8_t> on_screen;  ///< 1 per display-list triangle inside the view; empty: all are
   int64_t on_screen_count = 0;
-
-  bool is_on_screen(int64_t t) const { return on_screen.empty() || on_screen[static_cast<std::size_t>(t)] != 0; }
 };
 
 /// Where each image's work comes from: a fixed synthetic load, or the scene as

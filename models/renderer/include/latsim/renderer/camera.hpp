@@ -27,8 +27,6 @@ class Camera {
   double vfov_deg() const;
   /// Distance of the image plane in pixels (pixels per unit tangent).
   double focal_px() const { return focal_px_; }
-  /// Angle subtended by the centre pixel, the finest angular step of the image.
-  double centre_pixel_angle_rad() const;
 
   /// Unit direction in the head frame through continuous pixel coordinates (px, py).
   glm::dvec3 head_direction(double px, double py) const;

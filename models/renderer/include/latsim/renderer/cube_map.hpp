@@ -35,8 +35,6 @@ class CubeMap {
   CubeTexel lookup(const glm::dvec3& direction) const;
   CubeTexel& texel(int face, int i, int j);
   const CubeTexel& texel(int face, int i, int j) const;
-  /// One face as an image (for inspection).
-  ImageRGB face_image(int face) const;
 
  private:
   size_t index(int face, int i, int j) const;

@@ -55,7 +55,6 @@ class KalmanPredictor final : public Predictor {
   /// Posterior error covariances after the newest sample: orientation
   /// [dtheta (rad), dw (rad/s)] and position [dp (m), dv (m/s)].
   const Matrix6& orientation_covariance() const { return orientation_p_; }
-  const Matrix6& position_covariance() const { return position_p_; }
 
  private:
   void start(const TrackerSample& sample);
