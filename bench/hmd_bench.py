@@ -73,13 +73,20 @@ def median_row(rows):
         'events': rows[0]['events'], 'mtp': rows[0]['mtp'], 'runs': len(rows)}
 
 
-# latsim draws each clock's phase per replication; the SimPy model and the
-# older latsim (which has no phase keys) start every clock at zero.
+# latsim draws each clock's phase per replication; the SimPy model and an
+# older latsim without phase keys (c7a6d13) start every clock at zero.
 PINNED = ['/display/phase_ms=0', '/tracker/phase_ms=0']
+
+
+def knows_phases(binary):
+    """Whether a latsim binary has the clock phase keys (then it is pinned like latsim)."""
+    out = subprocess.run([binary, 'schema', '--format', 'json-schema'], capture_output=True, text=True).stdout
+    return '"phase_ms"' in out
 
 
 def peers(args, rows):
     scenario = os.path.join(ROOT, 'scenarios', 'hmd_60hz_direct.json')
+    before_pinned = bool(args.before) and knows_phases(args.before)
     programs = [('latsim', None), ('latsim before', None), ('SimPy 2', 'simpy2'), ('SimPy 3', 'simpy3')]
     programs = [p for p in programs if p[1] is None or p[1] in args.kernels.split(',')]
     if not args.before:
@@ -99,8 +106,8 @@ def peers(args, rows):
                     else:
                         binary = args.latsim if name == 'latsim' else args.before
                         out_dir = os.path.join(args.out, f'{name.replace(" ", "_")}_{scanout}_{duration}')
-                        got[name].append(latsim_run(binary, scenario, sets + (PINNED if name == 'latsim' else []),
-                                                    out_dir))
+                        pinned = PINNED if name == 'latsim' or before_pinned else []
+                        got[name].append(latsim_run(binary, scenario, sets + pinned, out_dir))
             med = {name: median_row(r) for name, r in got.items()}
             ours = med['latsim']
             for name, _ in programs:
