@@ -1,4 +1,6 @@
 // Option parsing shared by every subcommand.
+#include <iostream>
+
 #include <CLI/CLI.hpp>
 
 #include "commands.hpp"
@@ -9,7 +11,11 @@ std::optional<int> parse_options(CLI::App& app, int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? kExitOk : kExitBadInput;
+    // --help and --version print what they were asked for.
+    if (e.get_exit_code() == 0) return app.exit(e) == 0 ? kExitOk : kExitBadInput;
+    // A usage error is one line, like every other error.
+    std::cerr << app.get_name() << ": " << e.what() << " (" << app.get_name() << " --help lists the options)\n";
+    return kExitBadInput;
   }
   return std::nullopt;
 }

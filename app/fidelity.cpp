@@ -44,15 +44,22 @@ Json read_summary(const fs::path& file) {
   return Json::parse(buf.str());
 }
 
-// Every figure name a metric could be, for the error message when it is not found.
-std::string figure_names(const Json& summary) {
+// A few figure names a metric could be, for the one-line error when it is not found.
+std::string some_figure_names(const Json& summary) {
   const FlatFigures flat = flatten_figures(summary.value("figures", Json::object()));
-  std::string names;
-  for (const auto& f : flat.scalars) names += " " + f.name;
+  std::vector<std::string> names;
+  if (find_figure(summary, "motion_to_photon_ms.mean")) names.push_back("motion_to_photon_ms.mean");
   std::string last;
-  for (const auto& s : flat.stats)
-    if (s.name != last) names += " " + (last = s.name) + ".{mean,p50,p99,max,...}";
-  return names + " events wall_s";
+  for (const auto& s : flat.stats) {
+    if (s.name == last) continue;
+    last = s.name;
+    if (s.name != "motion_to_photon_ms" && names.size() < 3) names.push_back(s.name + ".mean");
+  }
+  for (const auto& f : flat.scalars)
+    if (names.size() < 5) names.push_back(f.name);
+  std::string text;
+  for (const auto& n : names) text += (text.empty() ? "" : ", ") + n;
+  return text;
 }
 
 // Runs one level in its own process, so its peak memory is its own.
@@ -67,9 +74,7 @@ FidelityLevel run_level(const FidelityRequest& request, const std::string& assig
     throw std::runtime_error("the run at " + assignment + " failed with exit status " + std::to_string(child.exit_code));
   const Json summary = read_summary(level_dir / "summary.json");
   const auto metric = find_figure(summary, request.metric);
-  if (!metric)
-    throw std::invalid_argument("metric \"" + request.metric + "\" is not in the summary; figures are:" +
-                                figure_names(summary));
+  if (!metric) throw std::runtime_error("the run at " + assignment + " has no figure " + request.metric);
   FidelityLevel level;
   level.value = value;
   level.metric = *metric;
@@ -121,6 +126,24 @@ int command_fidelity(int argc, char** argv) {
                 << "=" << value << ")\n";
       return kExitBadInput;
     }
+  }
+
+  // The metric must be a figure of the scenario before anything is written:
+  // the coarsest level, run in memory (no files), says which figures it has.
+  try {
+    std::vector<std::string> overrides = request.sets;
+    overrides.push_back(axis.pointer + "=" + axis.values.front());
+    run::RunOptions in_memory;
+    in_memory.seed = request.seed;
+    const Json summary = run::run_scenario(run::load_scenario(request.scenario_file, overrides), in_memory);
+    if (!find_figure(summary, request.metric)) {
+      std::cerr << "fidelity: --metric " << request.metric << " is not a figure of " << request.scenario_file
+                << " (it has " << some_figure_names(summary) << ", ...; every one is in a run's figures.json)\n";
+      return kExitBadInput;
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "fidelity: " << e.what() << "\n";
+    return kExitFailure;
   }
 
   const fs::path out_dir = request.out_dir;

@@ -11,9 +11,13 @@ Time Time::from_scaled(double value, double ticks_per_unit, const char* unit) {
     throw TimeOverflow(std::string("simulation time from a non-finite number of ") + unit);
   const double ticks = std::nearbyint(value * ticks_per_unit);
   // 2^63 is exactly representable; anything at or beyond it does not fit.
-  if (ticks >= 9223372036854775808.0 || ticks < -9223372036854775808.0)
-    throw TimeOverflow("simulation time out of range: " + std::to_string(value) + " " + unit +
+  if (ticks >= 9223372036854775808.0 || ticks < -9223372036854775808.0) {
+    // At most 17 significant digits, with an exponent when large: never a 170-digit number.
+    char shown[32];
+    std::snprintf(shown, sizeof shown, "%.17g", value);
+    throw TimeOverflow(std::string("simulation time out of range: ") + shown + " " + unit +
                        " (the int64 picosecond range is about +-106 days)");
+  }
   return Time::ps(static_cast<int64_t>(ticks));
 }
 

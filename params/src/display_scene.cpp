@@ -1,5 +1,9 @@
 #include "latsim/params/shared.hpp"
 
+#include <memory>
+
+#include "latsim/renderer/obj_loader.hpp"
+
 namespace latsim::params {
 
 using scenario::KeySpec;
@@ -107,6 +111,8 @@ void bind(Section& s, SceneParams& p) {
             [&g](Section& m) {
               g.type = Type::Obj;
               m.path("file", g.file, {.required = true, .doc = "the mesh, relative to the scenario file"});
+              // Read and checked with the scenario: a bad mesh is this key's error, in validate as in run.
+              m.guard("file", [&g] { g.mesh = std::make_shared<const renderer::Scene>(renderer::load_obj(g.file)); });
             }}},
           {.doc = "the geometry"});
 }

@@ -170,8 +170,10 @@ void bind(scenario::Section& s, DoubleBufferPipeline::Params& p, const params::S
   s.object("render", p.render, [](scenario::Section& r, renderer::RenderCost::Params& v) { params::bind(r, v); },
            {.required = true, .doc = "the renderer's cost per frame"});
   const display::RasterParams& raster = shared.display.raster;
-  p.cost = params::render_cost_for_scene(p.render, shared.scene ? &*shared.scene : nullptr, raster.width_px, raster.height_px,
-                                 shared.host.stereo ? 2 : 1);
+  s.guard("render", [&] {
+    p.cost = params::render_cost_for_scene(p.render, shared.scene ? &*shared.scene : nullptr, raster.width_px,
+                                           raster.height_px, shared.host.stereo ? 2 : 1);
+  });
   s.check("vsync", p.vsync || p.cost.nominal_frame_time() > des::Time::zero(),
           "without vsync the renderer runs back to back, so frames need a render time above zero");
 }

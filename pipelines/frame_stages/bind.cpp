@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "frame_stages/frame_stages_pipeline.hpp"
+#include "latsim/des/time.hpp"
 #include "latsim/params/render_cost.hpp"
 #include "latsim/params/shared.hpp"
 #include "latsim/pipelines/pipeline.hpp"
@@ -111,8 +112,12 @@ std::vector<StageSpec> resolve(Section& s, const std::string& key, const std::ve
     StageSpec st;
     st.name = k.name;
     st.processors = it->second;
-    st.cost = params::render_cost_for_scene(k.cost, shared.scene ? &*shared.scene : nullptr, raster.width_px,
-                                    raster.height_px, eyes);
+    try {
+      st.cost = params::render_cost_for_scene(k.cost, shared.scene ? &*shared.scene : nullptr, raster.width_px,
+                                              raster.height_px, eyes);
+    } catch (const des::TimeOverflow& e) {
+      s.check_pointer(at + "/cost", false, e.what());
+    }
     switch (k.start) {
       case StartKey::automatic: st.start = i == 0 ? first_default : StartRule::after; break;
       case StartKey::after: st.start = StartRule::after; break;

@@ -82,7 +82,13 @@ Json load_with_includes(const fs::path& file, std::vector<fs::path>& chain) {
                                                        : std::string("it is not a regular file (a device, pipe or socket)");
         throw ScenarioError(where, "cannot read the included file " + quote_value(included.string()) + ": " + why, file);
       }
-      deep_merge(result, load_with_includes(included, chain));
+      try {
+        deep_merge(result, load_with_includes(included, chain));
+      } catch (const ScenarioError& e) {
+        // Name the chain: the file, and the pointer in it, that included the one at fault.
+        throw ScenarioError(e.pointer(), e.message() + " (included by " + file.string() + " at " + where + ")",
+                            e.file().empty() ? included : e.file());
+      }
     }
     doc.erase("include");
   }

@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 
+#include "latsim/des/time.hpp"
 #include "params_internal.hpp"
 
 namespace latsim::scenario {
@@ -88,15 +89,16 @@ void Section::nested(std::string_view key, const char* type, const KeySpec& spec
     declare(key, type, spec).object = std::move(object);
     return;
   }
-  if (has(key)) {
-    Section s(node_->child(key));
-    bind(s);
-    return;
-  }
-  if (spec.required) fail(key, "required key is missing");
+  if (!has(key) && spec.required) fail(key, "required key is missing");
   // Absent: every key takes its default, recorded as if the object were empty.
-  Section s(ConfigNode(&empty_object(), join_pointer(node_->pointer(), key), node_->log()));
-  bind(s);
+  Section s(has(key) ? node_->child(key) : ConfigNode(&empty_object(), join_pointer(node_->pointer(), key), node_->log()));
+  try {
+    bind(s);
+  } catch (const des::TimeOverflow& e) {
+    // A time its keys imply but no key holds (a cost summed from several):
+    // the object's error, not the whole scenario's.
+    fail(key, e.what());
+  }
 }
 
 std::vector<ConfigNode> Section::array_of_objects(std::string_view key) const {

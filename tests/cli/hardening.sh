@@ -94,7 +94,7 @@ expect_bad view_rc_render "/pipeline/render_us_per_command" \
      "pipeline": {"render_us_per_command": 1e9}}')"
 expect_bad view_slats_gp "/pipeline/gp_us_per_triangle" \
   "$(scenario view_slats_gp '{"include": "'"$PWD"'/scenarios/pxpl5/slats_room_walk.json", "duration_s": 0.5,
-     "pipeline": {"gp_us_per_triangle": 1e12}}')"
+     "scene": {"file": "'"$PWD"'/scenarios/objects/room_lowpoly.obj"}, "pipeline": {"gp_us_per_triangle": 1e12}}')"
 
 # Address recalculation: a render cost times the scene's items beyond what a
 # run may last, a floor cut into billions of regions, a warp falloff that
@@ -177,4 +177,52 @@ grep -q "warning: /pipeline/render: ignored: read only when type=double_buffer" 
 grep -q "warning: /scene:" "$tmp/stderr" && say_fail "mode_keys: the whole /scene section is flagged"
 
 [ "$fail" -eq 0 ] && echo "ok   analytic, warnings, validate of sweeps, --set sections, per-mode keys"
+
+# 13. Files a scenario points at. Only a regular file of bounded size is
+# read (a trace that was a FIFO or /dev/zero hung until SIGKILL), and a mesh
+# is read and checked with the scenario (a NaN vertex or a face of two
+# vertices was found at t = 0.07 s, exit 1, and validate accepted it): exit 2,
+# one line naming the pointer that named the file, and the file's line.
+no_motion='"duration_s": 1, "tracker": {"rate_hz": 60}, "display": {"refresh_hz": 60}, "pipeline": {"type": "double_buffer", "render": {"fixed_ms": 1}}'
+mkfifo "$tmp/trace_fifo.txt"
+expect_bad trace_fifo "/motion/file: $tmp/trace_fifo.txt: cannot read the trace file: it is not a regular file" \
+  "$(scenario trace_fifo "{$no_motion, \"motion\": {\"type\": \"trace\", \"file\": \"$tmp/trace_fifo.txt\"}}")"
+expect_bad trace_dev_zero "/motion/file: /dev/zero: cannot read the trace file: it is not a regular file" \
+  "$(scenario trace_dev_zero "{$no_motion, \"motion\": {\"type\": \"trace\", \"file\": \"/dev/zero\"}}")"
+printf 'v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$tmp/nan.obj"
+expect_bad mesh_nan "/scene/file: $tmp/nan.obj:1: non-numeric value 'nan'" \
+  "$(scenario mesh_nan "{$base, \"scene\": {\"type\": \"obj\", \"file\": \"$tmp/nan.obj\"}}")"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2\n' >"$tmp/two_vertices.obj"
+expect_bad mesh_two_vertex_face "/scene/file: $tmp/two_vertices.obj:5: too few vertices in face: 2" \
+  "$(scenario mesh_two_vertex_face "{$base, \"scene\": {\"type\": \"obj\", \"file\": \"$tmp/two_vertices.obj\"}}")"
+mkfifo "$tmp/mesh_fifo.obj"
+expect_bad mesh_fifo "/scene/file: $tmp/mesh_fifo.obj: cannot read the mesh: it is not a regular file" \
+  "$(scenario mesh_fifo "{$base, \"scene\": {\"type\": \"obj\", \"file\": \"$tmp/mesh_fifo.obj\"}}")"
+# An include error names the chain: the included file at fault, and the
+# file and pointer that included it (once it named only /etc/passwd).
+expect_bad include_chain "(included by $tmp/include_passwd.json at /include)" \
+  "$(scenario include_passwd '{"include": "/etc/passwd"}')"
+# Usage errors are one line too (the option parser printed two).
+for args in "run" "run --bogus x.json" "validate" "sweep" "fidelity x.json --vary /a=1" "report"; do
+  # shellcheck disable=SC2086
+  "$LATSIM" $args >"$tmp/stdout" 2>"$tmp/stderr"
+  rc=$?
+  [ "$rc" -eq 2 ] || say_fail "usage '$args': exit code $rc, want 2"
+  [ "$(wc -l <"$tmp/stderr")" -eq 1 ] || { say_fail "usage '$args': $(wc -l <"$tmp/stderr") lines on stderr"; cat "$tmp/stderr"; }
+done
+# A time no single key holds names the object it comes from, and prints its
+# number shortly (was "cannot build the scenario: simulation time out of
+# range: 1000000000000.000000 ms", naming no key).
+expect_bad time_overflow_render "/pipeline/render: simulation time out of range: 1000000000000 ms" \
+  "$(scenario time_overflow_render '{"duration_s": 1, "motion": {"type": "still"}, "tracker": {"rate_hz": 60},
+     "display": {"refresh_hz": 60}, "pipeline": {"type": "double_buffer", "render": {"fixed_ms": 1e12}}}')"
+# 1e9 ms + 1e7 triangles x 1e6 us: 1.1e10 ms, past the int64 picosecond range.
+expect_bad time_overflow_sum "/pipeline/render: simulation time out of range: 11000000000 ms" \
+  "$(scenario time_overflow_sum '{"duration_s": 1, "motion": {"type": "still"}, "tracker": {"rate_hz": 60},
+     "display": {"refresh_hz": 60}, "scene": {"triangles": 10000000},
+     "pipeline": {"type": "double_buffer", "render": {"fixed_ms": 1e9, "per_primitive_us": 1e6}}}')"
+# A trace past its size limit is refused before it is read.
+truncate -s 300M "$tmp/huge_trace.txt"
+expect_bad trace_too_large "cannot read the trace file: it is too large (314572800 bytes; at most 268435456)" \
+  "$(scenario trace_too_large "{$no_motion, \"motion\": {\"type\": \"trace\", \"file\": \"$tmp/huge_trace.txt\"}}")"
 exit $fail

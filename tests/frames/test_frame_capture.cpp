@@ -90,20 +90,32 @@ TEST_CASE("without a frames section nothing is loaded, cast or written", "[frame
   CHECK(std::filesystem::exists(dir / "summary.json"));
   std::filesystem::remove_all(dir);
 
-  // The scene names a file that does not exist: loading it would throw.
-  s["scene"] = {{"type", "obj"}, {"file", "no/such/scene.obj"}};
-  SECTION("disabled frames load and write nothing") {
+  // A mesh the scene names is read with the scenario (frames or not), so
+  // that a bad one is the scenario's error, found by validate too; it is
+  // cast only when a captured field is.
+  s["scene"] = {{"type", "obj"}, {"file", "objects/pyramid.obj"}};
+  SECTION("disabled frames cast and write nothing") {
     s["frames"] = {{"enabled", false}, {"at_s", {0.1}}};
     const auto off = run(s, dir);
     CHECK_FALSE(off.at("figures").contains("frames"));
     CHECK_FALSE(std::filesystem::exists(dir / "frames"));
   }
-  SECTION("the scene is loaded only when a captured field is cast") {
-    s["frames"] = {{"at_s", {5.0}}};  // after the run ends
+  SECTION("frames due after the run's end capture nothing") {
+    s["frames"] = {{"at_s", {5.0}}};
     const auto late = run(s);
     CHECK(late.at("figures").at("frames").empty());
-    s["frames"] = {{"at_s", {0.1}}};
-    CHECK_THROWS(run(s));
+  }
+  SECTION("a mesh that does not exist is an error at /scene/file, with frames or without") {
+    s["scene"]["file"] = "no/such/scene.obj";
+    for (const bool enabled : {false, true}) {
+      s["frames"] = {{"enabled", enabled}, {"at_s", {0.1}}};
+      try {
+        run(s);
+        FAIL("a missing mesh was accepted");
+      } catch (const scenario::ScenarioError& e) {
+        CHECK(e.pointer() == "/scene/file");
+      }
+    }
   }
   std::filesystem::remove_all(dir);
 }

@@ -129,6 +129,14 @@ for name in ("fidelity.md", "fidelity.png", "fidelity.svg"):
     check(os.path.isfile(os.path.join(fid, name)), f"fidelity: {name} missing")
 proc = latsim("fidelity", BASE, "--vary", "/display/scanout=field,sideways", "--metric", "x", "--out", fid + "_bad")
 check(proc.returncode == 2 and not os.path.exists(fid + "_bad"), f"fidelity bad level: {proc.returncode} {proc.stderr}")
+# An unknown metric is found before anything is written (it once ran level 0,
+# left levels/0_field behind and printed every figure on an 868-character line).
+proc = latsim("fidelity", BASE, "--vary", "/display/scanout=field,line", "--set", "/duration_s=1",
+              "--metric", "no_such_figure.mean", "--out", fid + "_metric")
+lines = proc.stderr.strip().splitlines()
+check(proc.returncode == 2 and not os.path.exists(fid + "_metric"), f"fidelity bad metric: {proc.returncode} {proc.stderr}")
+check(len(lines) == 1 and len(lines[0]) <= 300 and "no_such_figure.mean" in lines[0] and "motion_to_photon_ms" in lines[0],
+      f"fidelity bad metric message: {proc.stderr}")
 
 # 6. The report renders from the sweep directory.
 proc = latsim("report", killed, "--gantt-limit", "1")

@@ -2,11 +2,12 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <optional>
 #include <sstream>
 #include <string_view>
 #include <vector>
+
+#include "latsim/des/input_file.hpp"
 
 namespace latsim::renderer {
 namespace {
@@ -157,8 +158,12 @@ Scene parse_obj(std::istream& input, const std::string& source_name,
 }
 
 Scene load_obj(const std::filesystem::path& path, const glm::vec3& default_colour) {
-  std::ifstream file(path);
-  if (!file) throw SceneError(path.string() + ":0: cannot open file");
+  std::istringstream file;
+  try {
+    file.str(des::read_input_file(path, kMaxObjBytes));
+  } catch (const des::InputFileError& e) {
+    throw SceneError(path.string() + ": cannot read the mesh: " + e.what());
+  }
   return parse_obj(file, path.string(), default_colour);
 }
 

@@ -11,7 +11,7 @@ Scene make_scene(const SceneSpec& spec) {
     case SceneSpec::Type::TestPattern:
       return make_test_pattern();
     case SceneSpec::Type::Obj:
-      return load_obj(spec.file);
+      return spec.mesh ? *spec.mesh : load_obj(spec.file);
     case SceneSpec::Type::Gallery:
       break;
   }

@@ -2,16 +2,29 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <optional>
+#include <sstream>
 #include <string_view>
 
 #include <glm/geometric.hpp>
 
+#include "latsim/des/input_file.hpp"
+
 namespace latsim::tracker {
 
+namespace {
+
+// "file:line: reason", or "file: reason" for a problem of the whole file (line 0).
+std::string located_in(const std::filesystem::path& file, int64_t line, const std::string& reason) {
+  std::string text = file.string();
+  if (line > 0) text.append(":").append(std::to_string(line));
+  return text.append(": ").append(reason);
+}
+
+}  // namespace
+
 TraceError::TraceError(const std::filesystem::path& file, int64_t line, const std::string& reason)
-    : std::runtime_error(file.string() + ":" + std::to_string(line) + ": " + reason), line_(line) {}
+    : std::runtime_error(located_in(file, line, reason)), line_(line) {}
 
 namespace {
 
@@ -127,8 +140,12 @@ TraceSample parse_row(TraceFormat format, std::string_view line, const RowParser
 }  // namespace
 
 Trace load_trace(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw TraceError(file, 0, "cannot open the trace file");
+  std::istringstream in;
+  try {
+    in.str(des::read_input_file(file, kMaxTraceBytes));
+  } catch (const des::InputFileError& e) {
+    throw TraceError(file, 0, std::string("cannot read the trace file: ") + e.what());
+  }
 
   Trace trace;
   trace.source = file;
@@ -169,7 +186,6 @@ Trace load_trace(const std::filesystem::path& file) {
     }
     trace.samples.push_back(s);
   }
-  if (in.bad()) throw TraceError(file, line_no, "read error");
   if (!format) throw TraceError(file, line_no, "empty trace file: no header");
   if (trace.samples.empty()) throw TraceError(file, line_no, "trace has a header but no data rows");
   return trace;

@@ -6,6 +6,7 @@
 #include <glm/vec3.hpp>
 
 #include <filesystem>
+#include <cstddef>
 #include <istream>
 #include <string>
 
@@ -20,7 +21,12 @@ namespace latsim::renderer {
 Scene parse_obj(std::istream& input, const std::string& source_name,
                 const glm::vec3& default_colour = glm::vec3(0.8f));
 
-/// Opens and parses an OBJ file; source_name in errors is the path as given.
+/// The largest mesh file load_obj reads (as a scenario file may be).
+inline constexpr size_t kMaxObjBytes = size_t{16} << 20;
+
+/// Reads and parses an OBJ file; source_name in errors is the path as given.
+/// Only a regular file of at most kMaxObjBytes is read: a larger one, a FIFO
+/// or a device is a SceneError "<path>: cannot read the mesh: <why>".
 Scene load_obj(const std::filesystem::path& path, const glm::vec3& default_colour = glm::vec3(0.8f));
 
 }  // namespace latsim::renderer

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 
 #include "latsim/renderer/scene.hpp"
 #include "latsim/renderer/scene_generators.hpp"
@@ -14,9 +15,12 @@ struct SceneSpec {
   Type type = Type::Gallery;
   GalleryParams gallery;       ///< gallery: its sizes
   std::filesystem::path file;  ///< obj: the mesh file
+  /// obj: the mesh as read when the scenario was (so that a bad mesh is the
+  /// scenario's error, found by validate); nullptr: read by make_scene.
+  std::shared_ptr<const Scene> mesh;
 };
 
-/// Builds (or loads) the scene.
+/// Builds the scene (an obj scene: a copy of `mesh`, or the file read now).
 Scene make_scene(const SceneSpec& spec);
 
 }  // namespace latsim::renderer

@@ -1,6 +1,7 @@
 // Recorded head-motion traces: loading, validation and frame conversion.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <stdexcept>
@@ -61,9 +62,15 @@ struct Trace {
 /// equal (to the picosecond) to the previous row's replace it: the later row
 /// is the tracker's newer report for that instant. Quaternions are normalised
 /// and canonicalised to the short arc from the previous sample. Irregular
-/// sampling is kept as recorded. Throws TraceError for an unreadable file,
+/// sampling is kept as recorded. Throws TraceError for a file that is not a
+/// regular file of at most kMaxTraceBytes or cannot be read,
 /// an unknown header, a wrong column count, a non-numeric or non-finite value,
 /// a zero quaternion, a decreasing timestamp, or no data rows.
 Trace load_trace(const std::filesystem::path& file);
+
+/// The largest trace file load_trace reads: about three hours of a 1000 Hz
+/// recording in either format. A larger file, a FIFO or a device is refused
+/// before anything is read (des::read_input_file).
+inline constexpr size_t kMaxTraceBytes = size_t{256} << 20;
 
 }  // namespace latsim::tracker
