@@ -218,6 +218,18 @@ int command_capacity(int argc, char** argv) {
       s.push_back(pointer + "=" + std::to_string(n));
       const auto summary = run::run_scenario(run::load_scenario(file, s), run::RunOptions{});
       const auto& f = summary["figures"];
+      // A fraction of no ended field judges nothing (it reads 0): a load at
+      // which no field ends is over capacity, and a run in which not even
+      // the scenario at the lower bound ends one is too short to judge.
+      if (metric == "missed_field_fraction" && f.contains("frames_completed") && f.contains("missed_fields") &&
+          f["frames_completed"].get<int64_t>() + f["missed_fields"].get<int64_t>() == 0) {
+        if (n == lo)
+          throw scenario::ScenarioError("/duration_s", "no field ended in the run at " + pointer + "=" +
+                                                           std::to_string(n) + ", so capacity cannot be judged: "
+                                                           "simulate longer");
+        tried.push_back({{"count", n}, {"fields_ended", 0}});
+        return false;
+      }
       if (!f.contains(metric) || !f[metric].is_number())
         throw scenario::ScenarioError(pointer, "this pipeline reports no number \"" + metric + "\"");
       const double value = f[metric].get<double>();

@@ -24,3 +24,18 @@ echo "scan: largest count without a missed field = $scan"
 all=$("$LATSIM" capacity "$scenario" --max 400 --threshold 1 --set /duration_s=1)
 echo "$all"
 [ "${all%% *}" = "max_triangles_per_field=400" ]
+# A load at which no field ends is over capacity: the fraction of no ended
+# field read 0, and a 0.2 s run reported the search's upper bound (100,000
+# triangles). The same bisection now finds the capacity of the 1 s runs.
+short=$("$LATSIM" capacity "$scenario" --set /duration_s=0.2)
+echo "$short"
+m=${short#*=}
+[ "${m%% *}" = "$n" ]
+# A run too short for even the lower bound to end a field is an error, not a result.
+set +e
+"$LATSIM" capacity "$scenario" --set /duration_s=0.001 >"$tmp/stdout" 2>"$tmp/stderr"
+rc=$?
+set -e
+cat "$tmp/stderr"
+[ "$rc" -eq 2 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] && grep -q "/duration_s: no field ended" "$tmp/stderr"
+[ ! -s "$tmp/stdout" ]
