@@ -6,7 +6,6 @@ diagrams of graphics hardware. Usable as a module or as
 import csv
 import os
 import sys
-from fractions import Fraction
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
@@ -32,6 +31,8 @@ def read_timeline(path):
                 "unit": row["unit"],
                 "start_ms": float(row["start_ms"]),
                 "end_ms": float(row["end_ms"]),
+                # Overlapping intervals of one unit are on separate lanes.
+                "lane": int(row.get("lane") or 0),
             })
     return entries
 
@@ -45,13 +46,25 @@ def choose_window(entries):
     return min(e["start_ms"] for e in chosen), max(e["end_ms"] for e in chosen), shown[0], shown[-1]
 
 
-def refresh_period_ms(summary):
-    """The field period in ms from the resolved scenario, or None."""
-    try:
-        rate = summary["scenario"]["display"]["refresh_hz"]
-        return float(1000 / Fraction(str(rate)))
-    except (KeyError, TypeError, ValueError, ZeroDivisionError):
-        return None
+# The display's own track: a field's vertical blank (when it has one) and
+# its active scanout, from the retraces the run made.
+DISPLAY_UNIT = "display"
+DISPLAY_STAGES = ("VBLANK", "SCANOUT")
+
+
+def retrace_times(entries):
+    """The recorded retraces in ms: the start of each field's first display interval."""
+    starts = {}
+    for e in entries:
+        if e["unit"] == DISPLAY_UNIT and e["stage"] in DISPLAY_STAGES:
+            field = e["frame"]
+            starts[field] = min(starts.get(field, e["start_ms"]), e["start_ms"])
+    return [starts[k] for k in sorted(starts)]
+
+
+def lane_label(unit, lane):
+    """A Gantt row's name: the unit, and its lane when it has several."""
+    return unit if lane == 0 else f"{unit} #{lane + 1}"
 
 
 def draw(run_dir, title=None):
@@ -64,35 +77,37 @@ def draw(run_dir, title=None):
         return None
     summary_file = os.path.join(run_dir, "summary.json")
     summary = latsim_results.read_json(summary_file) if os.path.isfile(summary_file) else {}
-    start_ms, end_ms, first, last = choose_window(entries)
+    retraces = retrace_times(entries)
+    work = [e for e in entries if e["unit"] != DISPLAY_UNIT]
+    start_ms, end_ms, first, last = choose_window(work or entries)
     visible = [e for e in entries if e["end_ms"] >= start_ms and e["start_ms"] <= end_ms]
 
-    units = []  # in order of first appearance, which the simulator makes deterministic
+    # Rows: the lanes of each unit together, units in order of first
+    # appearance (which the simulator makes deterministic).
+    order = []
     for e in entries:
-        if e["unit"] not in units:
-            units.append(e["unit"])
+        if e["unit"] not in order:
+            order.append(e["unit"])
+    lanes = sorted({(order.index(e["unit"]), e["lane"]) for e in entries})
+    rows = [(order[u], lane) for u, lane in lanes]
     stages = sorted({e["stage"] for e in entries})
     colour = dict(zip(stages, plotting.colours(len(stages))))
 
-    fig, ax = plt.subplots(figsize=(12, 0.45 * len(units) + 1.8))
+    fig, ax = plt.subplots(figsize=(12, 0.45 * len(rows) + 1.8))
     span_ms = max(end_ms - start_ms, 1e-9)
     for e in visible:
-        y = units.index(e["unit"])
+        y = rows.index((e["unit"], e["lane"]))
         left = max(e["start_ms"], start_ms)
         width = max(min(e["end_ms"], end_ms) - left, span_ms * 1e-4)
         ax.barh(y, width, left=left, height=0.7, color=colour[e["stage"]], edgecolor="black", linewidth=0.4)
         if width > span_ms / 40:
             label = str(e["frame"]) + ("" if e["eye"] < 0 else "LR"[e["eye"] % 2])
             ax.text(left + width / 2, y, label, ha="center", va="center", fontsize=7)
-    period = refresh_period_ms(summary)
-    if period:
-        k = int(start_ms // period)
-        while k * period <= end_ms:
-            if k * period >= start_ms:
-                ax.axvline(k * period, color="grey", linestyle="--", linewidth=0.8)
-            k += 1
-    ax.set_yticks(range(len(units)))
-    ax.set_yticklabels(units)
+    shown_retraces = [t for t in retraces if start_ms <= t <= end_ms]
+    for t in shown_retraces:
+        ax.axvline(t, color="grey", linestyle="--", linewidth=0.8)
+    ax.set_yticks(range(len(rows)))
+    ax.set_yticklabels([lane_label(u, lane) for u, lane in rows])
     ax.invert_yaxis()
     ax.set_xlim(start_ms, end_ms)
     ax.set_xlabel("simulated time (ms)")
@@ -101,7 +116,7 @@ def draw(run_dir, title=None):
     ax.set_title(title or f"{os.path.basename(os.path.normpath(run_dir))} {pipeline}: stages of frames {first}-{last}")
     handles = [plt.Rectangle((0, 0), 1, 1, color=colour[s]) for s in stages]
     labels = list(stages)
-    if period:
+    if shown_retraces:
         handles.append(plt.Line2D([0], [0], color="grey", linestyle="--"))
         labels.append("vertical retrace")
     ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, title="stage")

@@ -23,6 +23,7 @@ std::optional<int> parse_options(CLI::App& app, int argc, char** argv);
 int command_run(int argc, char** argv);       ///< latsim run SCENARIO [--out DIR] [--seed N] [--set P=V]...
 int command_validate(int argc, char** argv);  ///< latsim validate SCENARIO...
 int command_capacity(int argc, char** argv);  ///< latsim capacity SCENARIO: largest triangle count within a missed-field threshold
+int command_optimise(int argc, char** argv);  ///< latsim optimise SCENARIO --vary P=LO:HI --minimise FIGURE
 int command_sweep(int argc, char** argv);     ///< latsim sweep SWEEP.json --out DIR [-j N]
 int command_fidelity(int argc, char** argv);  ///< latsim fidelity SCENARIO --vary P=v1,v2 --metric NAME
 int command_report(int argc, char** argv);    ///< latsim report DIR

@@ -19,6 +19,7 @@ void print_usage(std::FILE* out) {
       "  validate SCENARIO.json  check scenario files without running them\n"
       "  capacity SCENARIO.json  largest triangle count whose missed-field fraction stays within a threshold\n"
       "  sweep SWEEP.json        run a parameter sweep (parallel, resumable)\n"
+      "  optimise SCENARIO.json  the setting of a pointer that minimises a figure within bounds on others\n"
       "  fidelity SCENARIO.json  what each step of simulation fidelity changes and costs\n"
       "  report DIR              tables and plots from a run or a sweep\n"
       "  schema                  every scenario key: JSON Schema or Markdown reference\n"
@@ -49,6 +50,7 @@ int main(int argc, char** argv) {
   if (cmd == "validate") return command_validate(argc - 1, argv + 1);
   if (cmd == "capacity") return command_capacity(argc - 1, argv + 1);
   if (cmd == "sweep") return command_sweep(argc - 1, argv + 1);
+  if (cmd == "optimise" || cmd == "optimize") return command_optimise(argc - 1, argv + 1);
   if (cmd == "fidelity") return command_fidelity(argc - 1, argv + 1);
   if (cmd == "report") return command_report(argc - 1, argv + 1);
   if (cmd == "schema") return command_schema(argc - 1, argv + 1);

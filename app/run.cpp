@@ -136,11 +136,17 @@ int command_run(int argc, char** argv) {
   if (!quiet) {
     const auto& f = summary["figures"];
     std::printf("%s -> %s/summary.json\n", name.c_str(), scenario::readable(out_dir).c_str());
-    if (f.contains("motion_to_photon_ms") && f["motion_to_photon_ms"].value("count", 0) > 0) {
-      const auto& m = f["motion_to_photon_ms"];
-      std::printf("  motion-to-photon ms: mean %.3f  p50 %.3f  p99 %.3f  max %.3f  (%llu samples)\n",
-                  m["mean"].get<double>(), m["p50"].get<double>(), m["p99"].get<double>(), m["max"].get<double>(),
-                  static_cast<unsigned long long>(m["count"].get<uint64_t>()));
+    // The pipeline's headline figures, in its order (summary.json "headline").
+    for (const auto& name : summary.value("headline", nlohmann::json::array())) {
+      const auto& m = f[name.get<std::string>()];
+      if (m.is_object() && m.contains("mean"))
+        std::printf("  %s: mean %.3f  p50 %.3f  p99 %.3f  max %.3f  (%llu samples)\n", name.get<std::string>().c_str(),
+                    m["mean"].get<double>(), m["p50"].get<double>(), m["p99"].get<double>(), m["max"].get<double>(),
+                    static_cast<unsigned long long>(m["count"].get<uint64_t>()));
+      else if (m.is_number_integer())
+        std::printf("  %s: %lld\n", name.get<std::string>().c_str(), static_cast<long long>(m.get<int64_t>()));
+      else if (m.is_number())
+        std::printf("  %s: %.3f\n", name.get<std::string>().c_str(), m.get<double>());
     }
     std::printf("  events %llu, simulation loop %.3f s, whole run %.3f s, peak memory %.1f MB\n",
                 static_cast<unsigned long long>(summary["events"].get<uint64_t>()), summary["wall_s"].get<double>(),

@@ -48,6 +48,10 @@ class ArpPipeline final : public Pipeline {
   void finish(RunContext& ctx) override {
     const double duration_s = ctx.duration.to_seconds();
     results::LatencyRecorder& r = ctx.recorder;
+    // Address recalculation reads the orientation per line at scanout: its
+    // rotation latency is the point; positions come with the renders.
+    r.declare_headline({"rotation_latency_ms", "translation_latency_ms", "registration_error_arcmin",
+                        "motion_to_photon_ms"});
     r.set("memories.0.update_rate_hz", static_cast<double>(renders_) / duration_s);
     r.set("memories.0.segments", object_count_);
     r.set("memories.0.renders", renders_);

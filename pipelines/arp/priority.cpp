@@ -72,6 +72,10 @@ class PriorityPipeline final : public Pipeline {
   void finish(RunContext& ctx) override {
     const double duration_s = ctx.duration.to_seconds();
     results::LatencyRecorder& r = ctx.recorder;
+    // Address recalculation reads the orientation per line at scanout: its
+    // rotation latency is the point; positions come with the renders.
+    r.declare_headline({"rotation_latency_ms", "translation_latency_ms", "registration_error_arcmin",
+                        "motion_to_photon_ms"});
     const arp::PriorityModel& model = system_->model();
     const arp::DisplayMemories& memories = system_->memories();
     int64_t rendered = 0;

@@ -100,6 +100,10 @@ class RegionPriorityPipeline final : public Pipeline {
 
   void finish(RunContext& ctx) override {
     results::LatencyRecorder& r = ctx.recorder;
+    // Address recalculation reads the orientation per line at scanout: its
+    // rotation latency is the point; positions come with the renders.
+    r.declare_headline({"rotation_latency_ms", "translation_latency_ms", "registration_error_arcmin",
+                        "motion_to_photon_ms"});
     const RegionRun& primary = *runs_[0];
     primary.report(r, "", ctx.duration);
     r.set("region_swaps", primary.system().model().swaps());

@@ -43,6 +43,8 @@ class DoubleBufferPipeline final : public Pipeline {
 
   void finish(RunContext& ctx) override {
     ctx.recorder.set("nominal_frame_time_ms", p_.cost.nominal_frame_time().to_ms());
+    ctx.recorder.declare_headline({"motion_to_photon_ms", "frame_rate_hz", "missed_refreshes",
+                                   "registration_error_arcmin", "smear_arcmin"});
     if (!p_.vsync || p_.queued_frames != 0 || p_.cost.varies()) return;
     const auto a = analytic_double_buffer(analytic_inputs(ctx));
     if (!a) return;

@@ -1,6 +1,8 @@
 #include "frame_stages/frame_stages_pipeline.hpp"
 
+#include <cstdio>
 #include <stdexcept>
+#include <string>
 
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/results/frame_recorder.hpp"
@@ -95,10 +97,48 @@ void FrameStagesPipeline::start(RunContext& ctx) {
   if (warp_) warp_->start();
 }
 
+void FrameStagesPipeline::warn_about_overload(RunContext& ctx) const {
+  // Behind a compositor the display shows a (re-warped) image at every
+  // refresh, so missed_refreshes and frame_rate_hz look healthy while the
+  // application falls behind: say so, in the application's own terms.
+  results::LatencyRecorder& r = ctx.recorder;
+  const double seconds = ctx.sim.now().to_seconds();
+  const int64_t missed = ctx.app_frames.frames_missed();
+  if (missed > 0 && seconds > 0) {
+    char rates[96];
+    std::snprintf(rates, sizeof rates, "%.1f Hz against the display's %.1f Hz",
+                  static_cast<double>(ctx.app_frames.frames_rendered()) / seconds,
+                  1.0 / (ctx.display.timing().field_start(1) - ctx.display.timing().field_start(0)).to_seconds());
+    r.warn("the application missed " + std::to_string(missed) + " refreshes it was paced for (frames_missed) and " +
+           "rendered at " + rates + " (application_frame_rate_hz); the compositor re-warped older images");
+  }
+  const int64_t late = compositor_->warps_late();
+  if (late > 0) {
+    std::string advice;
+    for (const StageSpec& st : spec_.warp->stages)
+      for (const int k : st.processors)
+        if (spec_.processors[static_cast<size_t>(k)].preemption_slice == des::Time::zero() && advice.empty())
+          advice = "; processor \"" + spec_.processors[static_cast<size_t>(k)].name +
+                   "\" runs the warp without preemption_slice_ms, so a warp waits for the stage it shares it with";
+    r.warn(std::to_string(late) + " of " + std::to_string(compositor_->warps()) +
+           " warps ended after their retrace (warps_late)" + advice);
+  }
+}
+
 void FrameStagesPipeline::finish(RunContext& ctx) {
   results::LatencyRecorder& r = ctx.recorder;
   // frames_rendered, application_frame_rate_hz and frames_missed are ctx.app_frames'.
-  if (swap_chain_) return;
+  // What an engineer of such a system reads first: behind a warp, the
+  // latency of the orientation the warp used (the application pose's
+  // motion-to-photon includes a whole frame the warp hides), and the
+  // application's own pace, not the display's.
+  if (swap_chain_) {
+    r.declare_headline({"motion_to_photon_ms", "application_frame_rate_hz", "frames_missed", "smear_arcmin"});
+    return;
+  }
+  r.declare_headline({"rotation_latency_ms", "application_frame_rate_hz", "frames_missed", "warps_late",
+                      "smear_arcmin", "motion_to_photon_ms"});
+  warn_about_overload(ctx);
   r.set("frames_rewarped", compositor_->frames_rewarped());
   r.set("frames_synthesised", compositor_->frames_synthesised());
   r.set("warps", compositor_->warps());

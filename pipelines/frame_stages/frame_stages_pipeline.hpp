@@ -41,6 +41,8 @@ class FrameStagesPipeline final : public Pipeline {
   FlowHooks app_hooks();
   FlowHooks warp_hooks();
   des::Time app_photon_target(des::Time completion) const;
+  /// Warns when the application falls behind a compositor, or warps end late.
+  void warn_about_overload(RunContext& ctx) const;
 
   FrameStagesSpec spec_;
   RunContext* ctx_ = nullptr;

@@ -23,6 +23,7 @@ void SwapChain::on_frame_complete(const JobRecord& frame) {
     else show(it->second);
     early_.erase(it);
   }
+  if (vsync_ && ctx_.timeline) ctx_.timeline->add_counter("queue_depth", ctx_.sim.now(), static_cast<double>(queue_.size()));
 }
 
 void SwapChain::on_retrace(int64_t) {
@@ -36,6 +37,7 @@ void SwapChain::on_retrace(int64_t) {
   }
   const Done d = std::move(queue_.front());
   queue_.pop_front();
+  if (ctx_.timeline) ctx_.timeline->add_counter("queue_depth", ctx_.sim.now(), static_cast<double>(queue_.size()));
   if (ctx_.timeline) ctx_.timeline->add("QUEUED", d.frame, -1, "swapchain", d.completed, ctx_.sim.now());
   show(d);
 }

@@ -12,6 +12,8 @@ void FramelessPipeline::finish(RunContext& ctx) {
   if (ctx.frames) ctx.frames->set_pixel_source(nullptr);
   const double cycle_ms = static_cast<double>(pixels_) / static_cast<double>(budget_px_s_) * 1e3;
   results::LatencyRecorder& r = ctx.recorder;
+  // No whole images: each pixel's own latency and age.
+  r.declare_headline({"motion_to_photon_ms", "pixel_age_ms", "registration_error_arcmin"});
   r.set("frameless.strategy", std::string(double_buffer_ ? "double_buffer" : "frameless"));
   r.set("frameless.pixels_per_s", budget_px_s_);
   r.set("frameless.pixels_per_cycle", int64_t{pixels_});

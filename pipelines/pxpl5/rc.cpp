@@ -34,6 +34,8 @@ class Pxpl5RcPipeline final : public Pipeline {
 
   void finish(RunContext& ctx) override {
     wiring_->report(engine_->utilisation(ctx.duration), engine_->frames_completed());
+    ctx.recorder.declare_headline({"motion_to_photon_ms", "render_latency_fields", "frame_rate_hz",
+                                   "missed_refreshes"});
   }
 
  private:

@@ -46,6 +46,7 @@ class Pxpl5SlatsPipeline final : public Pipeline {
     const pxpl5::FieldCounts& c = engine_->counts();
     wiring_->report(engine_->utilisation(ctx.duration), c.complete);
     results::LatencyRecorder& r = ctx.recorder;
+    r.declare_headline({"motion_to_photon_ms", "render_latency_fields", "missed_fields", "missed_field_fraction"});
     r.set("missed_fields", c.missed);
     r.set("missed_field_fraction", c.missed_fraction());
     r.set("torn_fields", c.torn);

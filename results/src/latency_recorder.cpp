@@ -297,6 +297,13 @@ void LatencyRecorder::first_shown(const ImageRecord& img, const display::Scanout
     if (span.field == open_field_) new_in_open_field_ = true;
     if (timeline_ && img.render_start > img.host_received)
       timeline_->add("HOST", img.frame, -1, "host application", img.host_received, img.render_start);
+    // The causal chain of a new image: its pose sample, its first photon,
+    // and the latency between them as a counter track.
+    if (timeline_ && !img.continues_image) {
+      timeline_->add_flow(span.image_id, "pose samples", img.sample.measured_at, "photons", span.photon_time);
+      timeline_->add_counter("motion_to_photon_ms", span.photon_time,
+                             (span.photon_time - img.sample.measured_at).to_ms());
+    }
   }
   // Once per image (stereo pairs share one head pose): what it was predicted
   // from, for when, and how far off. Address recalculation replaces the

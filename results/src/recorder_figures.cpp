@@ -77,6 +77,22 @@ int64_t LatencyRecorder::counter(const std::string& name) const {
   return it == counters_.end() ? 0 : it->second;
 }
 
+std::vector<std::string> LatencyRecorder::default_headline() {
+  return {"motion_to_photon_ms", "frame_rate_hz", "missed_refreshes", "registration_error_arcmin"};
+}
+
+std::vector<std::string> LatencyRecorder::headline() const {
+  const nlohmann::json all = figures();
+  std::vector<std::string> present;
+  for (const std::string& name : headline_.empty() ? default_headline() : headline_) {
+    const auto it = all.find(name);
+    // A distribution without a sample says nothing: it is no headline.
+    if (it == all.end() || (it->is_object() && it->contains("count") && it->at("count").get<int64_t>() == 0)) continue;
+    present.push_back(name);
+  }
+  return present;
+}
+
 void LatencyRecorder::finish(const RunTotals& totals) {
   flush_pending();
   runs_.close_all();

@@ -174,6 +174,16 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
   }
   LatencyRecorder* rec = run.recorder.get();
   rec->set_timeline(timeline);
+  if (timeline) {
+    // The display's own track: each field's vertical blank and active
+    // scanout, from the retraces the display really makes (phase included).
+    const display::RasterTiming* timing = &run.display->timing();
+    run.display->on_retrace([timeline, timing](int64_t field, des::Time retrace) {
+      const des::Time scanout = timing->scanout_start(field);
+      if (scanout > retrace) timeline->add("VBLANK", field, -1, "display", retrace, scanout);
+      timeline->add("SCANOUT", field, -1, "display", scanout, timing->field_start(field + 1));
+    });
+  }
   const bool line = run.transport->occupancy() > des::Time::zero();
   run.host->on_carried([rec, line](const tracker::TrackerSample& s, const tracker::Carriage& c) {
     rec->record_carried(s, c, line);

@@ -117,6 +117,7 @@ Json write_results(Run& run, const scenario::ScenarioDocument& doc, const RunOpt
                      {"replication", options.replication},
                      {"scenario", resolved_with_defaults(run, doc)},
                      {"figures", figures},
+                     {"headline", run.recorder->headline()},
                      {"warnings", run.recorder->warnings()},
                      {"events", run.sim.events_executed()},
                      {"events_per_model", events_per_model},

@@ -111,6 +111,14 @@ class LatencyRecorder : public display::ScanoutListener {
   void object(const std::string& name);
   /// A distribution a model kept itself, reported under `name` like the recorder's own.
   void publish(const std::string& name, const des::Distribution& d);
+  /// The figures a reader of this pipeline means first (in tables, plots and
+  /// the run line), in order; a name whose figure the run lacks is left out.
+  /// Pipelines that declare none get default_headline().
+  void declare_headline(std::vector<std::string> names) { headline_ = std::move(names); }
+  /// The declared headline figures that the run has (after finish()).
+  std::vector<std::string> headline() const;
+  /// The headline of a pipeline that declares none.
+  static std::vector<std::string> default_headline();
   /// Legal but doubtful: reported on stderr and in summary.json's "warnings".
   void warn(std::string text) { table_.warn(std::move(text)); }
   const std::vector<std::string>& warnings() const { return table_.warnings(); }
@@ -274,6 +282,7 @@ class LatencyRecorder : public display::ScanoutListener {
   Ledger ledger_;
   SampleLog sample_log_;
   FigureTable table_;
+  std::vector<std::string> headline_;
 };
 
 }  // namespace latsim::results
