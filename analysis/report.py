@@ -273,6 +273,9 @@ def write_markdown(coll, drawn, top, figure):
             md += [f"![{drawn['prediction']}]({drawn['prediction']}.png)", ""]
     if drawn["gantt"] or drawn["gantt_skipped"]:
         md += gantt_sample.section(drawn["gantt"], drawn["gantt_skipped"], coll.kind)
+    elif coll.kind == "sweep":
+        md += ["## Stage timelines", "", "No run of this sweep kept its timeline: `latsim sweep --keep first` "
+               "keeps replication 0's of each point, `--keep runs=I,J` those of chosen runs.", ""]
     plotting.write_text(os.path.join(coll.directory, "report.md"), "\n".join(md))
 
 
