@@ -24,23 +24,53 @@ HEADLINE = [
     ("registration_error_p99_arcmin", "registration_error_arcmin.p99", "registration error p99 (arcmin)"),
 ]
 
+# results.csv columns by figure path (the tables write the same headline figures).
+COLUMN_OF = {path: column for column, path, _ in HEADLINE}
+
 
 class Row:
-    """One line of the latency table: a run, or a sweep point with its replications."""
+    """One line of the latency table: a run, or a sweep point with its replications.
 
-    def __init__(self, name, run_dirs, summaries, axis_values=None):
+    A sweep point reads its headline figures from results.csv and opens its
+    runs' summary.json files only when asked for something else, so that a
+    report of many runs costs what it draws, not what the sweep ran."""
+
+    def __init__(self, name, run_dirs, summaries=None, axis_values=None, table_rows=None):
         self.name = name
         self.run_dirs = run_dirs
-        self.summaries = summaries
+        self._summaries = summaries
+        self._first = summaries[0] if summaries else None
         self.axis_values = axis_values or {}
+        self.table_rows = table_rows  # sweep only: this point's results.csv lines, by replication
+
+    @property
+    def summaries(self):
+        """Every replication's summary.json (read on first use)."""
+        if self._summaries is None:
+            self._summaries = [read_json(os.path.join(d, "summary.json")) for d in self.run_dirs]
+        return self._summaries
+
+    def first_summary(self):
+        """Replication 0's summary.json: one file, whatever the replications."""
+        if self._first is None:
+            self._first = self._summaries[0] if self._summaries else \
+                read_json(os.path.join(self.run_dirs[0], "summary.json"))
+        return self._first
+
+    def replications(self):
+        return len(self.run_dirs)
 
     def pipeline(self):
-        scenario = self.summaries[0].get("scenario", {}) if self.summaries else {}
+        scenario = self.first_summary().get("scenario", {}) if self.run_dirs else {}
         return scenario.get("pipeline", {}).get("type", "")
 
     def values(self, path):
         """The figure at `path` in every replication that has it."""
-        found = [find_figure(s, path) for s in self.summaries]
+        column = COLUMN_OF.get(path)
+        if self.table_rows is not None and column is not None and column in self.table_rows[0]:
+            found = [as_number(r[column]) if r[column] != "" else None for r in self.table_rows]
+        else:
+            found = [find_figure(s, path) for s in self.summaries]
         return [v for v in found if v is not None]
 
     def mean(self, path):
@@ -141,10 +171,9 @@ def _load_sweep(directory):
     for point in sorted(by_point):
         members = sorted(by_point[point], key=lambda r: int(r["replication"]))
         dirs = [os.path.join(directory, "runs", r["run_id"]) for r in members]
-        summaries = [read_json(os.path.join(d, "summary.json")) for d in dirs]
         values = {a: members[0][a] for a in axes}
         name = row_name(values, axes)
-        rows.append(Row(name, dirs, summaries, values))
+        rows.append(Row(name, dirs, None, values, members))
     return Collection("sweep", directory, rows, axes, runs)
 
 

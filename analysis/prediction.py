@@ -16,7 +16,7 @@ PHASES = ["still", "onset", "steady", "stop"]
 
 
 def _prediction(row):
-    scenario = row.summaries[0].get("scenario", {}) if row.summaries else {}
+    scenario = row.first_summary().get("scenario", {}) if row.run_dirs else {}
     prediction = scenario.get("host", {}).get("prediction")
     return prediction if isinstance(prediction, dict) else None
 

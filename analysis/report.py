@@ -1,15 +1,21 @@
 """latsim report: latency tables and plots from result files.
 
-Usage: python3 report.py DIR [--gantt-limit N]
+Usage: python3 report.py DIR [--gantt-limit N] [--top N] [--figure F]
 
 DIR is a run directory (summary.json), a sweep directory (results.csv and
 runs/*/summary.json) or a directory of run directories (each subdirectory with
-a summary.json is one row). Writes into DIR: report.md, latency_table.csv,
-mtp_cdf.{png,svg}, mtp_histogram.{png,svg}, for sweeps sweep_<axis>.{png,svg}
-(figures against each axis, mean and 95 % t-interval over replications),
-registration_vs_latency.{png,svg} and a pose-prediction section when any run
-predicts, and gantt.{png,svg} next to every summary whose run has a
-timeline.csv.
+a summary.json is one row). Writes into DIR: report.md, latency_table.csv
+(every row), mtp_cdf.{png,svg}, mtp_histogram.{png,svg}, for sweeps
+sweep_<axis>.{png,svg} (figures against each axis, mean and 95 % t-interval
+over replications) and, over two or more varied axes, heatmap.{png,svg} of
+the chosen figure; registration_vs_latency.{png,svg} and a pose-prediction
+section when any run predicts, and gantt.{png,svg} next to the summaries of
+runs with a timeline.csv: every one, or for a sweep an evenly spaced sample of
+GANTT_SAMPLE points unless --gantt-limit says otherwise. A sweep's table in
+report.md holds the --top lowest and highest points by the chosen figure once
+it has more than twice as many. A sweep reads its headline figures from
+results.csv and one summary.json per point: the cost grows with the points
+drawn, not with the runs. Long work prints progress lines on stderr.
 """
 
 import argparse
@@ -18,11 +24,13 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-import gantt  # noqa: E402
+import gantt_sample  # noqa: E402
+import heatmap  # noqa: E402
 import latsim_results as lr  # noqa: E402
 import plotting  # noqa: E402
 import prediction  # noqa: E402
 from plotting import plt  # noqa: E402
+from progress import Progress  # noqa: E402
 
 # More curves than this on one CDF or histogram plot cannot be told apart.
 MAX_CURVES = 12
@@ -32,6 +40,10 @@ SWEEP_FIGURES = [
     ("motion_to_photon_ms.p99", "p99 motion-to-photon (ms)"),
     ("registration_error_arcmin.mean", "mean registration error (arcmin)"),
 ]
+# Gantt charts a sweep's report draws by default: one per point, evenly spaced.
+GANTT_SAMPLE = 6
+# Points a sweep's table in report.md shows from each end by default.
+TOP_DEFAULT = 10
 
 
 def fmt(value, digits=6):
@@ -40,7 +52,7 @@ def fmt(value, digits=6):
 
 def curve_rows(coll):
     """Rows whose distributions are drawn; evenly spaced when there are too many."""
-    rows = [r for r in coll.rows if r.summaries and "motion_to_photon_ms" in r.summaries[0].get("figures", {})]
+    rows = [r for r in coll.rows if r.run_dirs and "motion_to_photon_ms" in r.first_summary().get("figures", {})]
     if len(rows) <= MAX_CURVES:
         return rows
     step = (len(rows) - 1) / (MAX_CURVES - 1)
@@ -51,7 +63,7 @@ def write_latency_table(coll):
     header = ["name", "pipeline"] + coll.axes + ["replications"] + [c for c, _, _ in lr.HEADLINE]
     lines = [",".join(_csv(h) for h in header)]
     for row in coll.rows:
-        cells = [row.name, row.pipeline()] + [row.axis_values[a] for a in coll.axes] + [str(len(row.summaries))]
+        cells = [row.name, row.pipeline()] + [row.axis_values[a] for a in coll.axes] + [str(row.replications())]
         cells += [fmt(row.mean(path)) for _, path, _ in lr.HEADLINE]
         lines.append(",".join(_csv(c) for c in cells))
     plotting.write_text(os.path.join(coll.directory, "latency_table.csv"), "\n".join(lines) + "\n")
@@ -71,7 +83,7 @@ def plot_distributions(coll):
     fig_cdf, ax_cdf = plt.subplots(figsize=(8, 5))
     fig_hist, ax_hist = plt.subplots(figsize=(8, 5))
     for row, colour in zip(rows, palette):
-        dist = row.summaries[0]["figures"]["motion_to_photon_ms"]
+        dist = row.first_summary()["figures"]["motion_to_photon_ms"]
         edges, counts = lr.histogram_edges(dist)
         total = sum(counts)
         if total <= 0:
@@ -139,41 +151,93 @@ def plot_sweep_axis(coll, axis):
             ax.set_xticklabels(axis_values)
         # Outside the axes: with many series an inside legend hides the lines.
         ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-    reps = max(len(r.summaries) for r in coll.rows)
+    reps = max(r.replications() for r in coll.rows)
     axes[0, 0].set_title(f"Against {name}: mean over {reps} replication(s), band = 95 % t-interval")
     base = "sweep_" + name.replace("/", "_").replace(".", "_")
     plotting.save(fig, os.path.join(coll.directory, base))
     return base
 
 
-def draw_gantts(coll, limit):
-    """gantt.png/svg next to every summary with a timeline.csv; returns (drawn paths, skipped count)."""
-    drawn, skipped = [], 0
-    for row in coll.rows:
-        for run_dir in row.run_dirs:
-            if not os.path.isfile(os.path.join(run_dir, "timeline.csv")):
-                continue
-            if limit is not None and len(drawn) >= limit:
-                skipped += 1
-                continue
-            base = gantt.draw(run_dir, title=f"{row.name}: pipeline stages")
-            if base:
-                drawn.append(os.path.relpath(base, coll.directory))
-    return drawn, skipped
+def table_figure(name):
+    """(column, figure path, label) of a headline figure named by column or by path, or None."""
+    for column, path, label in lr.HEADLINE:
+        if name in (column, path):
+            return column, path, label
+    return None
 
 
-def markdown_table(coll):
+def cut_rows(coll, top, figure):
+    """(lowest, highest) `top` rows by the figure's mean when a sweep has more than 2 * top rows, else None."""
+    if coll.kind != "sweep" or top <= 0 or len(coll.rows) <= 2 * top:
+        return None
+    _, path, _ = figure
+    valued = [(row.mean(path), i, row) for i, row in enumerate(coll.rows)]
+    ranked = sorted((v, i, row) for v, i, row in valued if v is not None)
+    missing = [row for v, _, row in valued if v is None]
+    ordered = [row for _, _, row in ranked] + missing
+    return ordered[:top], ordered[-top:]
+
+
+def markdown_table(coll, rows=None):
+    rows = coll.rows if rows is None else rows
     header = ["name", "pipeline"] + (["replications"] if coll.kind == "sweep" else []) + [u for _, _, u in lr.HEADLINE]
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    for row in coll.rows:
-        cells = [row.name, row.pipeline()] + ([str(len(row.summaries))] if coll.kind == "sweep" else [])
+    for row in rows:
+        cells = [row.name, row.pipeline()] + ([str(row.replications())] if coll.kind == "sweep" else [])
         cells += [fmt(row.mean(p), 4) for _, p, _ in lr.HEADLINE]
         lines.append("| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |")
     return lines
 
 
-def write_markdown(coll, plots, sweep_plots, gantts, skipped, prediction_plot=None):
-    first = coll.rows[0].summaries[0]
+def table_section(coll, top, figure):
+    """The latency table of report.md: every row, or a sweep's lowest and highest points by the figure."""
+    md = ["## Latency table", ""]
+    cut = cut_rows(coll, top, figure)
+    if cut is None:
+        return md + ["Also in `latency_table.csv`.", ""] + markdown_table(coll) + [""]
+    low, high = cut
+    label = figure[2]
+    md += [f"{len(coll.rows)} points: the {top} lowest and the {top} highest by {label} (points without it last); "
+           "every point is in `latency_table.csv`, every run in `results.csv` and `results.sqlite`; "
+           "`--top N` shows more, `--figure` sorts by another column.", "",
+           f"### Lowest {label}", ""] + markdown_table(coll, low) + ["", f"### Highest {label}", ""]
+    return md + markdown_table(coll, high) + [""]
+
+
+def sweep_subdirectories(coll):
+    """The sweep directories inside a directory of runs, by name."""
+    if coll.kind != "runs":
+        return []
+    found = []
+    for entry in sorted(os.listdir(coll.directory)):
+        sub = os.path.join(coll.directory, entry)
+        if os.path.isfile(os.path.join(sub, "results.csv")) and os.path.isdir(os.path.join(sub, "runs")):
+            found.append(sub)
+    return found
+
+
+def sweep_sections(coll):
+    """For each sweep inside a directory of runs: its table and its distributions, drawn into it."""
+    md = []
+    for sub_dir in sweep_subdirectories(coll):
+        name = os.path.basename(sub_dir)
+        try:
+            sub = lr.load(sub_dir)
+        except (ValueError, OSError, KeyError) as e:
+            md += [f"## Sweep `{name}`", "", f"Not readable: {e}", ""]
+            continue
+        read_point_summaries(sub)
+        write_latency_table(sub)
+        plots = plot_distributions(sub)
+        md += [f"## Sweep `{name}`", "",
+               f"{len(sub.rows)} points, {len(sub.runs)} runs; also in `{name}/latency_table.csv`; "
+               f"`latsim report {name}` writes its own report ([{name}/report.md]({name}/report.md)).", ""]
+        md += markdown_table(sub) + [""] + [f"![{name}/{p}]({name}/{p}.png)" for p in plots] + [""]
+    return md
+
+
+def write_markdown(coll, drawn, top, figure):
+    first = coll.rows[0].first_summary()
     version = first.get("latsim", {})
     md = [f"# latsim report: {os.path.basename(os.path.normpath(coll.directory))}", ""]
     kinds = {"run": "a single run", "runs": f"{len(coll.rows)} runs", "sweep": f"a sweep of {len(coll.rows)} points"}
@@ -184,36 +248,89 @@ def write_markdown(coll, plots, sweep_plots, gantts, skipped, prediction_plot=No
     if coll.kind == "sweep":
         md.append("Swept axes: " + ", ".join(f"`{a}`" for a in coll.axes) + f"; {len(coll.runs)} runs in all.")
         md.append("")
-    md += ["## Latency table", "", "Also in `latency_table.csv`.", ""] + markdown_table(coll) + [""]
+    md += table_section(coll, top, figure)
+    md += sweep_sections(coll)
+    plots = drawn["distributions"]
     if plots:
         shown = len(curve_rows(coll))
         md += ["## Motion-to-photon distributions", ""]
         if shown < len(coll.rows):
             md += [f"{shown} of {len(coll.rows)} rows drawn, evenly spaced, replication 0 of each.", ""]
         md += [f"![{p}]({p}.png)" for p in plots] + [""]
-    if sweep_plots:
+    if drawn["sweep"]:
         md += ["## Figures against each swept axis", "",
                "Lines are means over replications; bands are 95 % Student-t intervals.", ""]
-        md += [f"![{p}]({p}.png)" for p in sweep_plots] + [""]
-    if prediction_plot or prediction.has_prediction(coll):
+        md += [f"![{p}]({p}.png)" for p in drawn["sweep"]] + [""]
+    if drawn["heatmap"]:
+        base, panels, total = drawn["heatmap"]
+        md += [f"## {figure[2]} over two axes", "",
+               "Each cell is the mean over replications (`--figure` chooses another column); one panel per "
+               "combination of the other axes" + (f", the first {panels} of {total}" if panels < total else "") +
+               ".", "", f"![{base}]({base}.png)", ""]
+    if drawn["prediction"] or prediction.has_prediction(coll):
         md += prediction.markdown(coll)
-        if prediction_plot:
-            md += [f"![{prediction_plot}]({prediction_plot}.png)", ""]
-    if gantts or skipped:
-        md += ["## Stage timelines", ""]
-        md += [f"![{g}]({g}.png)" for g in gantts]
-        if skipped:
-            md += ["", f"{skipped} more run(s) have a timeline.csv; raise --gantt-limit to draw them."]
-        md.append("")
+        if drawn["prediction"]:
+            md += [f"![{drawn['prediction']}]({drawn['prediction']}.png)", ""]
+    if drawn["gantt"] or drawn["gantt_skipped"]:
+        md += gantt_sample.section(drawn["gantt"], drawn["gantt_skipped"], coll.kind)
+    elif coll.kind == "sweep":
+        md += ["## Stage timelines", "", "No run of this sweep kept its timeline: `latsim sweep --keep first` "
+               "keeps replication 0's of each point, `--keep runs=I,J` those of chosen runs.", ""]
     plotting.write_text(os.path.join(coll.directory, "report.md"), "\n".join(md))
+
+
+def read_point_summaries(coll):
+    """Reads one summary.json per row (the pipeline and the distributions come from it)."""
+    progress = Progress("reading one summary per point", len(coll.rows))
+    for row in coll.rows:
+        row.first_summary()
+        progress.advance()
+    progress.finish()
+
+
+def draw_everything(coll, args, figure):
+    """Writes latency_table.csv and every plot; returns what was drawn, by section."""
+    read_point_summaries(coll)
+    write_latency_table(coll)
+    drawn = {"distributions": plot_distributions(coll)}
+    progress = Progress("plots against the axes", len(coll.axes))
+    drawn["sweep"] = []
+    for axis in coll.axes:
+        base = plot_sweep_axis(coll, axis)
+        if base:
+            drawn["sweep"].append(base)
+        progress.advance()
+    progress.finish()
+    drawn["heatmap"] = heatmap.draw(coll, figure[1], figure[2]) if coll.kind == "sweep" else None
+    limit = args.gantt_limit
+    if limit is None and coll.kind == "sweep":
+        limit = GANTT_SAMPLE
+    drawn["gantt"], drawn["gantt_skipped"] = gantt_sample.draw(coll, limit)
+    drawn["prediction"] = prediction.plot_registration_vs_latency(coll) if prediction.has_prediction(coll) else None
+    return drawn
 
 
 def main(argv):
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("directory")
     parser.add_argument("--gantt-limit", type=int, default=None,
-                        help="draw at most this many Gantt charts (default: every run with a timeline.csv)")
+                        help=f"draw at most this many Gantt charts (default: for a sweep {GANTT_SAMPLE}, one per point "
+                             "evenly spaced; otherwise every run with a timeline.csv)")
+    parser.add_argument("--top", type=int, default=TOP_DEFAULT,
+                        help=f"a sweep's table in report.md: this many lowest and highest points by --figure "
+                             f"(default {TOP_DEFAULT}; 0: every point)")
+    parser.add_argument("--figure", default="mtp_mean_ms",
+                        help="the column the table is sorted by and the heat map shows: "
+                             + ", ".join(c for c, _, _ in lr.HEADLINE) + " (default mtp_mean_ms)")
     args = parser.parse_args(argv[1:])
+    figure = table_figure(args.figure)
+    if figure is None:
+        print(f"report: --figure {args.figure}: expected one of " + ", ".join(c for c, _, _ in lr.HEADLINE),
+              file=sys.stderr)
+        return 2
+    if (args.gantt_limit is not None and args.gantt_limit < 0) or args.top < 0:
+        print("report: --gantt-limit and --top take a count (0 or more)", file=sys.stderr)
+        return 2
     if not os.path.isdir(args.directory):
         print(f"{args.directory}: not a directory", file=sys.stderr)
         return 2
@@ -223,12 +340,8 @@ def main(argv):
         print(f"report: {e}", file=sys.stderr)
         return 2
     try:
-        write_latency_table(coll)
-        plots = plot_distributions(coll)
-        sweep_plots = [p for p in (plot_sweep_axis(coll, a) for a in coll.axes) if p]
-        gantts, skipped = draw_gantts(coll, args.gantt_limit)
-        prediction_plot = prediction.plot_registration_vs_latency(coll) if prediction.has_prediction(coll) else None
-        write_markdown(coll, plots, sweep_plots, gantts, skipped, prediction_plot)
+        drawn = draw_everything(coll, args, figure)
+        write_markdown(coll, drawn, args.top, figure)
     except OSError as e:
         # A full disk or a read-only directory: one line, no traceback.
         where = f"{e.filename}: " if e.filename else ""
@@ -237,7 +350,8 @@ def main(argv):
     except KeyboardInterrupt:
         print("report: interrupted; files written so far are whole", file=sys.stderr)
         return 130
-    plots_drawn = len(plots) + len(sweep_plots) + len(gantts) + (1 if prediction_plot else 0)
+    plots_drawn = (len(drawn["distributions"]) + len(drawn["sweep"]) + len(drawn["gantt"]) +
+                   (1 if drawn["heatmap"] else 0) + (1 if drawn["prediction"] else 0))
     print(f"report: {len(coll.rows)} row(s), {plots_drawn} plot(s) -> "
           f"{os.path.join(coll.directory, 'report.md')}")
     return 0

@@ -18,8 +18,20 @@ int command_report(int argc, char** argv) {
                "latsim report"};
   std::string dir;
   int gantt_limit = -1;
+  int top = -1;
+  std::string figure;
   app.add_option("dir", dir, "result directory")->required();
-  app.add_option("--gantt-limit", gantt_limit, "draw at most this many Gantt charts (default: all)");
+  app.add_option("--gantt-limit", gantt_limit,
+                 "draw at most this many Gantt charts (default: a sweep's 6, one per point evenly spaced; "
+                 "otherwise every run with a timeline)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--top", top,
+                 "a sweep's table in report.md: this many lowest and highest points (default 10; 0: every point); "
+                 "latency_table.csv always has every point")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--figure", figure,
+                 "the column a sweep's table is sorted by and its heat map shows (default mtp_mean_ms; e.g. "
+                 "mtp_p99_ms, registration_error_mean_arcmin)");
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
   if (!std::filesystem::is_directory(dir)) {
     std::cerr << dir << ": not a directory\n";
@@ -28,6 +40,8 @@ int command_report(int argc, char** argv) {
   try {
     std::vector<std::string> command{python_interpreter(), analysis_script("report.py").string(), dir};
     if (gantt_limit >= 0) command.insert(command.end(), {"--gantt-limit", std::to_string(gantt_limit)});
+    if (top >= 0) command.insert(command.end(), {"--top", std::to_string(top)});
+    if (!figure.empty()) command.insert(command.end(), {"--figure", figure});
     const ChildResult child = run_child(command);
     // The script's own codes already follow the program's (0 ok, 1 cannot
     // write, 2 bad input, 130 interrupted) and it has said why in one line.

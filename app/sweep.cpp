@@ -37,7 +37,9 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 // Runs the unfinished runs among `selected` on `jobs` threads, longest expected first.
 SweepTally run_here(const SweepPlan& plan, const std::vector<size_t>& selected, const PointCheck& check,
-                    SweepWorkspace& work, unsigned jobs, const std::atomic<bool>* stop) {
+                    SweepWorkspace& work, const SweepRequest& request, const std::atomic<bool>* stop) {
+  const unsigned jobs = request.jobs;
+  const KeepPolicy& keep = request.keep;
   SweepTally tally;
   std::vector<size_t> pending;
   for (size_t i : selected) {
@@ -54,7 +56,7 @@ SweepTally run_here(const SweepPlan& plan, const std::vector<size_t>& selected, 
       attempts[i].result = RunAttempt::Result::not_started;
       return;
     }
-    attempts[i] = work.executor.execute(RunTask::of(plan, plan.runs()[pending[i]]));
+    attempts[i] = work.executor.execute(RunTask::of(plan, plan.runs()[pending[i]], keep));
     if (attempts[i].storage_unusable) storage_unusable.store(true);
     progress.advance();
   });
@@ -85,7 +87,7 @@ int sweep_here(const SweepRequest& request, const SweepPlan& plan, const std::op
   SweepWorkspace work(stoppable);
   write_file_if_changed(work.store.out_dir() / "plan.json", plan.to_json().dump(2) + "\n");
   const auto runs_start = std::chrono::steady_clock::now();
-  const SweepTally tally = run_here(plan, selected, check, work, request.jobs, &signals.flag());
+  const SweepTally tally = run_here(plan, selected, check, work, request, &signals.flag());
   phases.runs_s = seconds_since(runs_start);
   size_t temporaries = work.executor.temporaries_removed();
   if (signals.requested()) {
@@ -183,8 +185,12 @@ int command_sweep(int argc, char** argv) {
   auto* jobs = app.add_option("-j,--jobs", request.jobs,
                               "Runs at once (default: the CPUs this process may use; with --mpi, 1 per rank)")
                    ->check(CLI::Range(1u, 4096u));
-  app.add_flag("--samples", request.write_samples, "Also write each run's samples.csv");
-  app.add_flag("--ledger", request.write_ledger, "Also write each run's frames.csv ledger");
+  app.add_flag("--samples", request.write_samples, "Also write samples.csv for the runs --keep keeps in full");
+  app.add_flag("--ledger", request.write_ledger, "Also write frames.csv, the ledger, for the runs --keep keeps in full");
+  auto* keep = app.add_option("--keep", request.keep_text,
+                 "Which runs also keep their traces (timeline, frames, ledger, samples): figures (none; the default "
+                 "unless the sweep file's \"keep\" says otherwise), first (replication 0 of each point), all, or "
+                 "runs=I,J,... (plan positions from 0)");
   auto* shard = app.add_option("--shard", request.shard,
                                "Run only the runs whose plan position modulo N is I (I/N, from 0), or 'env': the "
                                "array task of Slurm or Grid Engine; tables are left to --collect");
@@ -205,6 +211,7 @@ int command_sweep(int argc, char** argv) {
   mpi->excludes(shard);
   mpi->excludes(collect_flag);
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
+  request.keep_given = keep->count() > 0;
   if (!*jobs) request.jobs = request.mpi ? 1u : available_cpus();
 
   std::optional<Shard> slice;
@@ -220,7 +227,7 @@ int command_sweep(int argc, char** argv) {
     if (request.mpi) return sweep_mpi(request);
     const auto start = std::chrono::steady_clock::now();
     const auto plan = load_plan(request);
-    if (!plan) return kExitBadInput;
+    if (!plan || !settle_keep(request, *plan)) return kExitBadInput;
     if (request.check) return check_only(request, *plan);
     if (request.collect) return collect(request, *plan);
     PhaseTimes phases;

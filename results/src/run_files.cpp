@@ -85,6 +85,7 @@ RunFiles& RunFiles::operator=(RunFiles&& other) noexcept {
   dir_ = std::move(other.dir_);
   staging_ = std::move(other.staging_);
   staged_ = other.staged_;
+  write_images_ = other.write_images_;
   written_ = std::move(other.written_);
   other.dir_.clear();
   other.staging_.clear();
@@ -190,7 +191,7 @@ void RunFiles::write_text(const std::string& name, std::string_view text) {
 }
 
 void RunFiles::write_png(const std::string& name, const renderer::ImageRGB& image) {
-  if (!enabled()) return;
+  if (!writes_images()) return;
   const std::vector<uint8_t> bytes = renderer::encode_png(image);
   write_text(name, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }

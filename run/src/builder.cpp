@@ -133,7 +133,7 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
                                                      des::RandomStream(run.seed, "tracker", options.replication));
   });
   built_from("/transport", "transport", [&] { run.transport = tracker::make_transport(p.transport); });
-  Timeline* timeline = p.output.timeline ? &run.timeline : nullptr;
+  Timeline* timeline = p.output.timeline && options.write_timeline ? &run.timeline : nullptr;
   run.timeline.set_max_entries(static_cast<size_t>(p.output.timeline_max_entries));
   run.host = std::make_unique<TrackerHost>(run.sim, *run.tracker, *run.transport, timeline, p.host.prediction);
   const bool stereo = p.host.stereo;
@@ -162,6 +162,7 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
     run.display->add_listener(run.smear.get());
   }
   run.files = RunFiles(options.out_dir, options.staging_dir);
+  run.files.set_write_images(options.write_images);
   if (p.frames && p.frames->enabled) {
     built_from("/frames", "frame capture", [&] {
       run.frames = std::make_unique<FrameCapture>(

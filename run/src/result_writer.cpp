@@ -55,7 +55,9 @@ void warn_about_outcome(Run& run, const Json& figures) {
 
 // JSON for a result file: text that is not UTF-8 (a file name from the
 // command line) is replaced rather than stopping the run at its very end.
-std::string dump(const Json& j) { return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n"; }
+std::string dump(const Json& j, bool compact) {
+  return j.dump(compact ? -1 : 2, ' ', false, Json::error_handler_t::replace) + "\n";
+}
 
 // The resolved scenario with the defaults that are not single values: the
 // probe points used when the scenario names none (the ring around the start).
@@ -134,7 +136,7 @@ Json write_results(Run& run, const scenario::ScenarioDocument& doc, const RunOpt
     run.timeline.finish(files);
     if (options.write_ledger) run.recorder->ledger().write(files);
     if (options.write_samples) run.recorder->sample_log().write(files);
-    files.write_text("figures.json", dump(deterministic));
+    files.write_text("figures.json", dump(deterministic, options.compact_json));
   }
   // The whole command and the process's peak, taken after the analytic
   // figures and every other result file: wall_s is the simulation loop alone.
@@ -142,7 +144,7 @@ Json write_results(Run& run, const scenario::ScenarioDocument& doc, const RunOpt
   summary["peak_rss_mb"] = peak_rss_mb();
   // Written last: a run directory is complete exactly when summary.json exists.
   if (files.enabled()) {
-    files.write_text("summary.json", dump(summary));
+    files.write_text("summary.json", dump(summary, options.compact_json));
     files.commit("summary.json");
   }
   return summary;

@@ -58,6 +58,24 @@ std::optional<SweepPlan> load_plan(const SweepRequest& request) {
   }
 }
 
+bool settle_keep(SweepRequest& request, const SweepPlan& plan) {
+  if (!request.keep_given) {
+    request.keep = plan.keep().value_or(KeepPolicy{});
+  } else {
+    try {
+      request.keep = KeepPolicy::parse(request.keep_text);
+      request.keep.check_runs(plan.runs().size());
+    } catch (const std::invalid_argument& e) {
+      std::cerr << "latsim sweep: --keep: " << scenario::readable(e.what()) << "\n";
+      return false;
+    }
+  }
+  if ((request.write_ledger || request.write_samples) && request.keep.kind == KeepPolicy::Kind::figures)
+    std::cerr << "sweep: warning: --ledger and --samples write only for the runs kept in full, and --keep "
+                 "figures keeps none: add --keep first, all or runs=I,J\n";
+  return true;
+}
+
 bool is_sweep_file(const std::string& file) {
   try {
     const Json doc = scenario::read_json_file(file, "file");
@@ -120,6 +138,7 @@ RunSettings run_settings(const SweepRequest& request) {
   settings.write_samples = request.write_samples;
   settings.write_ledger = request.write_ledger;
   settings.command_line = {"latsim", "sweep", request.sweep_file, "--out", request.out_dir};
+  if (request.keep_given) settings.command_line.insert(settings.command_line.end(), {"--keep", request.keep_text});
   if (request.write_samples) settings.command_line.push_back("--samples");
   if (request.write_ledger) settings.command_line.push_back("--ledger");
   settings.stop = request.stop;

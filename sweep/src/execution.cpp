@@ -19,18 +19,20 @@ double seconds_since(Clock::time_point start) { return std::chrono::duration<dou
 
 }  // namespace
 
-RunTask RunTask::of(const SweepPlan& plan, const SweepRun& run) {
-  return RunTask{run.index, run.run_id, run.seed, run.replication, run.scenario, plan.base_dir()};
+RunTask RunTask::of(const SweepPlan& plan, const SweepRun& run, const KeepPolicy& keep) {
+  return RunTask{run.index,    run.run_id,      run.seed, run.replication,
+                 run.scenario, plan.base_dir(), keep.keeps_traces(run.index, run.replication)};
 }
 
 Json RunTask::to_json() const {
   return {{"index", index}, {"run_id", run_id}, {"seed", seed}, {"replication", replication},
-          {"scenario", scenario}, {"base_dir", base_dir.string()}};
+          {"scenario", scenario}, {"base_dir", base_dir.string()}, {"keep_traces", keep_traces}};
 }
 
 RunTask RunTask::from_json(const Json& j) {
   return RunTask{j.at("index").get<size_t>(), j.at("run_id").get<std::string>(), j.at("seed").get<uint64_t>(),
-                 j.at("replication").get<uint64_t>(), j.at("scenario"), j.at("base_dir").get<std::string>()};
+                 j.at("replication").get<uint64_t>(), j.at("scenario"), j.at("base_dir").get<std::string>(),
+                 j.at("keep_traces").get<bool>()};
 }
 
 Json RunAttempt::to_json() const {
@@ -110,8 +112,11 @@ RunAttempt RunExecutor::run_claimed(const RunTask& task) {
   options.replication = task.replication;
   options.out_dir = store_.run_dir(task.run_id);
   options.staging_dir = store_.staging_dir(task.run_id);
-  options.write_samples = settings_.write_samples;
-  options.write_ledger = settings_.write_ledger;
+  options.write_samples = settings_.write_samples && task.keep_traces;
+  options.write_ledger = settings_.write_ledger && task.keep_traces;
+  options.write_timeline = task.keep_traces;
+  options.write_images = task.keep_traces;
+  options.compact_json = true;
   options.command_line = settings_.command_line;
   options.stop = settings_.stop;
   try {

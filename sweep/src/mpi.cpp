@@ -195,8 +195,9 @@ void stop_all(int size) {
 /// from the same queue as the messages it sends to the other ranks.
 class Dispatcher {
  public:
-  Dispatcher(const SweepPlan& plan, std::vector<size_t> order, SweepWorkspace& work, unsigned threads, int ranks)
-      : plan_(plan), order_(std::move(order)), work_(work), threads_(threads), ranks_(ranks),
+  Dispatcher(const SweepPlan& plan, KeepPolicy keep, std::vector<size_t> order, SweepWorkspace& work,
+             unsigned threads, int ranks)
+      : plan_(plan), keep_(std::move(keep)), order_(std::move(order)), work_(work), threads_(threads), ranks_(ranks),
         attempts_(order_.size()), in_hand_(static_cast<size_t>(ranks), 0), stopped_(static_cast<size_t>(ranks), false) {
     for (size_t p = 0; p < order_.size(); ++p) position_of_[order_[p]] = p;
     stopped_[0] = true;  // rank 0's share is taken by its threads
@@ -235,7 +236,7 @@ class Dispatcher {
     if (p < order_.size()) return p;
     return std::nullopt;
   }
-  RunTask task(size_t position) const { return RunTask::of(plan_, plan_.runs()[order_[position]]); }
+  RunTask task(size_t position) const { return RunTask::of(plan_, plan_.runs()[order_[position]], keep_); }
 
   // A rank reported a run (or that it is ready): record it, and top its hand up or tell it to stop.
   void answer(const Message& message, ProgressLine& progress) {
@@ -264,6 +265,7 @@ class Dispatcher {
   }
 
   const SweepPlan& plan_;
+  KeepPolicy keep_;
   std::vector<size_t> order_;
   SweepWorkspace& work_;
   unsigned threads_;
@@ -279,10 +281,10 @@ class Dispatcher {
 };
 
 // Rank 0: check the plan, hand the runs out, write the tables.
-int lead(const SweepRequest& request, int size) {
+int lead(SweepRequest request, int size) {
   const auto start = std::chrono::steady_clock::now();
   const auto plan = load_plan(request);
-  if (!plan) {
+  if (!plan || !settle_keep(request, *plan)) {
     stop_all(size);
     return kExitBadInput;
   }
@@ -310,7 +312,7 @@ int lead(const SweepRequest& request, int size) {
   pending = longest_first(pending, check.cost_of_run);
   const auto runs_start = std::chrono::steady_clock::now();
   ProgressLine progress("sweep", plan->runs().size(), tally.resumed);
-  Dispatcher dispatcher(*plan, pending, work, request.jobs, size);
+  Dispatcher dispatcher(*plan, request.keep, pending, work, request.jobs, size);
   const auto attempts = dispatcher.run(progress);
   progress.finish();
   phases.runs_s = seconds_since(runs_start);

@@ -199,10 +199,28 @@ SweepPlan SweepPlan::load(const fs::path& sweep_file, const ResolveDefaults& res
   return from_json(sweep, sweep_file, resolve);
 }
 
+namespace {
+
+// The "keep" key: a string as --keep takes it.
+std::optional<KeepPolicy> read_keep(const Json& sweep, size_t run_count, const fs::path& file) {
+  if (!sweep.contains("keep")) return std::nullopt;
+  if (!sweep["keep"].is_string())
+    throw SweepError(file, "/keep", "expected a string: \"figures\", \"first\", \"all\" or \"runs=I,J,...\"");
+  try {
+    KeepPolicy keep = KeepPolicy::parse(sweep["keep"].get<std::string>());
+    keep.check_runs(run_count);
+    return keep;
+  } catch (const std::invalid_argument& e) {
+    throw SweepError(file, "/keep", e.what());
+  }
+}
+
+}  // namespace
+
 SweepPlan SweepPlan::from_json(const Json& sweep, const fs::path& sweep_file, const ResolveDefaults& resolve) {
   const fs::path& file = sweep_file;
   if (!sweep.is_object()) throw SweepError(file, "", "a sweep must be a JSON object");
-  check_keys(sweep, {"description", "base", "axes", "mode", "replications", "seed", "overrides"}, file, "");
+  check_keys(sweep, {"description", "base", "axes", "mode", "replications", "seed", "overrides", "keep"}, file, "");
   SweepPlan plan;
   plan.sweep_file_ = sweep_file;
   if (!sweep.contains("base") || !sweep["base"].is_string())
@@ -285,6 +303,7 @@ SweepPlan SweepPlan::from_json(const Json& sweep, const fs::path& sweep_file, co
       plan.runs_.push_back(std::move(run));
     }
   }
+  plan.keep_ = read_keep(sweep, plan.runs_.size(), file);
   return plan;
 }
 

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <map>
 #include <memory>
 #include <stdexcept>
 
@@ -111,30 +112,58 @@ std::string quoted_identifier(const std::string& name) {
   return q + "\"";
 }
 
+// Distribution statistics and histogram buckets are most of a sweep's rows
+// (about 700 a run): they are stored once per row as integers (the run's plan
+// index, the name's id in `names`) and read through the views `distributions`
+// and `histograms`, which give the run id and the names as text.
 void create_tables(Database& db, const std::vector<std::string>& axis_pointers) {
-  std::string runs = "CREATE TABLE runs (run_id TEXT PRIMARY KEY, plan_index INTEGER, point INTEGER, seed INTEGER, "
-                     "replication INTEGER, events INTEGER, wall_s REAL, peak_rss_mb REAL, fingerprint TEXT";
+  std::string runs = "CREATE TABLE runs (run_id TEXT PRIMARY KEY, plan_index INTEGER UNIQUE, point INTEGER, "
+                     "seed INTEGER, replication INTEGER, events INTEGER, wall_s REAL, peak_rss_mb REAL, fingerprint TEXT";
   for (const auto& pointer : axis_pointers) runs += ", " + quoted_identifier(pointer);
   db.exec(runs + ");");
   db.exec("CREATE TABLE axes (axis INTEGER, pointer TEXT);"
           "CREATE TABLE figures (run_id TEXT, name TEXT, value REAL);"
-          "CREATE TABLE distributions (run_id TEXT, name TEXT, stat TEXT, value REAL);"
-          "CREATE TABLE histograms (run_id TEXT, name TEXT, bucket INTEGER, edge REAL, count REAL);"
-          "CREATE TABLE models (run_id TEXT, model TEXT, events INTEGER, wall_s REAL);");
+          "CREATE TABLE names (name_id INTEGER PRIMARY KEY, name TEXT UNIQUE);"
+          "CREATE TABLE distribution_stats (plan_index INTEGER, name_id INTEGER, stat_id INTEGER, value REAL);"
+          "CREATE TABLE histogram_buckets (plan_index INTEGER, name_id INTEGER, bucket INTEGER, edge REAL, "
+          "count REAL);"
+          "CREATE TABLE models (run_id TEXT, model TEXT, events INTEGER, wall_s REAL);"
+          "CREATE VIEW distributions (run_id, name, stat, value) AS SELECT r.run_id, n.name, s.name, d.value "
+          "FROM distribution_stats d JOIN runs r USING (plan_index) JOIN names n ON n.name_id = d.name_id "
+          "JOIN names s ON s.name_id = d.stat_id;"
+          "CREATE VIEW histograms (run_id, name, bucket, edge, count) AS SELECT r.run_id, n.name, h.bucket, h.edge, "
+          "h.count FROM histogram_buckets h JOIN runs r USING (plan_index) JOIN names n ON n.name_id = h.name_id;");
 }
+
+/// Ids of the names in `names`, given out in order of first use.
+class NameIds {
+ public:
+  explicit NameIds(Database& db) : insert_(db, "INSERT INTO names VALUES (?, ?);") {}
+  int64_t of(const std::string& name) {
+    const auto [it, fresh] = ids_.emplace(name, static_cast<int64_t>(ids_.size()));
+    if (fresh) insert_.integer(it->second).text(it->first).run();
+    return it->second;
+  }
+
+ private:
+  Insert insert_;
+  std::map<std::string, int64_t> ids_;
+};
 
 void insert_records(Database& db, const std::vector<std::string>& axis_pointers, const std::vector<RunRecord>& records) {
   std::string sql = "INSERT INTO runs VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?";
   for (size_t a = 0; a < axis_pointers.size(); ++a) sql += ", ?";
   Insert run(db, sql + ");");
   Insert figure(db, "INSERT INTO figures VALUES (?, ?, ?);");
-  Insert stat(db, "INSERT INTO distributions VALUES (?, ?, ?, ?);");
-  Insert bucket(db, "INSERT INTO histograms VALUES (?, ?, ?, ?, ?);");
+  Insert stat(db, "INSERT INTO distribution_stats VALUES (?, ?, ?, ?);");
+  Insert bucket(db, "INSERT INTO histogram_buckets VALUES (?, ?, ?, ?, ?);");
   Insert model(db, "INSERT INTO models VALUES (?, ?, ?, ?);");
+  NameIds names(db);
   for (size_t i = 0; i < records.size(); ++i) {
     const RunRecord& r = records[i];
     const Json& s = r.summary;
-    run.text(r.run_id).integer(static_cast<int64_t>(i)).integer(static_cast<int64_t>(r.point));
+    const auto index = static_cast<int64_t>(i);
+    run.text(r.run_id).integer(index).integer(static_cast<int64_t>(r.point));
     run.integer(static_cast<int64_t>(r.seed)).integer(static_cast<int64_t>(r.replication));
     run.optional_number(s, "events").optional_number(s, "wall_s").optional_number(s, "peak_rss_mb");
     if (s.contains("fingerprint") && s["fingerprint"].is_string()) run.text(s["fingerprint"].get_ref<const std::string&>());
@@ -143,9 +172,9 @@ void insert_records(Database& db, const std::vector<std::string>& axis_pointers,
     run.run();
     const FlatFigures flat = flatten_figures(s.value("figures", Json::object()));
     for (const auto& f : flat.scalars) figure.text(r.run_id).text(f.name).real(f.value).run();
-    for (const auto& d : flat.stats) stat.text(r.run_id).text(d.name).text(d.stat).real(d.value).run();
+    for (const auto& d : flat.stats) stat.integer(index).integer(names.of(d.name)).integer(names.of(d.stat)).real(d.value).run();
     for (const auto& b : flat.buckets)
-      bucket.text(r.run_id).text(b.name).integer(static_cast<int64_t>(b.bucket)).real(b.edge).real(b.count).run();
+      bucket.integer(index).integer(names.of(b.name)).integer(static_cast<int64_t>(b.bucket)).real(b.edge).real(b.count).run();
     if (s.contains("models") && s["models"].is_object())
       for (auto it = s["models"].begin(); it != s["models"].end(); ++it)
         model.text(r.run_id).text(it.key()).optional_number(it.value(), "events").optional_number(it.value(), "wall_s").run();

@@ -79,9 +79,37 @@ def make_sweep(root):
         w.writerows(rows)
 
 
-def run_report(directory):
-    proc = subprocess.run([sys.executable, REPORT, directory], capture_output=True, text=True)
+def make_big_sweep(root):
+    """30 points (a = 1..5 x b = 10..60) x 3 replications, every headline column in results.csv as
+    latsim writes it; MTP mean = 10 a + b / 10 + replication. Only replication 0 has a readable
+    summary.json (and a timeline): the report must read one summary per point, not one per run."""
+    headline = [c for c, _, _ in latsim_results.HEADLINE]
+    rows, point = [], 0
+    for a in range(1, 6):
+        for b in range(10, 70, 10):
+            for rep in range(3):
+                run_id = f"{point:08x}{rep:08x}"
+                mean = 10 * a + b / 10 + rep
+                run_dir = os.path.join(root, "runs", run_id)
+                write_run(run_dir, summary("double_buffer", mean), timeline=rep == 0)
+                if rep > 0:
+                    with open(os.path.join(run_dir, "summary.json"), "w") as f:
+                        f.write("not read by the report")
+                values = {"mtp_mean_ms": mean, "mtp_p50_ms": mean, "mtp_p99_ms": mean + 7, "mtp_max_ms": mean + 8,
+                          "render_latency_ms": 16.7, "render_latency_fields": 1, "frame_rate_hz": 60,
+                          "registration_error_mean_arcmin": mean / 10, "registration_error_p99_arcmin": mean / 5}
+                rows.append([run_id, point, a, b, 1, rep] + [values[c] for c in headline])
+            point += 1
+    with open(os.path.join(root, "results.csv"), "w", newline="") as f:
+        w = csv.writer(f, lineterminator="\n")
+        w.writerow(["run_id", "point", "/a", "/b", "seed", "replication"] + headline)
+        w.writerows(rows)
+
+
+def run_report(directory, *options):
+    proc = subprocess.run([sys.executable, REPORT, directory, *options], capture_output=True, text=True)
     check(proc.returncode == 0, f"report.py {directory} exited {proc.returncode}: {proc.stderr}")
+    return proc
 
 
 def digest(directory):
@@ -129,6 +157,54 @@ for name in ("hmd_double_buffer", "pxpl5_slats"):
 with open(os.path.join(runs_dir, "report.md")) as f:
     md = f.read()
 check("| pxpl5_slats | pxpl5_slats |" in md and "hmd_double_buffer/gantt.png" in md, "runs report.md content")
+
+# A sweep too large for one table: the lowest and highest --top points by hand
+# (mean over replications 10 a + b / 10 + 1), a heat map, a sample of Gantt charts.
+big_dir = os.path.join(SCRATCH, "big")
+make_big_sweep(big_dir)
+run_report(big_dir, "--top", "4", "--gantt-limit", "4")
+with open(os.path.join(big_dir, "report.md")) as f:
+    md = f.read()
+lowest = md[md.index("### Lowest"):md.index("### Highest")]
+highest = md[md.index("### Highest"):md.index("## ", md.index("### Highest") + 4)]
+names = lambda text: [line.split(" | ")[0].lstrip("| ") for line in text.splitlines() if line.startswith("| a=")]
+check(names(lowest) == ["a=1, b=10", "a=1, b=20", "a=1, b=30", "a=1, b=40"], f"lowest 4: {names(lowest)}")
+check(names(highest) == ["a=5, b=30", "a=5, b=40", "a=5, b=50", "a=5, b=60"], f"highest 4: {names(highest)}")
+check("| a=5, b=60 | double_buffer | 3 | 57 |" in highest, "highest point's mean over replications should be 57")
+with open(os.path.join(big_dir, "latency_table.csv")) as f:
+    check(len(list(csv.DictReader(f))) == 30, "the full table should keep all 30 points")
+check(os.path.isfile(os.path.join(big_dir, "heatmap.png")) and "heatmap.png" in md, "heat map missing")
+# 4 of 30 points evenly spaced: round(i * 29 / 3) = points 0, 10, 19, 29 (replication 0 of each).
+drawn = sorted(d for d in os.listdir(os.path.join(big_dir, "runs"))
+               if os.path.isfile(os.path.join(big_dir, "runs", d, "gantt.png")))
+check(drawn == [f"{p:08x}{0:08x}" for p in (0, 10, 19, 29)], f"Gantt sample {drawn}")
+check("26 more point(s) have a timeline.csv" in md, "report.md should say how many points have no chart")
+import heatmap  # noqa: E402
+coll = latsim_results.load(big_dir)
+check(heatmap.choose_axes(coll) == ("/b", "/a"), f"heat map axes {heatmap.choose_axes(coll)}")
+_, panels = heatmap.grids(coll, "/b", "/a", "motion_to_photon_ms.mean")
+grid = panels[()]
+check(all(abs(grid[i][j] - (10 * (i + 1) + (j + 1) + 1)) < 1e-9 for i in range(5) for j in range(6)),
+      f"heat map cells {grid}")
+proc = subprocess.run([sys.executable, REPORT, big_dir, "--figure", "nonsense"], capture_output=True, text=True)
+check(proc.returncode == 2 and len(proc.stderr.strip().splitlines()) == 1, f"bad --figure: {proc.stderr}")
+
+# Progress lines: none for work that ends within 2 s, then one every 2 s.
+import io  # noqa: E402
+from progress import Progress  # noqa: E402
+now, out = [0.0], io.StringIO()
+p = Progress("charts", 5, clock=lambda: now[0], out=out)
+for t in (0.5, 1.9, 2.1, 3.0, 4.2):
+    now[0] = t
+    p.advance()
+p.finish()
+check(out.getvalue().splitlines() == ["report: charts 3/5", "report: charts 5/5", "report: charts 5/5 done"],
+      f"progress lines {out.getvalue().splitlines()}")
+quiet = io.StringIO()
+p = Progress("quick", 2, clock=lambda: 1.0, out=quiet)
+p.advance()
+p.finish()
+check(quiet.getvalue() == "", "short work printed progress")
 
 # Reproducible: a second rendering is byte-identical.
 before = digest(SCRATCH)

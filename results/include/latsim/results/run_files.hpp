@@ -94,6 +94,10 @@ class RunFiles {
   RunFiles& operator=(const RunFiles&) = delete;
 
   bool enabled() const { return !dir_.empty(); }
+  /// Whether write_png writes (default) or drops images: a run kept for its
+  /// figures alone still renders and measures what it would capture.
+  void set_write_images(bool write) { write_images_ = write; }
+  bool writes_images() const { return enabled() && write_images_; }
   const std::filesystem::path& dir() const { return dir_; }
   /// Makes the staging directory now (writes make it too): a place that
   /// cannot be written fails before the simulation rather than after it.
@@ -119,6 +123,7 @@ class RunFiles {
   std::filesystem::path dir_;
   std::filesystem::path staging_;
   bool staged_ = false;
+  bool write_images_ = true;
   std::vector<std::string> written_;
 };
 

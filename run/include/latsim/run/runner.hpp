@@ -40,6 +40,15 @@ struct RunOptions {
   std::filesystem::path staging_dir;
   bool write_samples = false;             ///< samples.csv
   bool write_ledger = false;              ///< frames.csv, the per-frame ledger
+  /// timeline.csv/.json where the scenario keeps a timeline (/output/timeline);
+  /// false: none is recorded at all. The figures do not change.
+  bool write_timeline = true;
+  /// The PNG images captures write (frames/, ARP frames); false: they are still
+  /// rendered and measured, and figures.json stays the same, but not written.
+  bool write_images = true;
+  /// figures.json and summary.json as one line of JSON rather than indented:
+  /// less than half the bytes, for the thousands of runs of a sweep.
+  bool compact_json = false;
   bool profile = false;                   ///< wall time per event kind (two clock reads per event)
   std::vector<std::string> command_line;  ///< recorded in the summary
   /// When the command began (reading the scenario included); command_wall_s

@@ -20,6 +20,9 @@ struct SweepRequest {
   unsigned jobs = 1;
   bool write_samples = false;
   bool write_ledger = false;
+  std::string keep_text;      ///< --keep text, when keep_given
+  bool keep_given = false;    ///< false: the sweep file's "keep" key, else figures
+  KeepPolicy keep;            ///< which runs keep their traces (settled by settle_keep)
   std::string shard;          ///< --shard text: "I/N" or "env"; empty: the whole plan
   bool collect = false;       ///< --collect: run nothing, write the tables
   bool check = false;         ///< --check: run nothing, write nothing: check every point
@@ -35,6 +38,11 @@ unsigned available_cpus();
 
 /// Reads the sweep file; on bad input prints the one-line error and returns nothing.
 std::optional<SweepPlan> load_plan(const SweepRequest& request);
+
+/// Settles request.keep from --keep or else the plan's "keep" key; on a bad
+/// value prints the one-line error and returns false (nothing is written).
+/// Warns when --ledger or --samples is given but no run keeps its traces.
+bool settle_keep(SweepRequest& request, const SweepPlan& plan);
 
 /// Whether `file` holds a sweep (a JSON object with "axes" and "base") rather
 /// than a scenario; false when it is not readable JSON (the scenario reader

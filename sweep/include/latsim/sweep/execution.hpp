@@ -14,6 +14,7 @@
 
 #include "latsim/sweep/claims.hpp"
 #include "latsim/sweep/journal.hpp"
+#include "latsim/sweep/keep.hpp"
 #include "latsim/sweep/plan.hpp"
 #include "latsim/sweep/store.hpp"
 
@@ -27,8 +28,10 @@ struct RunTask {
   uint64_t replication = 0;
   nlohmann::json scenario;
   std::filesystem::path base_dir;
+  /// Also write the traces (timeline, images, ledger, samples); false: figures only.
+  bool keep_traces = false;
 
-  static RunTask of(const SweepPlan& plan, const SweepRun& run);
+  static RunTask of(const SweepPlan& plan, const SweepRun& run, const KeepPolicy& keep);
   nlohmann::json to_json() const;
   static RunTask from_json(const nlohmann::json& j);
 };
@@ -53,8 +56,8 @@ struct RunAttempt {
 
 /// What every run of this process records and writes besides its results.
 struct RunSettings {
-  bool write_samples = false;
-  bool write_ledger = false;
+  bool write_samples = false;  ///< samples.csv, for the runs that keep their traces
+  bool write_ledger = false;   ///< frames.csv, for the runs that keep their traces
   std::vector<std::string> command_line;  ///< recorded in each summary: the same for every backend
   const std::atomic<bool>* stop = nullptr;  ///< set by a stop signal: runs end at their next event
 };

@@ -6,11 +6,14 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
+
+#include "latsim/sweep/keep.hpp"
 
 namespace latsim::sweep {
 
@@ -53,6 +56,8 @@ class SweepPlan {
   std::filesystem::path base_dir() const;
   size_t point_count() const { return point_count_; }
   uint64_t replications() const { return replications_; }
+  /// The sweep file's "keep" key (which runs keep their traces), when it has one.
+  const std::optional<KeepPolicy>& keep() const { return keep_; }
   /// "pointer=value, ..." for a run, as error messages show it.
   std::string describe(const SweepRun& run) const;
   /// Where in the sweep file a value of an axis was given ("/axes/1/values/2" or "/axes/1/range").
@@ -67,6 +72,7 @@ class SweepPlan {
   std::vector<SweepRun> runs_;
   size_t point_count_ = 0;
   uint64_t replications_ = 1;
+  std::optional<KeepPolicy> keep_;
 };
 
 /// Bad sweep input: which file, which JSON pointer inside it, and what is wrong.

@@ -1,0 +1,83 @@
+"""Heat maps of a sweep over two axes: one figure's mean over replications in
+each cell, one panel per combination of the other axes' values."""
+
+import os
+
+import latsim_results as lr
+import plotting
+from plotting import plt
+
+# Panels beyond this many would be too small to read; the report says so.
+MAX_PANELS = 12
+
+
+def ordered_values(coll, axis):
+    """An axis's values in numeric order when all are numbers, else in plan order."""
+    seen = []
+    for row in coll.rows:
+        if row.axis_values[axis] not in seen:
+            seen.append(row.axis_values[axis])
+    if all(lr.as_number(v) is not None for v in seen):
+        seen.sort(key=lr.as_number)
+    return seen
+
+
+def choose_axes(coll):
+    """(x axis, y axis): the two axes with the most values (x the longer), or None below two such axes."""
+    counts = [(len(ordered_values(coll, a)), -i, a) for i, a in enumerate(coll.axes)]
+    varied = sorted((c for c in counts if c[0] > 1), reverse=True)
+    if len(varied) < 2:
+        return None
+    return varied[0][2], varied[1][2]
+
+
+def grids(coll, x_axis, y_axis, path):
+    """{other axes' values: grid[y][x] of means (None where missing)}, in plan order of first appearance."""
+    xs, ys = ordered_values(coll, x_axis), ordered_values(coll, y_axis)
+    others = [a for a in coll.axes if a not in (x_axis, y_axis)]
+    panels = {}
+    for row in coll.rows:
+        key = tuple(row.axis_values[a] for a in others)
+        grid = panels.setdefault(key, [[None] * len(xs) for _ in ys])
+        grid[ys.index(row.axis_values[y_axis])][xs.index(row.axis_values[x_axis])] = row.mean(path)
+    return others, panels
+
+
+def draw(coll, path, label):
+    """heatmap.{png,svg} of `path` (a figure path such as motion_to_photon_ms.mean); returns
+    (base name, panels drawn, panels in all) or None when the sweep has no two varied axes
+    or no row has the figure."""
+    chosen = choose_axes(coll)
+    if chosen is None or not any(r.values(path) for r in coll.rows):
+        return None
+    x_axis, y_axis = chosen
+    xs, ys = ordered_values(coll, x_axis), ordered_values(coll, y_axis)
+    others, panels = grids(coll, x_axis, y_axis, path)
+    keys = list(panels)[:MAX_PANELS]
+    cells = [v for k in keys for line in panels[k] for v in line if v is not None]
+    low, high = min(cells), max(cells)
+    cols = min(3, len(keys))
+    lines = (len(keys) + cols - 1) // cols
+    fig, axes = plt.subplots(lines, cols, figsize=(max(5.0, 0.45 * len(xs) + 2.5) * cols, (0.4 * len(ys) + 1.8) * lines),
+                             squeeze=False)
+    image = None
+    for ax, key in zip(axes.flat, keys):
+        grid = [[float("nan") if v is None else v for v in line] for line in panels[key]]
+        image = ax.imshow(grid, origin="lower", aspect="auto", cmap="viridis", vmin=low, vmax=high,
+                          interpolation="nearest")
+        ax.set_xticks(range(len(xs)))
+        ax.set_xticklabels(xs, rotation=90 if len(xs) > 8 else 0, fontsize=7)
+        ax.set_yticks(range(len(ys)))
+        ax.set_yticklabels(ys, fontsize=7)
+        ax.set_xlabel(lr.short_axis_name(x_axis, coll.axes))
+        ax.set_ylabel(lr.short_axis_name(y_axis, coll.axes))
+        ax.grid(False)
+        if others:
+            ax.set_title(", ".join(f"{lr.short_axis_name(a, coll.axes)}={v}" for a, v in zip(others, key)), fontsize=8)
+    for ax in list(axes.flat)[len(keys):]:
+        ax.axis("off")
+    fig.colorbar(image, ax=axes.ravel().tolist(), label=label)
+    fig.suptitle(f"{label}: mean over replications")
+    base = "heatmap"
+    plotting.save(fig, os.path.join(coll.directory, base))
+    return base, len(keys), len(panels)
