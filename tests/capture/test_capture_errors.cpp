@@ -80,7 +80,8 @@ TEST_CASE("files that are not captures") {
   const TempFile empty("empty.csv", "\n\n");
   CHECK(error_of(empty.path(), {"x"}).find("no header line") != std::string::npos);
   const TempFile quote("quote.csv", "x,y\n1,\"2\n");
-  CHECK(error_of(quote.path(), {"x"}) == quote.path().string() + ":2: an unterminated quote");
+  CHECK(error_of(quote.path(), {"y"}) == quote.path().string() + ":2: an unterminated quote");
+  CHECK(latsim::capture::read_capture(quote.path(), {{"x"}, {}}).column("x").values.size() == 1);  // not split so far
   const TempFile short_row("short.csv", "a,b,c\n1,2\n");
   CHECK(error_of(short_row.path(), {"c"}) == short_row.path().string() + ":2: a row of 2 fields; the columns read need 3");
   CHECK(error_of("/nonexistent/capture.csv", {"x"}).find("cannot read the capture file") != std::string::npos);

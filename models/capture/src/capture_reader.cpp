@@ -171,7 +171,8 @@ class Reader {
     std::string_view line;
     while (lines_.next(line)) {
       if (blank(line)) continue;
-      if (!row_.split(line)) fail("an unterminated quote");
+      // The fields after the last one read are not even split.
+      if (!row_.split(line, layout_.needed)) fail("an unterminated quote");
       ++capture_.rows_read;
       take_row();
     }
@@ -280,7 +281,10 @@ class Reader {
     if (processes_.empty()) fail_none();
     const ProcessRows& p = processes_.begin()->second;
     capture_.application = p.application;
-    if (layout_.process_id) capture_.process_id = std::stoll(p.process_id);
+    int64_t id = 0;
+    const auto [end, ec] = std::from_chars(p.process_id.data(), p.process_id.data() + p.process_id.size(), id);
+    if (layout_.process_id && ec == std::errc{} && end == p.process_id.data() + p.process_id.size())
+      capture_.process_id = id;  // (a ProcessID that is no integer stays unnamed)
     capture_.rows_selected = p.rows;
     for (size_t k = 0; k < capture_.columns.size(); ++k) {
       CaptureColumn& col = capture_.columns[k];
@@ -289,6 +293,7 @@ class Reader {
                            "column " + col.name + " has no values for " + who() + " (" +
                                std::to_string(col.skipped_na) + " NA, " + std::to_string(col.skipped_not_displayed) +
                                " not displayed)");
+      col.values.shrink_to_fit();  // 8 bytes a value kept, not the growth's slack
       col.min_line = extremes_[k].min_line;
       col.max_line = extremes_[k].max_line;
     }

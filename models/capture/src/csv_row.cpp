@@ -8,7 +8,7 @@ bool blank(char c) { return c == ' ' || c == '\t'; }
 
 }  // namespace
 
-bool CsvRow::split(std::string_view line) {
+bool CsvRow::split(std::string_view line, size_t max_fields) {
   fields_.clear();
   unescaped_.clear();
   size_t i = 0;
@@ -50,7 +50,7 @@ bool CsvRow::split(std::string_view line) {
       while (end > start && blank(line[end - 1])) --end;
       fields_.push_back(line.substr(start, end - start));
     }
-    if (i >= n) return true;
+    if (i >= n || fields_.size() == max_fields) return true;
     ++i;  // past the comma
   }
 }

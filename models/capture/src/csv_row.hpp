@@ -1,6 +1,7 @@
 // One line of a CSV file split into its fields.
 #pragma once
 
+#include <cstdint>
 #include <deque>
 #include <string>
 #include <string_view>
@@ -13,8 +14,10 @@ namespace latsim::capture {
 /// Views stay valid until the next split() and while the line lives.
 class CsvRow {
  public:
-  /// Splits `line` (without its line end); returns false for an unterminated quote.
-  bool split(std::string_view line);
+  /// Splits `line` (without its line end) into at most `max_fields` fields
+  /// (the rest of the line is not looked at); returns false for an
+  /// unterminated quote among them.
+  bool split(std::string_view line, size_t max_fields = SIZE_MAX);
   size_t size() const { return fields_.size(); }
   std::string_view operator[](size_t i) const { return fields_[i]; }
   const std::vector<std::string_view>& fields() const { return fields_; }

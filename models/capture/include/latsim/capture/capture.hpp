@@ -74,7 +74,7 @@ struct Capture {
   std::filesystem::path source;
   Generation generation = Generation::generic;
   std::string application;   ///< of the rows kept (empty: the file has no Application column)
-  std::optional<int64_t> process_id;  ///< of the rows kept (none: no ProcessID column)
+  std::optional<int64_t> process_id;  ///< of the rows kept (none: no ProcessID column, or not an integer)
   int64_t rows_read = 0;     ///< data rows in the file
   int64_t rows_of_other_processes = 0;
   int64_t rows_selected = 0;
