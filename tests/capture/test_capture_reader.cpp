@@ -58,6 +58,9 @@ TEST_CASE("current generation: BOM, CRLF, quotes, one process chosen among two")
   CHECK(shown.values == std::vector<Time>{ms(20.1), ms(352.5)});
   CHECK(shown.skipped_not_displayed == 1);
   CHECK(shown.skipped_na == 0);
+  REQUIRE(shown.values_ms().size() == 2);
+  CHECK(shown.values_ms()[0] == Approx(20.1).epsilon(1e-12));
+  CHECK(shown.values_ms()[1] == Approx(352.5).epsilon(1e-12));
 }
 
 TEST_CASE("a process chosen by id alone, and by application and id") {

@@ -50,6 +50,13 @@ bool is_display_column(const std::string& name) {
 des::Time CaptureColumn::min() const { return *std::min_element(values.begin(), values.end()); }
 des::Time CaptureColumn::max() const { return *std::max_element(values.begin(), values.end()); }
 
+std::vector<double> CaptureColumn::values_ms() const {
+  std::vector<double> ms;
+  ms.reserve(values.size());
+  for (des::Time v : values) ms.push_back(v.to_ms());
+  return ms;
+}
+
 des::Time CaptureColumn::mean() const {
   // Summed as 128-bit integers: a million values of a second each do not overflow.
   __int128 sum = 0;

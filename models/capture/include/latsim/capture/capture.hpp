@@ -65,6 +65,8 @@ struct CaptureColumn {
   int64_t max_line = 0;           ///< the file line of the largest value
   des::Time min() const;
   des::Time max() const;
+  /// The values in milliseconds (a copy, for callers that compare or plot).
+  std::vector<double> values_ms() const;
   /// The mean, exactly rounded from the integer sum.
   des::Time mean() const;
 };
