@@ -15,6 +15,7 @@ void bind(scenario::Section& s, renderer::RenderCost::Params& p) {
            {.doc = "random factor per frame"});
   s.number("variation_fraction", p.variation_fraction,
            {.min = 0.0, .max = 1.0, .doc = "uniform: ±fraction; normal: standard deviation as a fraction"});
+  bind_trace(s, p);
 }
 
 renderer::RenderCost render_cost_for_scene(const renderer::RenderCost::Params& params, const SceneParams* scene,

@@ -45,6 +45,7 @@ class DoubleBufferPipeline final : public Pipeline {
     ctx.recorder.set("nominal_frame_time_ms", p_.cost.nominal_frame_time().to_ms());
     ctx.recorder.declare_headline({"motion_to_photon_ms", "frame_rate_hz", "missed_refreshes",
                                    "registration_error_arcmin", "smear_arcmin"});
+    if (p_.cost.trace()) ctx.recorder.add_capture(params::trace_summary(p_.cost));
     if (!p_.vsync || p_.queued_frames != 0 || p_.cost.varies()) return;
     const auto a = analytic_double_buffer(analytic_inputs(ctx));
     if (!a) return;
@@ -106,6 +107,8 @@ class DoubleBufferPipeline final : public Pipeline {
       const des::Time start = ctx_->sim.now();
       // With vsync every render aims at the next refresh.
       if (p_.vsync) ctx_->recorder.image_due(start + des::Time::ps(1));
+      // A measured cost with nothing left ends the run after this event.
+      if (p_.cost.exhausted()) ctx_->end_run_early(params::trace_ran_out(p_.cost, ctx_->sim.now()));
       co_await ctx_->sim.delay(p_.cost.frame_time(*stream_));
       Done done = complete(*pose, start);
       if (!p_.vsync) {

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "latsim/params/render_cost.hpp"
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/results/frame_recorder.hpp"
 #include "latsim/results/latency_recorder.hpp"
@@ -23,6 +24,9 @@ FlowEnv FrameStagesPipeline::env(des::RandomStream& stream) {
   }
   const display::RasterTiming* timing = &ctx_->display.timing();
   e.next_retrace = [timing](des::Time t) { return timing->field_start(timing->field_at_or_after(t)); };
+  e.out_of_input = [ctx = ctx_](const renderer::RenderCost& cost) {
+    ctx->end_run_early(params::trace_ran_out(cost, ctx->sim.now()));
+  };
   return e;
 }
 
@@ -127,6 +131,10 @@ void FrameStagesPipeline::warn_about_overload(RunContext& ctx) const {
 
 void FrameStagesPipeline::finish(RunContext& ctx) {
   results::LatencyRecorder& r = ctx.recorder;
+  for (const StageFlow* flow : {app_.get(), warp_.get()})
+    if (flow)
+      for (const StageSpec& st : flow->stages())
+        if (st.cost.trace()) r.add_capture(params::trace_summary(st.cost));
   // frames_rendered, application_frame_rate_hz and frames_missed are ctx.app_frames'.
   // What an engineer of such a system reads first: behind a warp, the
   // latency of the orientation the warp used (the application pose's

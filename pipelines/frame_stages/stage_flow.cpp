@@ -212,7 +212,7 @@ des::Process StageFlow::worker(int r, int lane) {
       continue;
     }
     for (int s = run.first; s <= run.last; ++s) {
-      const StageSpec& st = stages_[static_cast<size_t>(s)];
+      StageSpec& st = stages_[static_cast<size_t>(s)];
       if (s > run.first) {
         const Wait w = rule_wait(s, record(j));
         if (w.progress) co_await w.progress->reached(w.target);
@@ -230,6 +230,8 @@ des::Process StageFlow::worker(int r, int lane) {
         rec.last_sample_at = sim.now();
       }
       begin_stage(s, record(j));
+      // A measured cost with nothing left ends the run after this event.
+      if (st.cost.exhausted() && env_.out_of_input) env_.out_of_input(st.cost);
       des::Time remaining = st.cost.frame_time(env_.stream);
       while (remaining > des::Time::zero()) {
         const des::Time step = slice > des::Time::zero() && slice < remaining ? slice : remaining;

@@ -62,6 +62,9 @@ struct FlowEnv {
   const PoseSampler& poses;
   des::RandomStream& stream;                     ///< stage durations that vary
   results::Timeline* timeline = nullptr;
+  /// A stage's measured cost has played all its values and must stop
+  /// (the pipeline ends the run); absent: the last value repeats.
+  std::function<void(const renderer::RenderCost&)> out_of_input;
   /// Whether this flow's stages yield their processor between preemption
   /// slices (the application's do; the compositor's run to completion).
   bool yields = true;

@@ -6,6 +6,12 @@
 
 namespace latsim::pipelines {
 
+void RunContext::end_run_early(std::string why) {
+  if (ended_early) return;
+  ended_early = std::move(why);
+  sim.stop();
+}
+
 const des::Clock& RunContext::clock(const std::string& name, const std::string& phase_pointer,
                                     des::RationalSeconds nominal, des::ClockSettings settings) const {
   return clocks.resolve(name, phase_pointer, nominal, settings);

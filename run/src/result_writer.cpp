@@ -128,6 +128,7 @@ Json write_results(Run& run, const scenario::ScenarioDocument& doc, const RunOpt
   summary["command_line"] = options.command_line;
   summary["exit_status"] = 0;
   summary["models"] = models;
+  if (!run.recorder->captures().empty()) summary["captures"] = run.recorder->captures();
   summary["wall_s"] = wall_s;
   if (run.timeline.size() > 0) summary["timeline_entries"] = run.timeline.size();
 

@@ -42,6 +42,12 @@ void simulate(Run& run) {
                      dynamic_cast<const std::bad_alloc*>(&e) ? std::string("out of memory") : std::string(e.what()));
   }
   if (run.sim.interrupted()) throw RunInterrupted(run.sim.now(), run.duration);
+  if (run.ctx->ended_early) {
+    // The figures cover the time simulated; the warning says why it is short.
+    run.duration = run.sim.now();
+    run.ctx->duration = run.duration;
+    run.recorder->warn(*run.ctx->ended_early);
+  }
 }
 
 }  // namespace

@@ -127,6 +127,36 @@ grep -q "twice" "$tmp/stderr" || say_fail "duplicate_key: does not say the key i
 python3 -c 'import sys; sys.stdout.write("{" + sys.argv[1] + ", \"" + "k" * 1000000 + "\": 1}")' "$base" >"$tmp/long_key.json"
 expect_bad long_key "bytes" "$tmp/long_key.json"
 
+# 10. Captures as costs (issue 29): read with the scenario, so validate and
+# run both stop at the key, on one line of at most 300 characters.
+capture_run() { # NAME TRACE_JSON: a double buffer whose render cost is TRACE_JSON
+  scenario "$1" '{"duration_s": 1, "motion": {"type": "still"}, "tracker": {"rate_hz": 60},
+    "display": {"refresh_hz": 60}, "pipeline": {"type": "double_buffer", "render": {"trace": '"$2"'}}}'
+}
+printf 'Application,ProcessID,MsGPUBusy\na.exe,1,2.5\nb.exe,2,3.5\na.exe,1,2.x5\n' >"$tmp/capture.csv"
+mkfifo "$tmp/capture.fifo"
+max_line=300 expect_bad capture_fifo "/pipeline/render/trace/file" \
+  "$(capture_run capture_fifo '{"file": "capture.fifo", "column": "MsGPUBusy"}')"
+grep -q "not a regular file" "$tmp/stderr" || say_fail "capture_fifo: does not say it is no regular file"
+max_line=300 expect_bad capture_missing_column "/pipeline/render/trace/file" \
+  "$(capture_run capture_column '{"file": "capture.csv", "column": "GPUBusy", "process_id": 1}')"
+grep -q 'no column "GPUBusy".*its columns: Application, ProcessID, MsGPUBusy' "$tmp/stderr" ||
+  say_fail "capture_missing_column: does not name the columns there are"
+max_line=300 expect_bad capture_malformed_cell "/pipeline/render/trace/file" \
+  "$(capture_run capture_cell '{"file": "capture.csv", "column": "MsGPUBusy", "application": "a.exe"}')"
+grep -q "capture.csv:4: column 3 (MsGPUBusy) holds '2.x5'" "$tmp/stderr" ||
+  say_fail "capture_malformed_cell: does not name line, column and value"
+max_line=300 expect_bad capture_several_processes "/pipeline/render/trace/file" \
+  "$(capture_run capture_several '{"file": "capture.csv", "column": "MsGPUBusy"}')"
+grep -q "2 processes match the capture: choose one with application and process_id: a.exe 1, b.exe 2" "$tmp/stderr" ||
+  say_fail "capture_several_processes: does not name the processes"
+max_line=300 expect_bad capture_negative "/pipeline/render/trace/offset_ms" \
+  "$(capture_run capture_negative '{"file": "capture.csv", "column": "MsGPUBusy", "process_id": 2, "offset_ms": -4}')"
+max_line=300 expect_bad capture_with_terms "/pipeline/render/fixed_ms" \
+  "$(scenario capture_terms '{"duration_s": 1, "motion": {"type": "still"}, "tracker": {"rate_hz": 60},
+    "display": {"refresh_hz": 60}, "pipeline": {"type": "double_buffer",
+    "render": {"fixed_ms": 1, "trace": {"file": "capture.csv", "column": "MsGPUBusy", "process_id": 2}}}}')"
+
 # expect_ok NAME COMMAND...: exit 0 within a CPU-time bound (not wall time:
 # the machine may be loaded), its stderr kept in $tmp/stderr.
 expect_ok() {

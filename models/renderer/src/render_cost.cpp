@@ -1,10 +1,18 @@
 #include "latsim/renderer/render_cost.hpp"
 
 #include <algorithm>
+#include <utility>
 
 namespace latsim::renderer {
 
-RenderCost::RenderCost(Params params, int64_t primitives, int64_t covered_pixels) : params_(params) {
+RenderCost::RenderCost(Params params, int64_t primitives, int64_t covered_pixels) : params_(std::move(params)) {
+  if (const TraceCost* t = params_.trace.get()) {
+    // The replay shares the column's values with the capture that holds them.
+    const std::shared_ptr<const std::vector<des::Time>> values(t->capture, &t->capture->columns.front().values);
+    replay_.emplace(values, t->replay);
+    nominal_ = replay_->mean();
+    return;
+  }
   const double ms = params_.fixed_ms + params_.per_primitive_us * 1e-3 * static_cast<double>(primitives) +
                     params_.per_pixel_ns * 1e-6 * static_cast<double>(covered_pixels);
   nominal_ = des::Time::from_ms(ms);
@@ -16,7 +24,8 @@ RenderCost RenderCost::for_scene(const Params& params, int64_t triangles, double
   return RenderCost(params, triangles * eyes, pixels);
 }
 
-des::Time RenderCost::frame_time(des::RandomStream& stream) const {
+des::Time RenderCost::frame_time(des::RandomStream& stream) {
+  if (replay_) return replay_->next(stream);
   if (!varies()) return nominal_;
   double factor = 1.0;
   if (params_.variation == Variation::Uniform)

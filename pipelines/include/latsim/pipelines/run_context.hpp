@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -56,6 +57,13 @@ struct RunContext {
   bool stereo = false;
   results::Timeline* timeline = nullptr;       ///< stage timeline, when the pipeline keeps one
   results::FrameCapture* frames = nullptr;     ///< frame capture, only when the scenario asks for frames
+  std::optional<std::string> ended_early;      ///< why end_run_early() was called, if it was
+
+  /// Ends the run at now(): the simulator stops after the running event, the
+  /// figures cover the time simulated until then, and `why` becomes a
+  /// warning (a measured cost that must stop at its end has run out). Only
+  /// the first call counts.
+  void end_run_early(std::string why);
 
   des::RandomStream stream(std::string_view name) const { return des::RandomStream(seed, name, replication); }
   /// A clock of the pipeline's own (its host application loop): phase fixed

@@ -119,6 +119,9 @@ class LatencyRecorder : public display::ScanoutListener {
   std::vector<std::string> headline() const;
   /// The headline of a pipeline that declares none.
   static std::vector<std::string> default_headline();
+  /// What a measured cost read and played (summary.json's "captures").
+  void add_capture(nlohmann::json entry) { captures_.push_back(std::move(entry)); }
+  const nlohmann::json& captures() const { return captures_; }
   /// Legal but doubtful: reported on stderr and in summary.json's "warnings".
   void warn(std::string text) { table_.warn(std::move(text)); }
   const std::vector<std::string>& warnings() const { return table_.warnings(); }
@@ -263,6 +266,7 @@ class LatencyRecorder : public display::ScanoutListener {
   PhaseSplit reg_split_{};
   PhaseSplit prediction_split_{};
   std::map<std::string, int64_t> counters_;
+  nlohmann::json captures_ = nlohmann::json::array();
   int64_t* fields_count_ = nullptr;        // counters_["fields"] once counted
   int64_t* images_shown_count_ = nullptr;  // counters_["images_shown"] once counted
   // The runs of the span figures, gathered across spans; closed whenever the
