@@ -185,6 +185,7 @@ int command_sweep(int argc, char** argv) {
                    ->check(CLI::Range(1u, 4096u));
   app.add_flag("--samples", request.write_samples, "Also write each run's samples.csv");
   app.add_flag("--ledger", request.write_ledger, "Also write each run's frames.csv ledger");
+  app.add_flag("--presentmon", request.write_presentmon, "Also write each run's presentmon.csv");
   auto* shard = app.add_option("--shard", request.shard,
                                "Run only the runs whose plan position modulo N is I (I/N, from 0), or 'env': the "
                                "array task of Slurm or Grid Engine; tables are left to --collect");

@@ -174,6 +174,7 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
   }
   LatencyRecorder* rec = run.recorder.get();
   rec->set_timeline(timeline);
+  rec->set_frame_recorder(&run.app_frames);
   const bool line = run.transport->occupancy() > des::Time::zero();
   run.host->on_carried([rec, line](const tracker::TrackerSample& s, const tracker::Carriage& c) {
     rec->record_carried(s, c, line);

@@ -119,9 +119,11 @@ RunSettings run_settings(const SweepRequest& request) {
   RunSettings settings;
   settings.write_samples = request.write_samples;
   settings.write_ledger = request.write_ledger;
+  settings.write_presentmon = request.write_presentmon;
   settings.command_line = {"latsim", "sweep", request.sweep_file, "--out", request.out_dir};
   if (request.write_samples) settings.command_line.push_back("--samples");
   if (request.write_ledger) settings.command_line.push_back("--ledger");
+  if (request.write_presentmon) settings.command_line.push_back("--presentmon");
   settings.stop = request.stop;
   return settings;
 }

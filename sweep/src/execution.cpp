@@ -112,6 +112,7 @@ RunAttempt RunExecutor::run_claimed(const RunTask& task) {
   options.staging_dir = store_.staging_dir(task.run_id);
   options.write_samples = settings_.write_samples;
   options.write_ledger = settings_.write_ledger;
+  options.write_presentmon = settings_.write_presentmon;
   options.command_line = settings_.command_line;
   options.stop = settings_.stop;
   try {

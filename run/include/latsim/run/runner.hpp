@@ -40,6 +40,7 @@ struct RunOptions {
   std::filesystem::path staging_dir;
   bool write_samples = false;             ///< samples.csv
   bool write_ledger = false;              ///< frames.csv, the per-frame ledger
+  bool write_presentmon = true;           ///< presentmon.csv, the application's frames (pipelines that have them)
   bool profile = false;                   ///< wall time per event kind (two clock reads per event)
   std::vector<std::string> command_line;  ///< recorded in the summary
   /// When the command began (reading the scenario included); command_wall_s

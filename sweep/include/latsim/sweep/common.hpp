@@ -20,6 +20,7 @@ struct SweepRequest {
   unsigned jobs = 1;
   bool write_samples = false;
   bool write_ledger = false;
+  bool write_presentmon = false;  ///< each run's presentmon.csv (off: a sweep keeps figures)
   std::string shard;          ///< --shard text: "I/N" or "env"; empty: the whole plan
   bool collect = false;       ///< --collect: run nothing, write the tables
   bool check = false;         ///< --check: run nothing, write nothing: check every point

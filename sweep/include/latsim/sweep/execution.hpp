@@ -55,6 +55,7 @@ struct RunAttempt {
 struct RunSettings {
   bool write_samples = false;
   bool write_ledger = false;
+  bool write_presentmon = false;
   std::vector<std::string> command_line;  ///< recorded in each summary: the same for every backend
   const std::atomic<bool>* stop = nullptr;  ///< set by a stop signal: runs end at their next event
 };
