@@ -9,34 +9,48 @@
 
 namespace latsim::des {
 
-std::string read_input_file(const std::filesystem::path& file, size_t max_bytes) {
+InputFile::InputFile(const std::filesystem::path& file, size_t max_bytes) {
   // O_NONBLOCK: opening a FIFO nobody writes to must not hang; it is refused below anyway.
-  const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-  if (fd < 0) throw InputFileError(std::strerror(errno));
+  fd_ = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd_ < 0) throw InputFileError(std::strerror(errno));
   struct stat st {};
-  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-    ::close(fd);
+  if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd_);
     throw InputFileError(S_ISDIR(st.st_mode) ? "it is a directory" : "it is not a regular file (a device, pipe or socket)");
   }
   if (static_cast<uint64_t>(st.st_size) > max_bytes) {
-    ::close(fd);
+    ::close(fd_);
     throw InputFileError("it is too large (" + std::to_string(st.st_size) + " bytes; at most " +
                          std::to_string(max_bytes) + ")");
   }
-  std::string text(static_cast<size_t>(st.st_size), '\0');
+  size_bytes_ = static_cast<uint64_t>(st.st_size);
+}
+
+InputFile::~InputFile() { ::close(fd_); }
+
+size_t InputFile::read(char* buf, size_t n) {
+  // Never past the size checked at opening: a file that grows is read as it was.
+  const uint64_t left = size_bytes_ - consumed_;
+  if (n > left) n = static_cast<size_t>(left);
+  if (n == 0) return 0;
+  for (;;) {
+    const ssize_t got = ::read(fd_, buf, n);
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) throw InputFileError(std::strerror(errno));
+    consumed_ += static_cast<uint64_t>(got);
+    return static_cast<size_t>(got);
+  }
+}
+
+std::string read_input_file(const std::filesystem::path& file, size_t max_bytes) {
+  InputFile in(file, max_bytes);
+  std::string text(static_cast<size_t>(in.size_bytes()), '\0');
   size_t got = 0;
   while (got < text.size()) {
-    const ssize_t n = ::read(fd, text.data() + got, text.size() - got);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) {
-      const int e = errno;
-      ::close(fd);
-      throw InputFileError(std::strerror(e));
-    }
+    const size_t n = in.read(text.data() + got, text.size() - got);
     if (n == 0) break;  // shrank while being read: take what is there
-    got += static_cast<size_t>(n);
+    got += n;
   }
-  ::close(fd);
   text.resize(got);
   return text;
 }

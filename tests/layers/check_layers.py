@@ -15,14 +15,15 @@ import sys
 
 ROOT = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else ".")
 
-MODELS = {"tracker", "display", "renderer", "pxpl5", "arp"}
+MODELS = {"tracker", "display", "renderer", "pxpl5", "arp", "capture"}
 # Library -> the latsim libraries it may include (its own included).
 ALLOWED = {
     "des": {"des"},
     "scenario": {"des", "scenario"},
     "tracker": {"des", "tracker"},
     "display": {"des", "display"},
-    "renderer": {"des", "tracker", "renderer"},
+    "capture": {"des", "capture"},
+    "renderer": {"des", "tracker", "capture", "renderer"},
     "pxpl5": {"des", "tracker", "pxpl5"},
     "arp": {"des", "tracker", "renderer", "arp"},
     "params": {"des", "scenario", "params"} | MODELS,

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -16,6 +17,27 @@ namespace latsim::des {
 class InputFileError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+/// A regular file of at most a stated size, opened for reading piece by
+/// piece (a capture streamed row by row); the checks of read_input_file.
+class InputFile {
+ public:
+  /// Opens `file` without blocking; throws InputFileError as read_input_file does.
+  InputFile(const std::filesystem::path& file, size_t max_bytes);
+  ~InputFile();
+  InputFile(const InputFile&) = delete;
+  InputFile& operator=(const InputFile&) = delete;
+  /// Reads up to `n` bytes into `buf`, never past the size the file had when
+  /// opened; 0 at the end. Throws InputFileError on a read error.
+  size_t read(char* buf, size_t n);
+  /// The size the file had when it was opened.
+  uint64_t size_bytes() const { return size_bytes_; }
+
+ private:
+  int fd_ = -1;
+  uint64_t size_bytes_ = 0;
+  uint64_t consumed_ = 0;
 };
 
 /// The whole content of regular file `file` of at most `max_bytes`. Opening

@@ -1,0 +1,68 @@
+#include "latsim/capture/capture.hpp"
+
+#include <algorithm>
+#include <cctype>
+
+
+namespace latsim::capture {
+
+namespace {
+
+// "file:line: reason", or "file: reason" for a problem of the whole file (line 0).
+std::string located_in(const std::filesystem::path& file, int64_t line, const std::string& reason) {
+  std::string text = file.string();
+  if (line > 0) text.append(":").append(std::to_string(line));
+  return text.append(": ").append(reason);
+}
+
+bool has(const std::vector<std::string>& header, const char* name) {
+  return std::find(header.begin(), header.end(), name) != header.end();
+}
+
+}  // namespace
+
+CaptureError::CaptureError(const std::filesystem::path& file, int64_t line, const std::string& reason)
+    : std::runtime_error(located_in(file, line, reason)), line_(line) {}
+
+const char* generation_name(Generation g) {
+  switch (g) {
+    case Generation::current: return "current";
+    case Generation::v1: return "v1";
+    case Generation::v2: return "v2";
+    case Generation::generic: return "generic";
+  }
+  return "generic";
+}
+
+Generation detect_generation(const std::vector<std::string>& header) {
+  if (has(header, "MsBetweenPresents") || has(header, "MsCPUBusy")) return Generation::current;
+  if (has(header, "TimeInSeconds") || has(header, "msBetweenPresents")) return Generation::v1;
+  if (has(header, "CPUBusy") || has(header, "CPUStartQPC")) return Generation::v2;
+  return Generation::generic;
+}
+
+bool is_display_column(const std::string& name) {
+  std::string lower(name);
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  return lower.find("display") != std::string::npos;
+}
+
+des::Time CaptureColumn::min() const { return *std::min_element(values.begin(), values.end()); }
+des::Time CaptureColumn::max() const { return *std::max_element(values.begin(), values.end()); }
+
+des::Time CaptureColumn::mean() const {
+  // Summed as 128-bit integers: a million values of a second each do not overflow.
+  __int128 sum = 0;
+  for (des::Time v : values) sum += v.ticks();
+  const auto n = static_cast<__int128>(values.size());
+  const __int128 half = sum >= 0 ? n / 2 : -(n / 2);
+  return des::Time::ps(static_cast<int64_t>((sum + half) / n));
+}
+
+const CaptureColumn& Capture::column(const std::string& name) const {
+  for (const CaptureColumn& c : columns)
+    if (c.name == name) return c;
+  throw std::out_of_range("no column " + name + " was read from " + source.string());
+}
+
+}  // namespace latsim::capture

@@ -1,0 +1,336 @@
+// read_capture: one pass over the file, keeping only the asked-for columns of
+// the rows of the chosen process.
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <string_view>
+
+#include "csv_row.hpp"
+#include "latsim/capture/capture.hpp"
+#include "latsim/des/input_file.hpp"
+
+namespace latsim::capture {
+
+namespace {
+
+constexpr size_t kChunkBytes = size_t{1} << 20;
+constexpr size_t kMaxLineBytes = size_t{1} << 20;
+// Past this a list of names in a message is cut short: an error is one line.
+constexpr size_t kListBudgetChars = 110;
+
+/// Names of one quantity across the generations, for the hint of a missing column.
+constexpr std::array<std::array<std::string_view, 3>, 14> kAliases{{
+    {"MsBetweenPresents", "msBetweenPresents", ""},
+    {"MsBetweenAppStart", "FrameTime", ""},
+    {"MsCPUBusy", "CPUBusy", ""},
+    {"MsCPUWait", "CPUWait", ""},
+    {"MsGPULatency", "GPULatency", ""},
+    {"MsGPUTime", "GPUTime", ""},
+    {"MsGPUBusy", "GPUBusy", "msGPUActive"},
+    {"MsGPUWait", "GPUWait", ""},
+    {"MsVideoBusy", "VideoBusy", "msGPUVideoActive"},
+    {"MsUntilDisplayed", "msUntilDisplayed", ""},
+    {"MsBetweenDisplayChange", "msBetweenDisplayChange", ""},
+    {"MsInPresentAPI", "msInPresentAPI", ""},
+    {"MsRenderPresentLatency", "msUntilRenderComplete", ""},
+    {"MsFlipDelay", "msFlipDelay", ""},
+}};
+
+bool iequal(std::string_view a, std::string_view b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+           return (x | 0x20) == (y | 0x20) && ((x >= 'A' && x <= 'Z') || (x >= 'a' && x <= 'z') || x == y);
+         });
+}
+
+// A value as a message shows it: printable, not too long.
+std::string shown(std::string_view v) {
+  std::string out;
+  for (char c : v.substr(0, 40)) out.push_back(static_cast<unsigned char>(c) < 0x20 || c == 0x7f ? '?' : c);
+  if (v.size() > 40) out += "...";
+  return out;
+}
+
+// "a, b, c ... (N in all)" within the list budget.
+std::string name_list(const std::vector<std::string>& names) {
+  std::string out;
+  size_t shown_count = 0;
+  for (const std::string& n : names) {
+    if (out.size() + n.size() > kListBudgetChars) break;
+    out += (shown_count ? ", " : "") + shown(n);
+    ++shown_count;
+  }
+  if (shown_count < names.size()) out += ", ... (" + std::to_string(names.size()) + " in all)";
+  return out;
+}
+
+/// The file read line by line from chunks, with line numbers.
+class LineSource {
+ public:
+  LineSource(const std::filesystem::path& file) : file_(file), in_(open(file)) { buffer_.reserve(kChunkBytes); }
+
+  /// The next line without its line end (false at the end of the file).
+  bool next(std::string_view& line) {
+    for (;;) {
+      const size_t nl = buffer_.find('\n', pos_);
+      if (nl != std::string::npos) {
+        line = std::string_view(buffer_).substr(pos_, nl - pos_);
+        pos_ = nl + 1;
+        return finish(line);
+      }
+      if (buffer_.size() - pos_ > kMaxLineBytes)
+        throw CaptureError(file_, number_ + 1, "a line longer than " + std::to_string(kMaxLineBytes) + " bytes");
+      buffer_.erase(0, pos_);
+      pos_ = 0;
+      const size_t had = buffer_.size();
+      buffer_.resize(had + kChunkBytes);
+      size_t got = 0;
+      try {
+        got = in_.read(buffer_.data() + had, kChunkBytes);
+      } catch (const des::InputFileError& e) {
+        throw CaptureError(file_, 0, std::string("cannot read the capture file: ") + e.what());
+      }
+      buffer_.resize(had + got);
+      if (got == 0) {
+        if (buffer_.empty()) return false;
+        line = buffer_;  // a last line without a line end
+        pos_ = buffer_.size();
+        return finish(line);
+      }
+    }
+  }
+  int64_t number() const { return number_; }
+
+ private:
+  static des::InputFile open(const std::filesystem::path& file) {
+    try {
+      return des::InputFile(file, kMaxCaptureBytes);
+    } catch (const des::InputFileError& e) {
+      throw CaptureError(file, 0, std::string("cannot read the capture file: ") + e.what());
+    }
+  }
+  bool finish(std::string_view& line) {
+    ++number_;
+    if (number_ == 1 && line.substr(0, 3) == "\xEF\xBB\xBF") line.remove_prefix(3);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    return true;
+  }
+
+  const std::filesystem::path& file_;
+  des::InputFile in_;
+  std::string buffer_;
+  size_t pos_ = 0;
+  int64_t number_ = 0;
+};
+
+/// A process as the capture names it, with its rows.
+struct ProcessRows {
+  std::string application;
+  std::string process_id;
+  int64_t rows = 0;
+};
+
+/// A column's smallest and largest values so far, and their lines.
+struct Extremes {
+  des::Time min, max;
+  int64_t min_line = 0, max_line = 0;
+};
+
+/// Where the columns of interest are in the header.
+struct Layout {
+  std::vector<size_t> wanted;  // by request order
+  std::optional<size_t> application, process_id, dropped;
+  size_t needed = 0;  // fields a row must have
+};
+
+std::optional<size_t> find(const std::vector<std::string>& header, std::string_view name) {
+  const auto it = std::find(header.begin(), header.end(), name);
+  if (it == header.end()) return std::nullopt;
+  return static_cast<size_t>(it - header.begin());
+}
+
+std::string missing_column(const std::vector<std::string>& header, Generation g, const std::string& name) {
+  std::string text = "no column \"" + shown(name) + "\" in this " + generation_name(g) + " capture";
+  for (const auto& group : kAliases)
+    if (std::find(group.begin(), group.end(), name) != group.end())
+      for (std::string_view alias : group)
+        if (!alias.empty() && alias != name && find(header, alias))
+          text += " (here it is \"" + std::string(alias) + "\")";
+  return text + "; its columns: " + name_list(header);
+}
+
+/// The reading itself: the header, then every row.
+class Reader {
+ public:
+  Reader(const std::filesystem::path& file, const CaptureRequest& request) : file_(file), request_(request), lines_(file) {}
+
+  Capture read() {
+    capture_.source = file_;
+    read_header();
+    std::string_view line;
+    while (lines_.next(line)) {
+      if (blank(line)) continue;
+      if (!row_.split(line)) fail("an unterminated quote");
+      ++capture_.rows_read;
+      take_row();
+    }
+    return finish();
+  }
+
+ private:
+  static bool blank(std::string_view line) { return line.find_first_not_of(" \t\r") == std::string_view::npos; }
+  [[noreturn]] void fail(const std::string& reason) const { throw CaptureError(file_, lines_.number(), reason); }
+
+  void read_header() {
+    std::string_view line;
+    do {
+      if (!lines_.next(line)) throw CaptureError(file_, lines_.number(), "empty capture file: no header line");
+    } while (blank(line));
+    if (!row_.split(line)) fail("an unterminated quote in the header");
+    for (std::string_view f : row_.fields()) header_.emplace_back(f);
+    capture_.generation = detect_generation(header_);
+    for (const std::string& name : request_.columns) {
+      const auto at = find(header_, name);
+      if (!at) fail(missing_column(header_, capture_.generation, name));
+      layout_.wanted.push_back(*at);
+      layout_.needed = std::max(layout_.needed, *at + 1);
+      capture_.columns.push_back(CaptureColumn{.name = name});
+      display_.push_back(is_display_column(name));
+      extremes_.emplace_back();
+    }
+    layout_.application = find(header_, "Application");
+    layout_.process_id = find(header_, "ProcessID");
+    if (capture_.generation == Generation::v1) layout_.dropped = find(header_, "Dropped");
+    const ProcessSelect& sel = request_.select;
+    if (!sel.application.empty() && !layout_.application)
+      fail("an application is chosen but the capture has no Application column");
+    if (sel.process_id && !layout_.process_id) fail("a process_id is chosen but the capture has no ProcessID column");
+    for (const auto& c : {layout_.application, layout_.process_id, layout_.dropped})
+      if (c) layout_.needed = std::max(layout_.needed, *c + 1);
+  }
+
+  // Whether this row belongs to the chosen process; counts every process seen.
+  bool chosen() {
+    const std::string_view app = layout_.application ? row_[*layout_.application] : std::string_view();
+    const std::string_view pid = layout_.process_id ? row_[*layout_.process_id] : std::string_view();
+    const ProcessSelect& sel = request_.select;
+    if (!sel.application.empty() && !iequal(app, sel.application)) return other();
+    if (sel.process_id) {
+      int64_t id = 0;
+      const auto [end, ec] = std::from_chars(pid.data(), pid.data() + pid.size(), id);
+      if (ec != std::errc{} || end != pid.data() + pid.size() || id != *sel.process_id) return other();
+    }
+    // The matching rows must be of one process.
+    if (processes_.size() == 1 && app == first_app_ && pid == first_pid_) {
+      ++processes_.begin()->second.rows;
+      return true;
+    }
+    std::string key = std::string(app) + '\n' + std::string(pid);
+    auto [it, added] = processes_.try_emplace(std::move(key), ProcessRows{std::string(app), std::string(pid), 0});
+    ++it->second.rows;
+    if (added && processes_.size() == 1) {
+      first_app_ = app;
+      first_pid_ = pid;
+    }
+    return processes_.size() == 1;
+  }
+  bool other() {
+    ++capture_.rows_of_other_processes;
+    return false;
+  }
+
+  void take_row() {
+    if (row_.size() < layout_.needed)
+      fail("a row of " + std::to_string(row_.size()) + " fields; the columns read need " + std::to_string(layout_.needed));
+    if (!chosen()) return;
+    const bool dropped = layout_.dropped && row_[*layout_.dropped] == "1";
+    for (size_t k = 0; k < layout_.wanted.size(); ++k) {
+      CaptureColumn& col = capture_.columns[k];
+      const std::string_view cell = row_[layout_.wanted[k]];
+      const bool unknown = cell.empty() || cell == "NA";
+      if (display_[k] && (dropped || unknown)) {
+        ++col.skipped_not_displayed;
+        continue;
+      }
+      if (unknown) {
+        ++col.skipped_na;
+        continue;
+      }
+      add(col, layout_.wanted[k], cell);
+    }
+  }
+
+  void add(CaptureColumn& col, size_t index, std::string_view cell) {
+    double ms = 0.0;
+    const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), ms);
+    const std::string where = "column " + std::to_string(index + 1) + " (" + col.name + ") ";
+    if (ec != std::errc{} || end != cell.data() + cell.size())
+      fail(where + "holds '" + shown(cell) + "', not a number of milliseconds");
+    if (!std::isfinite(ms) || std::fabs(ms) > 1e9) fail(where + "holds '" + shown(cell) + "', out of range (|ms| <= 1e9)");
+    const des::Time v = des::Time::from_ms(ms);
+    Extremes& x = extremes_[static_cast<size_t>(&col - capture_.columns.data())];
+    if (col.values.empty() || v < x.min) x = Extremes{v, x.max, lines_.number(), x.max_line};
+    if (col.values.empty() || v > x.max) x = Extremes{x.min, v, x.min_line, lines_.number()};
+    col.values.push_back(v);
+  }
+
+  Capture finish() {
+    if (processes_.size() > 1) fail_several();
+    if (processes_.empty()) fail_none();
+    const ProcessRows& p = processes_.begin()->second;
+    capture_.application = p.application;
+    if (layout_.process_id) capture_.process_id = std::stoll(p.process_id);
+    capture_.rows_selected = p.rows;
+    for (size_t k = 0; k < capture_.columns.size(); ++k) {
+      CaptureColumn& col = capture_.columns[k];
+      if (col.values.empty())
+        throw CaptureError(file_, 0,
+                           "column " + col.name + " has no values for " + who() + " (" +
+                               std::to_string(col.skipped_na) + " NA, " + std::to_string(col.skipped_not_displayed) +
+                               " not displayed)");
+      col.min_line = extremes_[k].min_line;
+      col.max_line = extremes_[k].max_line;
+    }
+    return std::move(capture_);
+  }
+
+  std::string who() const {
+    const ProcessSelect& sel = request_.select;
+    if (sel.application.empty() && !sel.process_id) return "the capture";
+    std::string text = sel.application.empty() ? "process" : shown(sel.application);
+    if (sel.process_id) text += " " + std::to_string(*sel.process_id);
+    return text;
+  }
+
+  [[noreturn]] void fail_several() const {
+    std::vector<std::string> names;
+    for (const auto& [key, p] : processes_) names.push_back(shown(p.application) + " " + shown(p.process_id));
+    throw CaptureError(file_, 0,
+                       std::to_string(processes_.size()) + " processes match " + who() +
+                           ": choose one with application and process_id: " + name_list(names));
+  }
+  [[noreturn]] void fail_none() const {
+    throw CaptureError(file_, 0, "no rows of " + who() + " among " + std::to_string(capture_.rows_read) + " rows");
+  }
+
+  const std::filesystem::path& file_;
+  const CaptureRequest& request_;
+  LineSource lines_;
+  CsvRow row_;
+  std::vector<std::string> header_;
+  Layout layout_;
+  std::vector<bool> display_;
+  std::map<std::string, ProcessRows> processes_;
+  std::string first_app_, first_pid_;  // of the first process seen (the fast path)
+  std::vector<Extremes> extremes_;  // by column
+  Capture capture_;
+};
+
+}  // namespace
+
+Capture read_capture(const std::filesystem::path& file, const CaptureRequest& request) {
+  return Reader(file, request).read();
+}
+
+}  // namespace latsim::capture
