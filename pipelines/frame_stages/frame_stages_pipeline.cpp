@@ -67,7 +67,10 @@ void FrameStagesPipeline::start(RunContext& ctx) {
   ctx.recorder.expects_images();
   // With a compositor every frame waits for a warp at a retrace (or strip).
   const bool synced = spec_.vsync || spec_.warp;
-  ctx.app_frames.declare({.missed = true, .rate = true}, {.sync_interval = synced ? 1 : 0, .allows_tearing = !synced});
+  // Beam racing renders every strip itself: the application's frames are never shown.
+  const bool shown = !spec_.warp || spec_.warp->mode != WarpSpec::Mode::render;
+  ctx.app_frames.declare({.missed = true, .rate = true},
+                         {.sync_interval = synced ? 1 : 0, .allows_tearing = !synced, .shown = shown});
   for (const ProcessorSpec& p : spec_.processors) processors_.push_back(std::make_unique<des::Resource>(ctx.sim, 1, p.name));
   retraces_ = std::make_unique<Progress>(ctx.sim);
   poses_ = std::make_unique<PoseSampler>(ctx.host);

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cstring>
+#include <limits>
 #include <string_view>
 
 namespace latsim::results {
@@ -93,7 +94,8 @@ PresentMonLog::Pending& PresentMonLog::pending(int64_t frame) {
 void PresentMonLog::completed(const FrameTimes& f, RunFiles& files) {
   if (f.frame < base_) return;
   pending(f.frame).times = f;
-  flush(files, newest_shown_);
+  // Frames that are never shown are final once complete.
+  flush(files, presents_.shown ? newest_shown_ : std::numeric_limits<int64_t>::max());
 }
 
 void PresentMonLog::shown(int64_t frame, des::Time photon, RunFiles& files) {
@@ -117,7 +119,8 @@ void PresentMonLog::flush(RunFiles& files, int64_t below_frame) {
 
 void PresentMonLog::finish(RunFiles& files) {
   // The last frame shown is final too; frames never completed have no row.
-  while (!pending_.empty() && base_ <= newest_shown_) {
+  const int64_t last = presents_.shown ? newest_shown_ : std::numeric_limits<int64_t>::max();
+  while (!pending_.empty() && base_ <= last) {
     if (pending_.front().times) write_row(*pending_.front().times, pending_.front().photon, files);
     pending_.pop_front();
     ++base_;

@@ -143,3 +143,29 @@ TEST_CASE("presentmon.csv: a run with no frame shown writes no file") {
   CHECK(fs::exists(dir.path / "summary.json"));
   CHECK_FALSE(fs::exists(dir.path / "presentmon.csv"));
 }
+
+TEST_CASE("presentmon.csv: a pipeline that shows none of its frames writes each once complete, NA for display") {
+  Dir dir;
+  {
+    RunFiles files(dir.path);
+    PresentMonLog log("frame_stages", {.sync_interval = 1, .allows_tearing = false, .shown = false});
+    log.completed(frame(1, 20), files);
+    CHECK(log.rows() == 0);  // frame 0 comes first
+    log.completed(frame(0, 0), files);
+    CHECK(log.rows() == 2);
+    log.completed(frame(3, 60), files);  // frame 2 never completes: 3 waits for it until the end
+    CHECK(log.rows() == 2);
+    log.finish(files);
+    CHECK(log.rows() == 3);
+    files.commit();
+  }
+  const auto rows = lines_of(dir.path / "presentmon.csv");
+  REQUIRE(rows.size() == 4);
+  for (size_t i = 1; i < rows.size(); ++i) {
+    CHECK(cells(rows[i])[9] == "NA");
+    CHECK(cells(rows[i])[11] == "NA");
+  }
+  CHECK(cells(rows[3])[18] == "3");
+  // Frame 3's present (63 ms) follows frame 1's (23 ms) in the file: 40 ms between them.
+  CHECK(cells(rows[3])[8] == "40.000000000");
+}

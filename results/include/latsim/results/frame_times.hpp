@@ -26,6 +26,7 @@ struct FrameTimes {
 struct PresentFacts {
   int sync_interval = 1;        ///< refreshes a frame waits for (1: vsync; 0: shown at once)
   bool allows_tearing = false;  ///< a frame may replace another in the middle of a scan
+  bool shown = true;            ///< false: no frame is ever shown (a compositor draws its own images)
 };
 
 }  // namespace latsim::results

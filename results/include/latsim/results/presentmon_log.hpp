@@ -19,7 +19,8 @@ namespace latsim::results {
 /// "presentmon.csv", defines each). A row is written once it is final: the
 /// frame is complete and either it was shown and a later frame has been
 /// shown (no earlier photon of it can follow), or a later frame was shown
-/// first (it never will be: NA in the display columns). Times in
+/// first (it never will be: NA in the display columns), or the pipeline shows
+/// none of its frames (NA too). Times in
 /// milliseconds with nine decimals and seconds with twelve: exact to the
 /// picosecond, latsim's unit of time.
 class PresentMonLog {
