@@ -27,6 +27,7 @@ int command_optimise(int argc, char** argv);  ///< latsim optimise SCENARIO --va
 int command_sweep(int argc, char** argv);     ///< latsim sweep SWEEP.json --out DIR [-j N]
 int command_fidelity(int argc, char** argv);  ///< latsim fidelity SCENARIO --vary P=v1,v2 --metric NAME
 int command_report(int argc, char** argv);    ///< latsim report DIR
+int command_compare(int argc, char** argv);   ///< latsim compare CAPTURE RUN_DIR [--out DIR]
 int command_schema(int argc, char** argv);    ///< latsim schema [--format json-schema|markdown]
 
 }  // namespace latsim::app

@@ -22,6 +22,7 @@ void print_usage(std::FILE* out) {
       "  optimise SCENARIO.json  the setting of a pointer that minimises a figure within bounds on others\n"
       "  fidelity SCENARIO.json  what each step of simulation fidelity changes and costs\n"
       "  report DIR              tables and plots from a run or a sweep\n"
+      "  compare CAPTURE RUN     a PresentMon capture beside a run: statistics, KS distances, CDFs\n"
       "  schema                  every scenario key: JSON Schema or Markdown reference\n"
       "\n"
       "exit codes: 0 success, 1 run failure, 2 bad input (nothing written)\n",
@@ -53,6 +54,7 @@ int main(int argc, char** argv) {
   if (cmd == "optimise" || cmd == "optimize") return command_optimise(argc - 1, argv + 1);
   if (cmd == "fidelity") return command_fidelity(argc - 1, argv + 1);
   if (cmd == "report") return command_report(argc - 1, argv + 1);
+  if (cmd == "compare") return command_compare(argc - 1, argv + 1);
   if (cmd == "schema") return command_schema(argc - 1, argv + 1);
   std::fprintf(stderr, "latsim: unknown command \"%s\" (try latsim --help)\n", cmd.c_str());
   return kExitBadInput;

@@ -81,7 +81,7 @@ int command_run(int argc, char** argv) {
   std::vector<std::string> sets;
   uint64_t seed = 0;
   uint64_t replication = 0;
-  bool samples = false, ledger = false, quiet = false, progress = false, profile = false;
+  bool samples = false, ledger = false, quiet = false, progress = false, profile = false, no_presentmon = false;
   app.add_option("scenario", file, "scenario JSON file")->required();
   app.add_option("--out,-o", out_dir, "output directory")->capture_default_str();
   auto* seed_opt = app.add_option("--seed", seed, "run seed (overrides the scenario's /seed)");
@@ -89,6 +89,8 @@ int command_run(int argc, char** argv) {
   app.add_option("--set", sets, "override a value: /json/pointer=value (repeatable)");
   app.add_flag("--samples", samples, "also write samples.csv (every recorded sample)");
   app.add_flag("--ledger", ledger, "also write frames.csv (every stage timestamp of every frame)");
+  app.add_flag("--no-presentmon", no_presentmon,
+               "do not write presentmon.csv (the application's frames as a PresentMon capture)");
   app.add_flag("--profile", profile, "also measure wall time per model (summary.json models.*.wall_s)");
   app.add_flag("--quiet,-q", quiet, "print nothing on success");
   app.add_flag("--progress", progress,
@@ -109,6 +111,7 @@ int command_run(int argc, char** argv) {
   opt.out_dir = out_dir;
   opt.write_samples = samples;
   opt.write_ledger = ledger;
+  opt.write_presentmon = !no_presentmon;
   opt.profile = profile;
   opt.command_line = command_line_of(argc, argv);
   opt.stop = &signals.flag();

@@ -191,6 +191,7 @@ int command_sweep(int argc, char** argv) {
                  "Which runs also keep their traces (timeline, frames, ledger, samples): figures (none; the default "
                  "unless the sweep file's \"keep\" says otherwise), first (replication 0 of each point), all, or "
                  "runs=I,J,... (plan positions from 0)");
+  app.add_flag("--presentmon", request.write_presentmon, "Also write presentmon.csv for the runs --keep keeps in full");
   auto* shard = app.add_option("--shard", request.shard,
                                "Run only the runs whose plan position modulo N is I (I/N, from 0), or 'env': the "
                                "array task of Slurm or Grid Engine; tables are left to --collect");

@@ -36,7 +36,7 @@ class DoubleBufferPipeline final : public Pipeline {
     stream_ = std::make_unique<des::RandomStream>(ctx.stream("renderer"));
     const des::KindId kind_frame = ctx.sim.kind("renderer.frame");
     ctx.recorder.expects_images();
-    ctx.app_frames.declare({});
+    ctx.app_frames.declare({}, {.sync_interval = p_.vsync ? 1 : 0, .allows_tearing = !p_.vsync});
     if (p_.vsync) ctx.display.on_retrace([this](int64_t, des::Time now) { retrace(now); });
     ctx.sim.start(renderer(), kind_frame);
   }
@@ -109,8 +109,9 @@ class DoubleBufferPipeline final : public Pipeline {
       if (p_.vsync) ctx_->recorder.image_due(start + des::Time::ps(1));
       // A measured cost with nothing left ends the run after this event.
       if (p_.cost.exhausted()) ctx_->end_run_early(params::trace_ran_out(p_.cost, ctx_->sim.now()));
-      co_await ctx_->sim.delay(p_.cost.frame_time(*stream_));
-      Done done = complete(*pose, start);
+      const des::Time render_time = p_.cost.frame_time(*stream_);
+      co_await ctx_->sim.delay(render_time);
+      Done done = complete(*pose, start, render_time);
       if (!p_.vsync) {
         // No vsync: the new image replaces the front buffer mid-scan.
         for (int eye = 0; eye < ctx_->display.eyes(); ++eye) ctx_->display.present_now(eye, done.ids[eye]);
@@ -135,7 +136,7 @@ class DoubleBufferPipeline final : public Pipeline {
     return ctx_->frame_photon_time(std::max(t.field_at_or_after(ready), first_free));
   }
 
-  Done complete(const tracker::PosePrediction& pose, des::Time start) {
+  Done complete(const tracker::PosePrediction& pose, des::Time start, des::Time render_time) {
     const des::Time now = ctx_->sim.now();
     Done done{{}, frame_, now};
     for (int eye = 0; eye < ctx_->display.eyes(); ++eye) {
@@ -143,8 +144,14 @@ class DoubleBufferPipeline final : public Pipeline {
       done.ids.push_back(ctx_->images.add(rec));
     }
     if (ctx_->timeline) ctx_->timeline->add("RENDER", frame_, -1, "renderer", start, now);
+    // One renderer draws and hands the image over when done: GPU work only.
+    results::FrameTimes times;
+    times.frame = frame_;
+    times.present = times.gpu_end = now;
+    times.gpu_start = start;
+    times.gpu_busy = render_time;
+    ctx_->app_frames.rendered(times);
     ++frame_;
-    ctx_->app_frames.rendered();
     return done;
   }
 

@@ -81,7 +81,12 @@ bool Compositor::on_begin(JobRecord& warp) {
 results::ImageRecord Compositor::warped_record(const JobRecord& warp, int64_t frame, const EyeImage* src, int eye) const {
   const tracker::PosePrediction& now_pose = *warp.last_pose;
   const des::Time now = ctx_.sim.now();
-  if (spec_.mode == Mode::render) return ctx_.image_record(warp.job, eye, now_pose, warp.last_sample_at, now);
+  if (spec_.mode == Mode::render) {
+    // Drawn anew by the compositor: no application frame is shown.
+    results::ImageRecord rec = ctx_.image_record(warp.job, eye, now_pose, warp.last_sample_at, now);
+    rec.shows_app_frame = false;
+    return rec;
+  }
   if (spec_.mode == Mode::positional) {
     results::ImageRecord rec = ctx_.image_record(frame, eye, now_pose, warp.last_sample_at, now);
     rec.warp = results::ImageRecord::Warp::positional;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "latsim/params/render_cost.hpp"
+#include "frame_stages/app_frame_times.hpp"
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/results/frame_recorder.hpp"
 #include "latsim/results/latency_recorder.hpp"
@@ -46,7 +47,7 @@ FlowHooks FrameStagesPipeline::app_hooks() {
   h.photon_for_completion = [this](des::Time t) { return app_photon_target(t); };
   h.image_buffers = image_buffers_.get();
   h.on_complete = [this](JobRecord& frame) {
-    ctx_->app_frames.rendered();
+    ctx_->app_frames.rendered(app_frame_times(frame, app_->last_run_first()));
     if (compositor_) compositor_->on_frame_complete(frame);
     else swap_chain_->on_frame_complete(frame);
   };
@@ -70,7 +71,12 @@ FlowHooks FrameStagesPipeline::warp_hooks() {
 void FrameStagesPipeline::start(RunContext& ctx) {
   ctx_ = &ctx;
   ctx.recorder.expects_images();
-  ctx.app_frames.declare({.missed = true, .rate = true});
+  // With a compositor every frame waits for a warp at a retrace (or strip).
+  const bool synced = spec_.vsync || spec_.warp;
+  // Beam racing renders every strip itself: the application's frames are never shown.
+  const bool shown = !spec_.warp || spec_.warp->mode != WarpSpec::Mode::render;
+  ctx.app_frames.declare({.missed = true, .rate = true},
+                         {.sync_interval = synced ? 1 : 0, .allows_tearing = !synced, .shown = shown});
   for (const ProcessorSpec& p : spec_.processors) processors_.push_back(std::make_unique<des::Resource>(ctx.sim, 1, p.name));
   retraces_ = std::make_unique<Progress>(ctx.sim);
   poses_ = std::make_unique<PoseSampler>(ctx.host);

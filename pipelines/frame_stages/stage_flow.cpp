@@ -108,6 +108,7 @@ JobRecord& StageFlow::new_record(int64_t j) {
   rec.start.assign(stages_.size(), des::Time::zero());
   rec.end.assign(stages_.size(), des::Time::zero());
   rec.released.assign(stages_.size(), des::Time::zero());
+  rec.cost.assign(stages_.size(), des::Time::zero());
   return rec;
 }
 
@@ -233,6 +234,7 @@ des::Process StageFlow::worker(int r, int lane) {
       // A measured cost with nothing left ends the run after this event.
       if (st.cost.exhausted() && env_.out_of_input) env_.out_of_input(st.cost);
       des::Time remaining = st.cost.frame_time(env_.stream);
+      record(j).cost[static_cast<size_t>(s)] = remaining;
       while (remaining > des::Time::zero()) {
         const des::Time step = slice > des::Time::zero() && slice < remaining ? slice : remaining;
         co_await sim.delay(step);

@@ -26,6 +26,7 @@ struct JobRecord {
   std::vector<des::Time> start, end;                   ///< per stage
   std::vector<des::Time> released;                     ///< per stage: when its start rule let it go (it may then
                                                        ///< still wait for its processor)
+  std::vector<des::Time> cost;                         ///< per stage: its work as drawn (preempted time excluded)
   std::optional<tracker::PosePrediction> first_pose;  ///< the first pose read (the simulation's input)
   std::optional<tracker::PosePrediction> last_pose;   ///< the last pose read (the view drawn)
   des::Time last_sample_at;                            ///< when the stage that read it began
@@ -89,6 +90,8 @@ class StageFlow {
   /// Jobs completed (or dropped) without a gap.
   PrefixProgress& completed() { return completed_; }
   const std::vector<StageSpec>& stages() const { return stages_; }
+  /// The first stage of the last run: the run that draws into the image (the GPU's).
+  int last_run_first() const { return runs_.back().first; }
   /// End of stage `last` when stage `first` starts at zero and every stage
   /// takes its nominal time (stream lags included, no waiting).
   des::Time nominal_span(int first, int last) const;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "latsim/results/frame_recorder.hpp"
 #include "latsim/results/timeline.hpp"
 
 namespace latsim::results {
@@ -312,6 +313,7 @@ void LatencyRecorder::first_shown(const ImageRecord& img, const display::Scanout
     add_prediction_error(tracker::PosePrediction{img.sample, img.predicted_for, img.head_pose},
                          !img.orientation_at_scanout, true);
   if (ledger_.on()) ledger_.image_shown(span.image_id, img, span, timing_);
+  if (app_frames_ && img.shows_app_frame) app_frames_->shown(img.frame, span.photon_time);
 }
 
 void LatencyRecorder::pixel_lit(const tracker::TrackerSample& s, des::Time photon) {

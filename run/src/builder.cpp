@@ -185,6 +185,7 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
       timeline->add("SCANOUT", field, -1, "display", scanout, timing->field_start(field + 1));
     });
   }
+  rec->set_frame_recorder(&run.app_frames);
   const bool line = run.transport->occupancy() > des::Time::zero();
   run.host->on_carried([rec, line](const tracker::TrackerSample& s, const tracker::Carriage& c) {
     rec->record_carried(s, c, line);

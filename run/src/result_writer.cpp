@@ -135,6 +135,7 @@ Json write_results(Run& run, const scenario::ScenarioDocument& doc, const RunOpt
   RunFiles& files = run.files;
   if (files.enabled()) {
     run.timeline.finish(files);
+    run.app_frames.finish_log(files);
     if (options.write_ledger) run.recorder->ledger().write(files);
     if (options.write_samples) run.recorder->sample_log().write(files);
     files.write_text("figures.json", dump(deterministic, options.compact_json));

@@ -85,6 +85,8 @@ Json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& optio
   run.files.prepare();
   // Written as it is produced: memory does not grow with the run's length.
   if (run.files.enabled()) run.timeline.stream_to(run.files);
+  if (run.files.enabled() && options.write_presentmon)
+    run.app_frames.log_presentmon(run.files, doc.resolved()["pipeline"].value("type", std::string("latsim")));
   // Per-event timing costs two clock reads per event: only when asked.
   run.sim.set_profiling(options.profile);
   run.sim.watch_stop_flag(options.stop);

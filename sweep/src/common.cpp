@@ -70,8 +70,9 @@ bool settle_keep(SweepRequest& request, const SweepPlan& plan) {
       return false;
     }
   }
-  if ((request.write_ledger || request.write_samples) && request.keep.kind == KeepPolicy::Kind::figures)
-    std::cerr << "sweep: warning: --ledger and --samples write only for the runs kept in full, and --keep "
+  if ((request.write_ledger || request.write_samples || request.write_presentmon) &&
+      request.keep.kind == KeepPolicy::Kind::figures)
+    std::cerr << "sweep: warning: --ledger, --samples and --presentmon write only for the runs kept in full, and --keep "
                  "figures keeps none: add --keep first, all or runs=I,J\n";
   return true;
 }
@@ -137,10 +138,12 @@ RunSettings run_settings(const SweepRequest& request) {
   RunSettings settings;
   settings.write_samples = request.write_samples;
   settings.write_ledger = request.write_ledger;
+  settings.write_presentmon = request.write_presentmon;
   settings.command_line = {"latsim", "sweep", request.sweep_file, "--out", request.out_dir};
   if (request.keep_given) settings.command_line.insert(settings.command_line.end(), {"--keep", request.keep_text});
   if (request.write_samples) settings.command_line.push_back("--samples");
   if (request.write_ledger) settings.command_line.push_back("--ledger");
+  if (request.write_presentmon) settings.command_line.push_back("--presentmon");
   settings.stop = request.stop;
   return settings;
 }

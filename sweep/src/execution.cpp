@@ -117,6 +117,7 @@ RunAttempt RunExecutor::run_claimed(const RunTask& task) {
   options.write_timeline = task.keep_traces;
   options.write_images = task.keep_traces;
   options.compact_json = true;
+  options.write_presentmon = settings_.write_presentmon && task.keep_traces;
   options.command_line = settings_.command_line;
   options.stop = settings_.stop;
   try {

@@ -42,6 +42,9 @@ struct ImageRecord {
   /// A later strip of a refresh's image (continuous time warp): its latency
   /// is its own, but it is not another image in the frame rate.
   bool continues_image = false;
+  /// `frame` numbers the application's frames (FrameRecorder's): false for
+  /// images a compositor renders itself (beam racing), numbered by warp.
+  bool shows_app_frame = true;
 };
 
 /// Newest tracker data available to the host at any instant.

@@ -26,6 +26,7 @@
 namespace latsim::results {
 
 class Timeline;
+class FrameRecorder;
 
 /// Where a probe point is drawn versus where it belongs, per lit field.
 struct ProbeSet {
@@ -66,6 +67,8 @@ class LatencyRecorder : public display::ScanoutListener {
 
   /// Where the host application stage (sample visible to render start) is logged.
   void set_timeline(Timeline* timeline) { timeline_ = timeline; }
+  /// Told the first photon of every image of an application frame (presentmon.csv).
+  void set_frame_recorder(FrameRecorder* frames) { app_frames_ = frames; }
 
   /// The images of the run, which pipelines register in and present by id.
   const ImageBook& images() const { return images_; }
@@ -229,6 +232,7 @@ class LatencyRecorder : public display::ScanoutListener {
   bool keep_samples_;
   const display::Persistence* persistence_ = nullptr;
   Timeline* timeline_ = nullptr;
+  FrameRecorder* app_frames_ = nullptr;
   std::vector<Pending> pending_;
   ProbeCache probe_cache_[2];
   // Per eye: the image and field of the last span recorded with the image's

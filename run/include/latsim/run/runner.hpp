@@ -49,6 +49,7 @@ struct RunOptions {
   /// figures.json and summary.json as one line of JSON rather than indented:
   /// less than half the bytes, for the thousands of runs of a sweep.
   bool compact_json = false;
+  bool write_presentmon = true;           ///< presentmon.csv, the application's frames (pipelines that have them)
   bool profile = false;                   ///< wall time per event kind (two clock reads per event)
   std::vector<std::string> command_line;  ///< recorded in the summary
   /// When the command began (reading the scenario included); command_wall_s

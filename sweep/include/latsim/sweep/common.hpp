@@ -23,6 +23,7 @@ struct SweepRequest {
   std::string keep_text;      ///< --keep text, when keep_given
   bool keep_given = false;    ///< false: the sweep file's "keep" key, else figures
   KeepPolicy keep;            ///< which runs keep their traces (settled by settle_keep)
+  bool write_presentmon = false;  ///< each run's presentmon.csv (off: a sweep keeps figures)
   std::string shard;          ///< --shard text: "I/N" or "env"; empty: the whole plan
   bool collect = false;       ///< --collect: run nothing, write the tables
   bool check = false;         ///< --check: run nothing, write nothing: check every point

@@ -58,6 +58,7 @@ struct RunAttempt {
 struct RunSettings {
   bool write_samples = false;  ///< samples.csv, for the runs that keep their traces
   bool write_ledger = false;   ///< frames.csv, for the runs that keep their traces
+  bool write_presentmon = false;  ///< presentmon.csv, for the runs that keep their traces
   std::vector<std::string> command_line;  ///< recorded in each summary: the same for every backend
   const std::atomic<bool>* stop = nullptr;  ///< set by a stop signal: runs end at their next event
 };

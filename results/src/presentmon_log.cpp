@@ -1,0 +1,179 @@
+#include "latsim/results/presentmon_log.hpp"
+
+#include <charconv>
+#include <cstring>
+#include <limits>
+#include <string_view>
+
+namespace latsim::results {
+
+namespace {
+
+constexpr int64_t kPsPerMs = 1'000'000'000;
+constexpr int64_t kPsPerS = 1'000'000'000'000;
+// Rows gather in memory and go to the file this many bytes at a time.
+constexpr size_t kBatchBytes = size_t{60} << 10;
+// The longest a row's cells after the application name can be: 13 numbers of
+// at most 20 digits, a sign, a point and 12 decimals each, the fixed text.
+constexpr size_t kRowBytes = 13 * 40 + 128;
+
+void put(char*& p, std::string_view s) {
+  std::memcpy(p, s.data(), s.size());
+  p += s.size();
+}
+
+void put_int(char*& p, int64_t v) { p = std::to_chars(p, p + 24, v).ptr; }
+
+// Exactly `digits` decimal digits of v (leading zeros kept), two at a time.
+void put_digits(char*& p, uint64_t v, int digits) {
+  static constexpr char kPairs[] =
+      "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+      "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+      "8081828384858687888990919293949596979899";
+  char* const end = p + digits;
+  char* q = end;
+  for (; digits >= 2; digits -= 2, v /= 100) {
+    q -= 2;
+    std::memcpy(q, kPairs + 2 * (v % 100), 2);
+  }
+  if (digits == 1) *--q = static_cast<char>('0' + v % 10);
+  p = end;
+}
+
+// ticks / PerUnit as a decimal with Digits digits after the point, from
+// integers: exact, and the same bytes everywhere.
+template <int64_t PerUnit, int Digits>
+void put_fixed(char*& p, int64_t ticks) {
+  const uint64_t mag = ticks < 0 ? uint64_t{0} - static_cast<uint64_t>(ticks) : static_cast<uint64_t>(ticks);
+  if (ticks < 0) *p++ = '-';
+  p = std::to_chars(p, p + 24, mag / static_cast<uint64_t>(PerUnit)).ptr;
+  *p++ = '.';
+  put_digits(p, mag % static_cast<uint64_t>(PerUnit), Digits);
+}
+
+void put_ms(char*& p, des::Time t) {
+  *p++ = ',';
+  put_fixed<kPsPerMs, 9>(p, t.ticks());
+}
+
+void put_s(char*& p, des::Time t) {
+  *p++ = ',';
+  put_fixed<kPsPerS, 12>(p, t.ticks());
+}
+
+void put_na(char*& p) { put(p, ",NA"); }
+
+// A CSV field: quoted when it holds a comma, a quote or a line break.
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (const char c : s) {
+    if (c == '"') q += '"';
+    q += c;
+  }
+  return q + '"';
+}
+
+}  // namespace
+
+const std::vector<std::string>& PresentMonLog::columns() {
+  static const std::vector<std::string> cols{
+      "Application",      "ProcessID",  "SwapChainAddress",       "PresentRuntime",
+      "SyncInterval",     "AllowsTearing", "FrameType",           "TimeInSeconds",
+      "MsBetweenPresents", "MsBetweenDisplayChange", "MsRenderPresentLatency", "MsUntilDisplayed",
+      "CPUStartTimeInSeconds", "MsCPUBusy", "MsGPULatency",       "MsGPUTime",
+      "MsGPUBusy",        "MsGPUWait",  "FrameId"};
+  return cols;
+}
+
+PresentMonLog::Pending& PresentMonLog::pending(int64_t frame) {
+  while (base_ + static_cast<int64_t>(pending_.size()) <= frame) pending_.emplace_back();
+  return pending_[static_cast<size_t>(frame - base_)];
+}
+
+void PresentMonLog::completed(const FrameTimes& f, RunFiles& files) {
+  if (f.frame < base_) return;
+  pending(f.frame).times = f;
+  // Frames that are never shown are final once complete.
+  flush(files, presents_.shown ? newest_shown_ : std::numeric_limits<int64_t>::max());
+}
+
+void PresentMonLog::shown(int64_t frame, des::Time photon, RunFiles& files) {
+  if (frame < base_) return;
+  Pending& p = pending(frame);
+  // Both eyes, and strips, are images of one frame: the earliest photon is its first.
+  if (!p.photon || photon < *p.photon) p.photon = photon;
+  if (frame > newest_shown_) newest_shown_ = frame;
+  flush(files, newest_shown_);
+}
+
+// Writes the complete rows in order below `below_frame`: no image of theirs
+// can be lit for the first time any more.
+void PresentMonLog::flush(RunFiles& files, int64_t below_frame) {
+  while (!pending_.empty() && base_ < below_frame && pending_.front().times) {
+    write_row(*pending_.front().times, pending_.front().photon, files);
+    pending_.pop_front();
+    ++base_;
+  }
+}
+
+void PresentMonLog::finish(RunFiles& files) {
+  // The last frame shown is final too; frames never completed have no row.
+  const int64_t last = presents_.shown ? newest_shown_ : std::numeric_limits<int64_t>::max();
+  while (!pending_.empty() && base_ <= last) {
+    if (pending_.front().times) write_row(*pending_.front().times, pending_.front().photon, files);
+    pending_.pop_front();
+    ++base_;
+  }
+  if (!file_.is_open()) return;
+  file_.write(batch_);
+  batch_.clear();
+  files.commit(file_, "presentmon.csv");
+}
+
+void PresentMonLog::write_row(const FrameTimes& f, const std::optional<des::Time>& photon, RunFiles& files) {
+  if (!file_.is_open()) {
+    file_ = files.stream("presentmon.csv");
+    for (const std::string& c : columns()) batch_ += (batch_.empty() ? "" : ",") + c;
+    batch_ += '\n';
+    // The cells every row begins with.
+    prefix_ = csv_field(application_) + ",0,0x0,latsim," + std::to_string(presents_.sync_interval) +
+              (presents_.allows_tearing ? ",1" : ",0") + ",Application";
+  }
+  const size_t at = batch_.size();
+  batch_.resize(at + prefix_.size() + kRowBytes);
+  char* const begin = batch_.data() + at;
+  char* p = begin;
+  put(p, prefix_);
+  put_s(p, f.present);
+  if (last_present_) put_ms(p, f.present - *last_present_);
+  else put_na(p);
+  if (photon && last_photon_) put_ms(p, *photon - *last_photon_);
+  else put_na(p);
+  put_ms(p, f.gpu_end - f.present);
+  if (photon) put_ms(p, *photon - f.present);
+  else put_na(p);
+  if (f.has_cpu) {
+    put_s(p, f.cpu_start);
+    put_ms(p, f.cpu_busy);
+    put_ms(p, f.gpu_start - f.cpu_start);
+  } else {
+    put(p, ",NA,NA,NA");
+  }
+  put_ms(p, f.gpu_end - f.gpu_start);
+  put_ms(p, f.gpu_busy);
+  put_ms(p, (f.gpu_end - f.gpu_start) - f.gpu_busy);
+  *p++ = ',';
+  put_int(p, f.frame);
+  *p++ = '\n';
+  batch_.resize(at + static_cast<size_t>(p - begin));
+  if (batch_.size() >= kBatchBytes) {
+    file_.write(batch_);
+    batch_.clear();
+  }
+  last_present_ = f.present;
+  if (photon) last_photon_ = photon;
+  ++rows_;
+}
+
+}  // namespace latsim::results
