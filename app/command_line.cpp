@@ -20,4 +20,12 @@ std::optional<int> parse_options(CLI::App& app, int argc, char** argv) {
   return std::nullopt;
 }
 
+void add_max_events_option(CLI::App& app, double& max_events) {
+  app.add_option("--max-events", max_events,
+                 "refuse a run whose estimated event count is above this (the estimate names the key that drives "
+                 "it; 0: no limit)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+}
+
 }  // namespace latsim::app

@@ -20,6 +20,9 @@ using run::kExitOk;
 /// here (help printed: 0; bad options, message printed: 2), nothing otherwise.
 std::optional<int> parse_options(CLI::App& app, int argc, char** argv);
 
+/// --max-events N: the largest event estimate a run may have (run::RunOptions::max_events).
+void add_max_events_option(CLI::App& app, double& max_events);
+
 int command_run(int argc, char** argv);       ///< latsim run SCENARIO [--out DIR] [--seed N] [--set P=V]...
 int command_validate(int argc, char** argv);  ///< latsim validate SCENARIO...
 int command_capacity(int argc, char** argv);  ///< latsim capacity SCENARIO: largest triangle count within a missed-field threshold

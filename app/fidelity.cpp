@@ -35,6 +35,7 @@ struct FidelityRequest {
   std::string out_dir = "out/fidelity";
   std::vector<std::string> sets;
   std::optional<uint64_t> seed;
+  double max_events = run::kDefaultMaxEvents;  ///< --max-events, for every level
 };
 
 Json read_summary(const fs::path& file) {
@@ -69,6 +70,9 @@ FidelityLevel run_level(const FidelityRequest& request, const std::string& assig
                                 "--quiet", "--set", assignment};
   for (const auto& s : request.sets) argv.insert(argv.end(), {"--set", s});
   if (request.seed) argv.insert(argv.end(), {"--seed", std::to_string(*request.seed)});
+  char max_events[32];
+  std::snprintf(max_events, sizeof max_events, "%.17g", request.max_events);
+  argv.insert(argv.end(), {"--max-events", max_events});
   const ChildResult child = run_child(argv);
   if (child.exit_code != 0)
     throw std::runtime_error("the run at " + assignment + " failed with exit status " + std::to_string(child.exit_code));
@@ -105,6 +109,7 @@ int command_fidelity(int argc, char** argv) {
   app.add_option("--out,-o", request.out_dir, "output directory")->capture_default_str();
   app.add_option("--set", request.sets, "override a value for every level: /json/pointer=value (repeatable)");
   auto* seed_option = app.add_option("--seed", seed, "run seed (overrides the scenario's /seed)");
+  add_max_events_option(app, request.max_events);
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
   if (*seed_option) request.seed = seed;
 
@@ -120,7 +125,7 @@ int command_fidelity(int argc, char** argv) {
     std::vector<std::string> overrides = request.sets;
     overrides.push_back(axis.pointer + "=" + value);
     try {
-      run::validate_scenario(run::load_scenario(request.scenario_file, overrides));
+      run::validate_scenario(run::load_scenario(request.scenario_file, overrides), request.max_events);
     } catch (const scenario::ScenarioError& e) {
       std::cerr << request.scenario_file << ": " << e.pointer() << ": " << e.message() << " (at " << axis.pointer
                 << "=" << value << ")\n";
@@ -135,6 +140,7 @@ int command_fidelity(int argc, char** argv) {
     overrides.push_back(axis.pointer + "=" + axis.values.front());
     run::RunOptions in_memory;
     in_memory.seed = request.seed;
+    in_memory.max_events = request.max_events;
     const Json summary = run::run_scenario(run::load_scenario(request.scenario_file, overrides), in_memory);
     if (!find_figure(summary, request.metric)) {
       std::cerr << "fidelity: --metric " << request.metric << " is not a figure of " << request.scenario_file

@@ -82,6 +82,7 @@ int command_run(int argc, char** argv) {
   uint64_t seed = 0;
   uint64_t replication = 0;
   bool samples = false, ledger = false, quiet = false, progress = false, profile = false, no_presentmon = false;
+  double max_events = run::kDefaultMaxEvents;
   app.add_option("scenario", file, "scenario JSON file")->required();
   app.add_option("--out,-o", out_dir, "output directory")->capture_default_str();
   auto* seed_opt = app.add_option("--seed", seed, "run seed (overrides the scenario's /seed)");
@@ -96,6 +97,7 @@ int command_run(int argc, char** argv) {
   app.add_flag("--progress", progress,
                "report progress from the start, also when stderr is not a terminal (on a terminal a run "
                "longer than a few seconds always shows it)");
+  add_max_events_option(app, max_events);
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
   if (const auto problem = output_dir_problem(out_dir)) {
     std::fprintf(stderr, "latsim run: --out %s\n", problem->c_str());
@@ -113,6 +115,7 @@ int command_run(int argc, char** argv) {
   opt.write_ledger = ledger;
   opt.write_presentmon = !no_presentmon;
   opt.profile = profile;
+  opt.max_events = max_events;
   opt.command_line = command_line_of(argc, argv);
   opt.stop = &signals.flag();
   opt.progress = [&shown](const run::RunProgress& p) { shown.update(p); };
@@ -121,7 +124,7 @@ int command_run(int argc, char** argv) {
   try {
     const auto doc = run::load_scenario(file, sets);
     // Validate fully before touching the output directory: bad input writes nothing.
-    run::validate_scenario(doc);
+    run::validate_scenario(doc, max_events);
     summary = run::run_scenario(doc, opt);
   } catch (const scenario::ScenarioError& e) {
     return bad_input(file, e);
@@ -164,20 +167,22 @@ int command_validate(int argc, char** argv) {
   std::vector<std::string> files;
   std::vector<std::string> sets;
   bool resolved = false;
+  double max_events = run::kDefaultMaxEvents;
   app.add_option("files", files, "scenario or sweep JSON files")->required();
   app.add_option("--set", sets, "override a value: /json/pointer=value (repeatable; scenarios only)");
   app.add_flag("--resolved", resolved, "print each scenario as it would run (every default applied) instead of ok");
+  add_max_events_option(app, max_events);
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
   int rc = kExitOk;
   for (const auto& file : files) {
     const std::string name = scenario::readable(file, 2 * scenario::kQuotedChars);
     try {
       if (is_sweep_file(file)) {
-        rc = std::max(rc, validate_sweep(file));
+        rc = std::max(rc, validate_sweep(file, max_events));
         continue;
       }
       const auto doc = run::load_scenario(file, sets);
-      print_warnings(file, run::validate_scenario(doc));
+      print_warnings(file, run::validate_scenario(doc, max_events));
       if (resolved) std::printf("%s\n", doc.resolved().dump(2, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
       else std::printf("%s: ok\n", name.c_str());
     } catch (const scenario::ScenarioError& e) {
@@ -197,6 +202,7 @@ int command_capacity(int argc, char** argv) {
   std::vector<std::string> sets;
   int64_t lo = 0, hi = 100000;
   double threshold = 0.0;
+  double max_events = run::kDefaultMaxEvents;
   app.add_option("scenario", file, "scenario JSON file")->required();
   app.add_option("--pointer", pointer, "the JSON pointer of the count to vary")->capture_default_str();
   app.add_option("--metric", metric, "figure that must stay at or below the threshold")->capture_default_str();
@@ -206,6 +212,7 @@ int command_capacity(int argc, char** argv) {
   app.add_option("--max", hi, "upper bound of the search")->capture_default_str();
   app.add_option("--out,-o", out_dir, "also write DIR/capacity.json (the result and every count tried)");
   app.add_option("--set", sets, "override a value: /json/pointer=value (repeatable)");
+  add_max_events_option(app, max_events);
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
   nlohmann::json tried = nlohmann::json::array();
   // Prints the result and, when asked, writes it with every count tried.
@@ -225,7 +232,9 @@ int command_capacity(int argc, char** argv) {
     auto fits = [&](int64_t n) {
       std::vector<std::string> s = sets;
       s.push_back(pointer + "=" + std::to_string(n));
-      const auto summary = run::run_scenario(run::load_scenario(file, s), run::RunOptions{});
+      run::RunOptions options;
+      options.max_events = max_events;
+      const auto summary = run::run_scenario(run::load_scenario(file, s), options);
       const auto& f = summary["figures"];
       // A fraction of no ended field judges nothing (it reads 0): a load at
       // which no field ends is over capacity, and a run in which not even

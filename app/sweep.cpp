@@ -73,7 +73,7 @@ int sweep_here(const SweepRequest& request, const SweepPlan& plan, const std::op
   std::vector<size_t> selected;
   for (const auto& run : plan.runs())
     if (!shard || shard->contains(run.index)) selected.push_back(run.index);
-  const PointCheck check = check_points(plan, selected, request.jobs);
+  const PointCheck check = check_points(plan, selected, request.jobs, request.max_events);
   phases.check_s = check.wall_s;
   phases.points = check.points;
   if (check.problem) {
@@ -158,7 +158,7 @@ int collect(const SweepRequest& request, const SweepPlan& plan) {
 int check_only(const SweepRequest& request, const SweepPlan& plan) {
   std::vector<size_t> all(plan.runs().size());
   for (size_t i = 0; i < all.size(); ++i) all[i] = i;
-  const PointCheck check = check_points(plan, all, request.jobs);
+  const PointCheck check = check_points(plan, all, request.jobs, request.max_events);
   if (check.problem) {
     std::cerr << request.sweep_file << ": " << *check.problem << "\n";
     return kExitBadInput;
@@ -205,6 +205,7 @@ int command_sweep(int argc, char** argv) {
                  "Seconds without a heartbeat after which another host's claim on a run is stale")
       ->check(CLI::Range(1u, 7u * 24u * 3600u))
       ->capture_default_str();
+  add_max_events_option(app, request.max_events);
   shard->excludes(collect_flag);
   check->excludes(shard);
   check->excludes(collect_flag);

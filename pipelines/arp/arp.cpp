@@ -59,6 +59,11 @@ class ArpPipeline final : public Pipeline {
     r.set("renders_without_pose", skipped_);
   }
 
+  // Each tick of the rendering loop starts a render that ends one render time later.
+  std::vector<EventRate> event_rates(const params::SharedParams&) const override {
+    return {{"/pipeline/render_rate_hz", "arp", 2.0 / p_.render_period.to_seconds()}};
+  }
+
  private:
   // Render k starts at its tick from the newest sample; before the first
   // sample reaches the host it retries every millisecond within its slot.

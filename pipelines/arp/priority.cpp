@@ -69,6 +69,13 @@ class PriorityPipeline final : public Pipeline {
     ticks_->start(0, ctx.duration);
   }
 
+  // A tick at the fastest memory's rate, and at most one render completion
+  // per memory per tick (a memory is redrawn at most once per its own slot).
+  std::vector<EventRate> event_rates(const params::SharedParams&) const override {
+    const double ticks_per_s = 1.0 / p_.model.base_period.to_seconds();
+    return {{"/pipeline/max_update_rate_hz", "arp", ticks_per_s * (1.0 + p_.model.memory_count)}};
+  }
+
   void finish(RunContext& ctx) override {
     const double duration_s = ctx.duration.to_seconds();
     results::LatencyRecorder& r = ctx.recorder;

@@ -61,6 +61,15 @@ class RegionPriorityPipeline final : public Pipeline {
 
   explicit RegionPriorityPipeline(const Params& p) : p_(p) {}
 
+  // A tick at the fastest memory's rate, and at most one render completion
+  // per memory per tick, in the run itself and in every variant it compares.
+  std::vector<EventRate> event_rates(const params::SharedParams&) const override {
+    const double ticks_per_s = 1.0 / p_.period.to_seconds();
+    const double memories = static_cast<double>(p_.model.outer_rings.size()) + 1.0;
+    const double runs = 1.0 + static_cast<double>(p_.compare.size());
+    return {{"/pipeline/max_update_rate_hz", "arp", ticks_per_s * (1.0 + memories * runs)}};
+  }
+
   void start(RunContext& ctx) override {
     ctx_ = &ctx;
     ctx.fetch_orientation_at_scanout();

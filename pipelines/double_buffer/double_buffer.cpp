@@ -41,6 +41,17 @@ class DoubleBufferPipeline final : public Pipeline {
     ctx.sim.start(renderer(), kind_frame);
   }
 
+  // One event per frame (its render delay; a retrace resumes the renderer
+  // within the display's event). With vsync at most one frame per refresh
+  // leaves the swap queue; without, frames follow each other back to back.
+  std::vector<EventRate> event_rates(const params::SharedParams& shared) const override {
+    const des::Time frame = p_.cost.nominal_frame_time();
+    const double fields_per_s = 1.0 / shared.display.raster.field_period.to_seconds();
+    if (!p_.vsync) return {{"/pipeline/render", "renderer", paced_per_s(frame, 1e300)}};
+    const bool render_bound = frame.to_seconds() * fields_per_s > 1.0;
+    return {{render_bound ? "/pipeline/render" : "/display/refresh_hz", "renderer", paced_per_s(frame, fields_per_s)}};
+  }
+
   void finish(RunContext& ctx) override {
     ctx.recorder.set("nominal_frame_time_ms", p_.cost.nominal_frame_time().to_ms());
     ctx.recorder.declare_headline({"motion_to_photon_ms", "frame_rate_hz", "missed_refreshes",

@@ -85,13 +85,15 @@ struct Units {
   std::map<std::string, std::vector<int>> by_name;
 };
 
-Units expand(const std::vector<ProcessorKeys>& processors) {
+Units expand(const std::vector<ProcessorKeys>& processors, const std::string& list_pointer) {
   Units u;
-  for (const ProcessorKeys& p : processors) {
+  for (size_t i = 0; i < processors.size(); ++i) {
+    const ProcessorKeys& p = processors[i];
     std::vector<int>& idx = u.by_name[p.name];
     for (int k = 0; k < p.count; ++k) {
       idx.push_back(static_cast<int>(u.specs.size()));
-      u.specs.push_back(ProcessorSpec{p.count == 1 ? p.name : p.name + std::to_string(k), p.preemption_slice});
+      u.specs.push_back(ProcessorSpec{p.count == 1 ? p.name : p.name + std::to_string(k), p.preemption_slice,
+                                      list_pointer + "/" + std::to_string(i)});
     }
   }
   return u;
@@ -111,6 +113,7 @@ std::vector<StageSpec> resolve(Section& s, const std::string& key, const std::ve
     s.check_pointer(at + "/on", it != units.by_name.end(), "no processor is named \"" + k.on + "\"");
     StageSpec st;
     st.name = k.name;
+    st.pointer = at;
     st.processors = it->second;
     try {
       st.cost = params::render_cost_for_scene(k.cost, shared.scene ? &*shared.scene : nullptr, raster.width_px,
@@ -207,7 +210,7 @@ void bind(Section& s, FrameStagesPipeline::Params& p, const params::SharedParams
     for (size_t j = 0; j < i; ++j)
       s.check_pointer(s.pointer() + "/processors/" + std::to_string(i) + "/name", processors[i].name != processors[j].name,
                       "two processors are named \"" + processors[i].name + "\"");
-  const Units units = expand(processors);
+  const Units units = expand(processors, s.pointer() + "/processors");
   spec.processors = units.specs;
   spec.stages = resolve(s, "stages", stages, units, spec.vsync ? StartRule::retrace : StartRule::after, shared);
   des::Time total;

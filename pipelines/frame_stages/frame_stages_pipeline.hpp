@@ -35,6 +35,8 @@ class FrameStagesPipeline final : public Pipeline {
   void start(RunContext& ctx) override;
   /// Reports frames, misses, warps and residual errors to the recorder.
   void finish(RunContext& ctx) override;
+  /// Frames per second through the stages and warps per refresh (event_rates.cpp).
+  std::vector<EventRate> event_rates(const params::SharedParams& shared) const override;
 
  private:
   FlowEnv env(des::RandomStream& stream);

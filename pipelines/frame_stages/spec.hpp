@@ -18,6 +18,7 @@ struct ProcessorSpec {
   /// job waiting for the processor (the compositor) goes first: preemption.
   /// Zero: every stage runs to completion.
   des::Time preemption_slice;
+  std::string pointer;  ///< where the scenario declares it (/pipeline/processors/i)
 };
 
 /// When a stage may begin, besides its processor being free and the same
@@ -39,6 +40,7 @@ struct StageSpec {
   des::Time lag;                ///< stream: how long the previous stage runs before this one starts
   int until = -1;               ///< late: the stage whose end must meet the deadline (-1: this one)
   bool samples_pose = false;    ///< reads the head pose when it begins
+  std::string pointer;          ///< where the scenario declares it (/pipeline/stages/i)
 };
 
 /// How late scheduling estimates a span: the longest of its nominal length

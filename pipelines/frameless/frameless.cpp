@@ -14,6 +14,7 @@ namespace frameless {
 FramelessPipeline::FramelessPipeline(const Params& p)
     : double_buffer_(p.double_buffer),
       budget_px_s_(p.budget_px_s),
+      budget_pointer_(p.pixels_per_s ? "/pipeline/pixels_per_s" : "/pipeline/full_images_per_s"),
       chunk_px_(p.chunk_pixels),
       depth_m_(p.registration_depth_m),
       fallback_(p.fallback ? p.fallback->kind : Mode::Normal),
@@ -52,6 +53,23 @@ void FramelessPipeline::start(RunContext& ctx) {
     ctx.host.on_delivery([this](const tracker::TrackerSample& s, des::Time t) { delivered(s, t); });
   if (ctx.frames) ctx.frames->set_pixel_source(this);
   ctx.sim.start(pixel_stream(), kind_chunk);
+}
+
+std::vector<EventRate> FramelessPipeline::event_rates(const params::SharedParams& shared) const {
+  const double budget = static_cast<double>(budget_px_s_);
+  if (double_buffer_) {
+    // One event per image of width × height × eyes pixels of the budget.
+    const double pixels = static_cast<double>(shared.display.raster.width_px) * shared.display.raster.height_px *
+                          (shared.host.stereo ? 2.0 : 1.0);
+    return {{budget_pointer_, "frameless", budget / pixels}};
+  }
+  // One event per chunk; every pixel of the budget is computed (a step of work).
+  std::vector<EventRate> out{{"/pipeline/chunk_pixels", "frameless", budget / static_cast<double>(chunk_px_)},
+                             {budget_pointer_, "frameless", budget, true}};
+  // A fallback watches every delivery of a tracker sample: one event each.
+  if (fallback_ != Mode::Normal)
+    out.push_back({"/tracker/rate_hz", "transport", 1.0 / shared.tracker.period.to_seconds()});
+  return out;
 }
 
 void FramelessPipeline::size_to_display(RunContext& ctx) {

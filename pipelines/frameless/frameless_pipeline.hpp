@@ -15,6 +15,7 @@
 #include <deque>
 #include <optional>
 #include <span>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -70,6 +71,8 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
 
   void start(RunContext& ctx) override;
   void finish(RunContext& ctx) override;
+  /// Chunks (or whole images) per second, pixels computed and, with a fallback, deliveries.
+  std::vector<EventRate> event_rates(const params::SharedParams& shared) const override;
   void on_scanout(const display::ScanoutSpan& span) override;
   // Ages (and registration) of the sampled pixels of one line of a span.
   void sample_line(const display::ScanoutSpan& span, int line, const results::ImageRecord* image);
@@ -136,6 +139,7 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
   RunContext* ctx_ = nullptr;
   bool double_buffer_ = false;
   int64_t budget_px_s_ = 1;
+  std::string budget_pointer_;  ///< the key that gave the budget
   int64_t chunk_px_ = 2048;
   double depth_m_ = 2.0;
   Mode fallback_ = Mode::Normal;

@@ -4,6 +4,7 @@
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/pxpl5/rc_engine.hpp"
 #include "latsim/results/latency_recorder.hpp"
+#include "pxpl5/event_rates.hpp"
 #include "pxpl5/wiring.hpp"
 
 namespace latsim::pipelines {
@@ -36,6 +37,10 @@ class Pxpl5RcPipeline final : public Pipeline {
     wiring_->report(engine_->utilisation(ctx.duration), engine_->frames_completed());
     ctx.recorder.declare_headline({"motion_to_photon_ms", "render_latency_fields", "frame_rate_hz",
                                    "missed_refreshes"});
+  }
+
+  std::vector<EventRate> event_rates(const params::SharedParams& shared) const override {
+    return rc_event_rates(p_.rc, p_.common, shared);
   }
 
  private:
@@ -78,9 +83,17 @@ void bind(scenario::Section& s, Pxpl5RcPipeline::Params& p, const params::Shared
                "/scene/triangles × regions_per_triangle per frame");
   s.check_span("render_us_per_command", r.hw.render_time_per_command.to_seconds(), bins,
                "/scene/triangles × regions_per_triangle per frame");
+  // Every bin's commands, the edits and each region's end-of-frame commands cross the ring.
+  const double s_per_word = 1.0 / (r.hw.ring_mwords_per_s * 1e6);
+  const double eyes = p.common.stereo ? 2.0 : 1.0;
+  const display::RasterParams& raster = shared.display.raster;
+  const double regions = pxpl5::RegionGrid::for_screen(raster.width_px, raster.height_px, raster.interlaced, 128).regions();
+  s.check_span("ring_mwords_per_s", s_per_word,
+               bins * r.hw.words_per_command + r.send_words + eyes * regions * r.end_of_frame_words,
+               "ring words per frame (bins × words_per_command, send_words, end_of_frame_words per region)");
   // With the view workload the triangles come from the geometry, counted when the run builds it.
   const std::string& at = s.pointer();
-  p.common.view_spans = {{at + "/transform_us_per_triangle", r.transform_time_per_triangle.to_seconds(), true, false},
+  p.common.view_spans = {{at + "/ring_mwords_per_s", s_per_word * r.hw.words_per_command, true, true},{at + "/transform_us_per_triangle", r.transform_time_per_triangle.to_seconds(), true, false},
                          {at + "/reject_us_per_triangle", r.reject_time_per_triangle.to_seconds(), true, false},
                          {at + "/binitize_us_per_bin", r.binitize_time_per_bin.to_seconds(), true, true},
                          {at + "/render_us_per_command", r.hw.render_time_per_command.to_seconds(), true, true}};

@@ -1,10 +1,12 @@
 // Pixel-Planes 5 Slats as a latsim pipeline: field-synchronous rendering fed
 // by an asynchronous host.
+#include <algorithm>
 #include <memory>
 
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/pxpl5/slats_engine.hpp"
 #include "latsim/results/latency_recorder.hpp"
+#include "pxpl5/event_rates.hpp"
 #include "pxpl5/wiring.hpp"
 
 namespace latsim::pipelines {
@@ -40,6 +42,10 @@ class Pxpl5SlatsPipeline final : public Pipeline {
     ctx.display.on_retrace([this, &ctx](int64_t, des::Time now) {
       if (wiring_->transforms_sent()) ctx.recorder.image_due(now + des::Time::ps(1));
     });
+  }
+
+  std::vector<EventRate> event_rates(const params::SharedParams& shared) const override {
+    return slats_event_rates(p_.slats, p_.common, shared);
   }
 
   void finish(RunContext& ctx) override {
@@ -89,9 +95,17 @@ void bind(scenario::Section& s, Pxpl5SlatsPipeline::Params& p, const params::Sha
   s.check_span("gp_us_per_triangle", q.gp_time_per_triangle.to_seconds(), triangles, "/scene/triangles per field");
   s.check_span("render_us_per_command", q.hw.render_time_per_command.to_seconds(), triangles * 20.0,
                "/scene/triangles × 20 regions per field");
+  // The ring carries every message to each renderer: a field's words must cross it within the run's clock.
+  const double s_per_triangle = q.hw.words_per_command * (p.common.stereo ? 2.0 : 1.0) * q.hw.renderers /
+                                (q.hw.ring_mwords_per_s * 1e6);
+  s.check_span("ring_mwords_per_s", s_per_triangle, triangles,
+               "/scene/triangles × words_per_command × eyes × renderers per field");
+  s.check_span("ring_mwords_per_s", 1.0 / (q.hw.ring_mwords_per_s * 1e6),
+               static_cast<double>(std::max(q.host_message_words, q.hw.max_message_words)), "the largest message's words");
   // With the view workload the triangles come from the geometry, counted when the run builds it.
   const std::string& at = s.pointer();
-  p.common.view_spans = {{at + "/gp_us_per_triangle", q.gp_time_per_triangle.to_seconds(), false, false},
+  p.common.view_spans = {{at + "/ring_mwords_per_s", s_per_triangle, false, false},
+                         {at + "/gp_us_per_triangle", q.gp_time_per_triangle.to_seconds(), false, false},
                          {at + "/gp_us_per_rejected_triangle", q.gp_time_per_rejected_triangle.to_seconds(), false, false},
                          {at + "/render_us_per_command", q.hw.render_time_per_command.to_seconds(), false, true}};
 }

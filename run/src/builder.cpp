@@ -127,6 +127,10 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
   run.seed = options.seed ? *options.seed : static_cast<uint64_t>(run.shared.seed);
   resolve_clocks(run, options.replication);
   const params::SharedParams& p = run.shared;
+  // A run that could never finish is refused before anything is built.
+  built_from("/pipeline", "pipeline", [&] { run.pipeline = make_pipeline(); });
+  run.estimate = estimate_events(p, *run.pipeline);
+  check_event_budget(run.estimate, options.max_events);
   built_from("/motion", "head motion", [&] { run.motion = tracker::make_motion(p.motion); });
   built_from("/tracker", "tracker", [&] {
     run.tracker = std::make_unique<tracker::Tracker>(p.tracker, *run.motion,
@@ -192,7 +196,6 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
   });
 
   built_from("/pipeline", "pipeline", [&] {
-    run.pipeline = make_pipeline();
     run.ctx = std::unique_ptr<RunContext>(new RunContext{
         run.sim, run.seed, options.replication, run.duration, *run.motion, p.tracker, *run.transport, *run.host,
         *run.display, p.display, p.scene ? &*p.scene : nullptr, run.images, *run.recorder, run.app_frames, run.files, *run.clocks, p.host.ipd_m,

@@ -129,6 +129,7 @@ Json write_results(Run& run, const scenario::ScenarioDocument& doc, const RunOpt
   summary["exit_status"] = 0;
   summary["models"] = models;
   if (!run.recorder->captures().empty()) summary["captures"] = run.recorder->captures();
+  summary["events_estimate"] = run.estimate.to_json();
   summary["wall_s"] = wall_s;
   if (run.timeline.size() > 0) summary["timeline_entries"] = run.timeline.size();
 

@@ -6,6 +6,7 @@
 
 #include "latsim/run/builder.hpp"
 #include "latsim/run/builtin_pipelines.hpp"
+#include "latsim/run/event_budget.hpp"
 #include "latsim/run/result_writer.hpp"
 
 namespace latsim::run {
@@ -72,9 +73,11 @@ scenario::ScenarioDocument load_scenario(const std::filesystem::path& file, cons
   return scenario::ScenarioDocument::load(file, overrides, &scenario_schema());
 }
 
-std::vector<std::string> validate_scenario(const scenario::ScenarioDocument& doc) {
+std::vector<std::string> validate_scenario(const scenario::ScenarioDocument& doc, double max_events) {
   Run run;
-  build(run, doc, RunOptions{});
+  RunOptions options;
+  options.max_events = max_events;
+  build(run, doc, options);
   return run.recorder->warnings();
 }
 

@@ -8,6 +8,7 @@
 #include "latsim/scenario/json_text.hpp"
 #include "latsim/scenario/readable.hpp"
 #include "latsim/scenario/schema.hpp"
+#include "params_internal.hpp"
 
 namespace latsim::scenario {
 
@@ -226,6 +227,10 @@ void ScenarioDocument::check_unknown_keys(const ObjectSchema* schema, std::vecto
       const bool array_elem = n->is_array();
       const KeySchema* declared = schema && !array_elem ? schema->key_at(k.second) : nullptr;
       if (declared) {
+        // Not read, yet it must still be a value its declaration accepts.
+        const KeySchema* parent = p.empty() ? nullptr : schema->key_at(p);
+        const ObjectSchema* parent_schema = p.empty() ? schema : (parent ? parent->object.get() : nullptr);
+        if (parent_schema) check_unread_value(*parent_schema, pointer_segments(k.second).back(), *k.first, p);
         std::string when;
         for (const auto& m : declared->modes) when += (when.empty() ? "" : "; or ") + m;
         if (warnings)

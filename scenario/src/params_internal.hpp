@@ -1,4 +1,5 @@
-// What the two halves of Section (params.cpp, params_structure.cpp) share: default bounds and range messages.
+// What the two halves of Section (params.cpp, params_structure.cpp) share:
+// default bounds and range messages; and the check of keys no mode reads.
 #pragma once
 
 #include <optional>
@@ -20,5 +21,10 @@ KeySpec bounded_number(const KeySpec& spec);
 
 // What is wrong with x for spec's range, if anything.
 std::optional<std::string> range_problem(double x, const KeySpec& spec);
+
+// Checks the value of a key no mode of the scenario reads against the
+// declarations `parent_schema` has for `name` (ScenarioDocument::check_unknown_keys).
+void check_unread_value(const ObjectSchema& parent_schema, const std::string& name, const nlohmann::json& value,
+                        const std::string& parent);
 
 }  // namespace latsim::scenario

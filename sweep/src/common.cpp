@@ -25,7 +25,8 @@ namespace fs = std::filesystem;
 
 Json resolve_defaults(const Json& scenario, const fs::path& base_dir) {
   auto doc = scenario::ScenarioDocument::from_json(scenario, base_dir);
-  run::validate_scenario(doc);
+  // The event budget is check_points' to judge, with the sweep's own limit.
+  run::validate_scenario(doc, 0.0);
   return doc.resolved();
 }
 
@@ -86,14 +87,14 @@ bool is_sweep_file(const std::string& file) {
   }
 }
 
-int validate_sweep(const std::string& file) {
+int validate_sweep(const std::string& file, double max_events) {
   SweepRequest request;
   request.sweep_file = file;
   const auto plan = load_plan(request);
   if (!plan) return 2;
   std::vector<size_t> all(plan->runs().size());
   for (size_t i = 0; i < all.size(); ++i) all[i] = i;
-  const PointCheck check = check_points(*plan, all, available_cpus());
+  const PointCheck check = check_points(*plan, all, available_cpus(), max_events);
   const std::string name = scenario::readable(file, 2 * scenario::kQuotedChars);
   if (check.problem) {
     std::cerr << name << ": " << *check.problem << "\n";
@@ -103,7 +104,8 @@ int validate_sweep(const std::string& file) {
   return 0;
 }
 
-PointCheck check_points(const SweepPlan& plan, const std::vector<size_t>& run_indices, unsigned jobs) {
+PointCheck check_points(const SweepPlan& plan, const std::vector<size_t>& run_indices, unsigned jobs,
+                        double max_events) {
   const auto start = std::chrono::steady_clock::now();
   // One run per point stands for all its replications: they share the scenario.
   std::vector<size_t> firsts;
@@ -116,7 +118,7 @@ PointCheck check_points(const SweepPlan& plan, const std::vector<size_t>& run_in
     const SweepRun& run = plan.runs()[firsts[i]];
     try {
       auto doc = scenario::ScenarioDocument::from_json(run.scenario, plan.base_dir());
-      run::validate_scenario(doc);
+      run::validate_scenario(doc, max_events);
       point_cost[run.point] = expected_cost(doc);
     } catch (const scenario::ScenarioError& e) {
       problems[i] = blame(plan, run, e);
@@ -145,6 +147,7 @@ RunSettings run_settings(const SweepRequest& request) {
   if (request.write_ledger) settings.command_line.push_back("--ledger");
   if (request.write_presentmon) settings.command_line.push_back("--presentmon");
   settings.stop = request.stop;
+  settings.max_events = request.max_events;
   return settings;
 }
 

@@ -120,6 +120,7 @@ RunAttempt RunExecutor::run_claimed(const RunTask& task) {
   options.write_presentmon = settings_.write_presentmon && task.keep_traces;
   options.command_line = settings_.command_line;
   options.stop = settings_.stop;
+  options.max_events = settings_.max_events;
   try {
     auto t0 = Clock::now();
     const auto doc = scenario::ScenarioDocument::from_json(task.scenario, task.base_dir);

@@ -292,7 +292,7 @@ int lead(SweepRequest request, int size) {
   phases.plan_s = seconds_since(start);
   std::vector<size_t> all(plan->runs().size());
   for (size_t i = 0; i < all.size(); ++i) all[i] = i;
-  const PointCheck check = check_points(*plan, all, request.jobs);
+  const PointCheck check = check_points(*plan, all, request.jobs, request.max_events);
   phases.check_s = check.wall_s;
   phases.points = check.points;
   if (check.problem) {

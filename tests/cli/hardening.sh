@@ -255,4 +255,39 @@ expect_bad time_overflow_sum "/pipeline/render: simulation time out of range: 11
 truncate -s 300M "$tmp/huge_trace.txt"
 expect_bad trace_too_large "cannot read the trace file: it is too large (314572800 bytes; at most 268435456)" \
   "$(scenario trace_too_large "{$no_motion, \"motion\": {\"type\": \"trace\", \"file\": \"$tmp/huge_trace.txt\"}}")"
+# 14. Runs that could never finish (a 1 ps render without vsync, a 1 ps
+# motion-phase step: unbounded events, ended only by a kill) are refused
+# before they start, at the key that drives the estimate. 1 ps frames back to
+# back: 1e12 events per simulated second, 1e13 over 10 s; the grid of
+# motion phases, one step per picosecond: 1e12 steps in 1 s.
+expect_bad render_1ps "/pipeline/render: about 1.0e13 events over 10 s (limit 2e9; --max-events raises it)" \
+  "$(scenario render_1ps '{"duration_s": 10, "motion": {"type": "still"}, "tracker": {"rate_hz": 60},
+     "display": {"refresh_hz": 60}, "pipeline": {"type": "double_buffer", "vsync": false, "render": {"fixed_ms": 1e-9}}}')"
+expect_bad phase_step_1ps "/motion_phases/step_ms: about 1.0e12 steps of work over 1 s" \
+  "$(scenario phase_step_1ps "{$base, \"motion_phases\": {\"step_ms\": 1e-9}}")"
+# The limit is a parameter: 1 s of the base scenario is about 180 events (60
+# tracker samples, 60 retraces, 60 frames); 100 refuses it, 0 lifts the limit.
+expect_bad max_events_low "about 1.8e2 events over 1 s (limit 1e2" "$(scenario max_events "{$base}")" --max-events 100
+expect_ok max_events_off "$LATSIM" validate "$tmp/max_events.json" --max-events 0
+
+# 15. A Pixel-Planes 5 ring rate so slow that a field's or a frame's words
+# take longer than a run may last (their transfer times overflowed simulated
+# time in the middle of the run): refused at the ring rate.
+expect_bad ring_slats "/pipeline/ring_mwords_per_s" \
+  "$(scenario ring_slats '{"include": "'"$PWD"'/scenarios/pxpl5/slats_140.json", "duration_s": 0.5,
+     "pipeline": {"ring_mwords_per_s": 1e-12}}')"
+expect_bad ring_rc "/pipeline/ring_mwords_per_s" \
+  "$(scenario ring_rc '{"include": "'"$PWD"'/scenarios/pxpl5/rc_min_latency.json", "duration_s": 0.5,
+     "pipeline": {"ring_mwords_per_s": 1e-12}}')"
+
+# 16. A key the chosen mode does not read is still checked against its
+# declaration (a still head given "points": "garbage" was only "ignored");
+# a well-typed one stays a warning (mode_keys above).
+expect_bad ignored_garbage "/motion/points: " "$(scenario ignored_garbage "{$base}")" \
+  --set '/motion={"type": "still", "points": "garbage"}'
+expect_bad ignored_range "/pipeline/chunk_pixels: " "$(scenario ignored_range "{$base}")" \
+  --set /pipeline/chunk_pixels=-5
+expect_bad ignored_nested "/pipeline/timewarp/strips: " "$(scenario ignored_nested "{$base}")" \
+  --set '/pipeline/timewarp={"strips": "many", "stages": []}'
+[ "$fail" -eq 0 ] && echo "ok   event budget, ring rate, ignored keys checked"
 exit $fail

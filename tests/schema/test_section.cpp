@@ -128,6 +128,48 @@ TEST_CASE("a key of another mode is a warning when the schema knows it, an error
   CHECK_THROWS_AS(typo.check_unknown_keys(&schema, &warnings), ScenarioError);
 }
 
+TEST_CASE("a key of another mode must still fit its declaration", "[params]") {
+  ObjectSchema schema;
+  Section describe(schema);
+  Lamp dummy;
+  bind(describe, dummy);
+  // The led mode reads "count" (at least 1); the filament mode "length_mm" (a number).
+  const auto pointer_of = [&schema](const Json& j) -> std::string {
+    const auto doc = ScenarioDocument::from_json(j, ".");
+    read(doc);
+    std::vector<std::string> warnings;
+    try {
+      doc.check_unknown_keys(&schema, &warnings);
+    } catch (const ScenarioError& e) {
+      return e.pointer() + ": " + e.message();
+    }
+    return warnings.empty() ? "<nothing>" : warnings[0];
+  };
+  CHECK(pointer_of({{"kind", "led"}, {"length_mm", "long"}}).rfind("/length_mm: expected a number", 0) == 0);
+  CHECK(pointer_of({{"kind", "led"}, {"length_mm", 1e13}}).rfind("/length_mm: must lie in", 0) == 0);
+  CHECK(pointer_of({{"count", 0}}).rfind("/count: must be at least 1", 0) == 0);
+  CHECK(pointer_of({{"count", 2}}) == "/count: ignored: read only when kind=led");
+}
+
+TEST_CASE("an unread file name is not opened, and an unread key is checked as its mode would", "[params]") {
+  // The first warning, or the error: "pointer: message".
+  auto validate = [](const Json& motion) -> std::string {
+    const Json j = {{"motion", motion}, {"pipeline", {{"type", "double_buffer"}, {"render", {{"fixed_ms", 1}}}}}};
+    try {
+      const std::vector<std::string> warnings = run::validate_scenario(ScenarioDocument::from_json(j, "."));
+      return warnings.empty() ? "<nothing>" : "warning " + warnings[0];
+    } catch (const ScenarioError& e) {
+      return e.pointer() + ": " + e.message();
+    }
+  };
+  // A trace's file on a still head: a well-typed name, never looked at.
+  CHECK(validate({{"type", "still"}, {"file", "/nonexistent/trace.csv"}}) ==
+        "warning /motion/file: ignored: read only when type=trace");
+  CHECK(validate({{"type", "still"}, {"file", 3}}).rfind("/motion/file: expected a string", 0) == 0);
+  CHECK(validate({{"type", "still"}, {"points", "garbage"}}).rfind("/motion/points: ", 0) == 0);
+  CHECK(validate({{"type", "still"}, {"points", {{0, 1.6, 0}, {1, 1.6}}}}).rfind("/motion/points/1: expected 3", 0) == 0);
+}
+
 TEST_CASE("an override creates an optional section the schema declares, and nothing else", "[params]") {
   const ObjectSchema schema = run::scenario_schema();
   Json doc = {{"display", Json::object()}};

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "latsim/params/shared.hpp"
+#include "latsim/pipelines/event_rate.hpp"
 #include "latsim/pipelines/run_context.hpp"
 #include "latsim/scenario/params.hpp"
 
@@ -30,6 +31,10 @@ class Pipeline {
   virtual void start(RunContext& ctx) = 0;
   /// Reports pipeline-specific figures to ctx.recorder (e.g. missed fields).
   virtual void finish(RunContext& /*ctx*/) {}
+  /// Events per simulated second of the pipeline's own processes, each with
+  /// the key that drives it (EventRate), known before start(); none
+  /// declared: only the shared models' rates count against the event budget.
+  virtual std::vector<EventRate> event_rates(const params::SharedParams& /*shared*/) const { return {}; }
 };
 
 /// Builds a pipeline from parameters already read.

@@ -21,6 +21,7 @@
 #include "latsim/results/run_files.hpp"
 #include "latsim/results/smear_recorder.hpp"
 #include "latsim/results/timeline.hpp"
+#include "latsim/run/event_budget.hpp"
 #include "latsim/run/runner.hpp"
 #include "latsim/run/tracker_host.hpp"
 #include "latsim/scenario/config.hpp"
@@ -53,11 +54,13 @@ struct Run {
   std::unique_ptr<pipelines::RunContext> ctx;
   uint64_t seed = 1;
   des::Time duration;
+  EventEstimate estimate;  ///< the events the run is expected to execute
 };
 
 /// Reads every key first, so that bad and unknown keys are reported before
-/// anything is built; then builds every model and lets the pipeline schedule
-/// its first events. Throws scenario::ScenarioError naming the pointer of
+/// anything is built; estimates the run's events and refuses it past
+/// options.max_events; then builds every model and lets the pipeline
+/// schedule its first events. Throws scenario::ScenarioError naming the pointer of
 /// whatever could not be built.
 void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& options);
 

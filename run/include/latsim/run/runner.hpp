@@ -23,6 +23,11 @@ class PipelineRegistry;
 
 namespace latsim::run {
 
+/// The largest event estimate a run may have unless told otherwise
+/// (RunOptions::max_events, --max-events): at the few million to tens of
+/// millions of events per second the kernel runs, minutes of wall time.
+inline constexpr double kDefaultMaxEvents = 2e9;
+
 /// How far a running simulation got, for a progress display.
 struct RunProgress {
   des::Time now;          ///< simulated time reached
@@ -60,6 +65,9 @@ struct RunOptions {
   const std::atomic<bool>* stop = nullptr;
   /// Called every few thousand events while simulating.
   std::function<void(const RunProgress&)> progress;
+  /// The largest number of events the run is expected to execute (its
+  /// estimate, EventEstimate) before it is refused as bad input; 0: no limit.
+  double max_events = kDefaultMaxEvents;
   /// The pipelines /pipeline/type may name; null: builtin_pipelines(). A
   /// program that embeds latsim runs its own pipelines through this.
   const pipelines::PipelineRegistry* pipelines = nullptr;
@@ -95,9 +103,10 @@ class RunInterrupted : public std::runtime_error {
 /// written; in every case nothing is left in out_dir.
 nlohmann::json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& options);
 
-/// Reads and builds everything without running (for `latsim validate`);
+/// Reads and builds everything without running (for `latsim validate`),
+/// refusing a run whose event estimate is above max_events (0: no limit);
 /// returns the warnings about legal but doubtful input.
-std::vector<std::string> validate_scenario(const scenario::ScenarioDocument& doc);
+std::vector<std::string> validate_scenario(const scenario::ScenarioDocument& doc, double max_events = kDefaultMaxEvents);
 
 /// Every key a scenario may hold, from the parameter declarations of the
 /// shared sections and of every registered pipeline. Built once per process:

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "latsim/run/runner.hpp"
 #include "latsim/sweep/execution.hpp"
 #include "latsim/sweep/plan.hpp"
 
@@ -29,7 +30,8 @@ struct SweepRequest {
   bool check = false;         ///< --check: run nothing, write nothing: check every point
   bool mpi = false;           ///< --mpi: rank 0 hands runs out to the ranks of an MPI job
   bool timings = false;       ///< --timings: also print where the time per run went
-  unsigned stale_after_s = 600;  ///< a claim from another host without a heartbeat this long is stale
+  unsigned stale_after_s = 600;
+  double max_events = run::kDefaultMaxEvents;  ///< --max-events: a run's largest event estimate (0: no limit)  ///< a claim from another host without a heartbeat this long is stale
   const std::atomic<bool>* stop = nullptr;  ///< a stop signal's flag: runs end at their next event
 };
 
@@ -53,7 +55,7 @@ bool is_sweep_file(const std::string& file);
 /// `latsim validate` of a sweep file: reads it and builds every distinct
 /// point without running or writing anything; prints "FILE: ok (sweep of N
 /// runs, M points)" or the first problem in one line. Returns the exit code.
-int validate_sweep(const std::string& file);
+int validate_sweep(const std::string& file, double max_events = run::kDefaultMaxEvents);
 
 /// The outcome of building the scenarios of some runs without running them.
 struct PointCheck {
@@ -65,8 +67,10 @@ struct PointCheck {
 
 /// Builds every distinct scenario among `run_indices` (once per point) on
 /// `jobs` threads, so that a bad value is reported before anything is written,
-/// and estimates each run's cost from the resolved scenario.
-PointCheck check_points(const SweepPlan& plan, const std::vector<size_t>& run_indices, unsigned jobs);
+/// and estimates each run's cost from the resolved scenario; a point whose
+/// event estimate is above max_events (0: no limit) is a problem.
+PointCheck check_points(const SweepPlan& plan, const std::vector<size_t>& run_indices, unsigned jobs,
+                        double max_events = run::kDefaultMaxEvents);
 
 /// What each run records and writes: the command line recorded is the sweep
 /// as invoked less -j, --shard, --mpi and the like, which must not make one

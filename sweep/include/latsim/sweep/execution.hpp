@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "latsim/run/runner.hpp"
 #include "latsim/sweep/claims.hpp"
 #include "latsim/sweep/journal.hpp"
 #include "latsim/sweep/keep.hpp"
@@ -61,6 +62,7 @@ struct RunSettings {
   bool write_presentmon = false;  ///< presentmon.csv, for the runs that keep their traces
   std::vector<std::string> command_line;  ///< recorded in each summary: the same for every backend
   const std::atomic<bool>* stop = nullptr;  ///< set by a stop signal: runs end at their next event
+  double max_events = run::kDefaultMaxEvents;  ///< a run's largest event estimate (run::RunOptions::max_events)
 };
 
 /// Runs runs in one sweep directory on behalf of one process; thread-safe.
