@@ -18,6 +18,10 @@ function(latsim_add_library name)
   target_include_directories(latsim_${name} PUBLIC "${CMAKE_CURRENT_SOURCE_DIR}/include")
   target_link_libraries(latsim_${name} PUBLIC latsim::warnings ${ARG_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
   target_compile_options(latsim_${name} PRIVATE ${LATSIM_FUZZ_COVERAGE})
+  # The Python module (a shared object) links every library (cmake/LatsimPython.cmake).
+  if(LATSIM_PYTHON)
+    set_target_properties(latsim_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  endif()
 endfunction()
 
 # latsim_add_test(NAME SOURCES ... DEPS ... [LABELS ...]): a Catch2 test binary whose

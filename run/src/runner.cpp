@@ -51,6 +51,19 @@ void simulate(Run& run) {
   }
 }
 
+// Copies what the run recorded into `tables`.
+void keep_tables(const Run& run, RunTables& tables) {
+  const results::Ledger& ledger = run.recorder->ledger();
+  tables.frames = ledger.frames();
+  tables.fields = ledger.fields();
+  tables.tracker = ledger.tracker();
+  tables.samples = run.recorder->sample_log().samples();
+  // The stage intervals (the JSON's counters and flows are not timeline.csv's rows).
+  for (const results::Timeline::Entry& e : run.timeline.entries())
+    if (e.kind == results::Timeline::Kind::interval) tables.timeline.push_back(e);
+  tables.timeline_dropped = run.timeline.dropped();
+}
+
 }  // namespace
 
 RunFailure::RunFailure(std::string model, des::Time at, const std::string& cause)
@@ -71,6 +84,11 @@ const scenario::ObjectSchema& scenario_schema() {
 
 scenario::ScenarioDocument load_scenario(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
   return scenario::ScenarioDocument::load(file, overrides, &scenario_schema());
+}
+
+scenario::ScenarioDocument load_scenario_text(std::string_view text, const std::filesystem::path& name,
+                                              const std::vector<std::string>& overrides) {
+  return scenario::ScenarioDocument::parse(text, name, overrides, &scenario_schema());
 }
 
 std::vector<std::string> validate_scenario(const scenario::ScenarioDocument& doc, double max_events) {
@@ -101,8 +119,9 @@ Json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& optio
   simulate(run);
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   Json figures = figures_of(run);
-
-  return write_results(run, doc, options, figures, wall_s, command_start);
+  Json summary = write_results(run, doc, options, figures, wall_s, command_start);
+  if (options.tables) keep_tables(run, *options.tables);
+  return summary;
 }
 
 }  // namespace latsim::run

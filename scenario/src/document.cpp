@@ -57,12 +57,11 @@ std::vector<std::pair<std::string, fs::path>> includes_of(const Json& doc, const
   return out;
 }
 
-Json load_with_includes(const fs::path& file, std::vector<fs::path>& chain) {
-  std::error_code ec;
-  fs::path canon = fs::weakly_canonical(file, ec);
-  if (ec) canon = file.lexically_normal();
-  chain.push_back(canon);
-  Json doc = read_json_file(file, chain.size() == 1 ? "scenario file" : "included file");
+Json load_with_includes(const fs::path& file, std::vector<fs::path>& chain);
+
+// `doc`, read from `file` (the last of `chain`), with the files it includes
+// merged under it: theirs first, in order, then its own keys over them.
+Json merge_includes(Json doc, const fs::path& file, std::vector<fs::path>& chain) {
   if (!doc.is_object()) throw ScenarioError("", "a scenario must be a JSON object, not " + json_type_name(doc), file);
   Json result = Json::object();
   if (doc.contains("include")) {
@@ -94,6 +93,19 @@ Json load_with_includes(const fs::path& file, std::vector<fs::path>& chain) {
     doc.erase("include");
   }
   deep_merge(result, doc);
+  return result;
+}
+
+// Where a file stands in a chain of includes: its canonical path when it has one.
+fs::path chain_entry(const fs::path& file) {
+  std::error_code ec;
+  fs::path canon = fs::weakly_canonical(file, ec);
+  return ec ? file.lexically_normal() : canon;
+}
+
+Json load_with_includes(const fs::path& file, std::vector<fs::path>& chain) {
+  chain.push_back(chain_entry(file));
+  Json result = merge_includes(read_json_file(file, chain.size() == 1 ? "scenario file" : "included file"), file, chain);
   chain.pop_back();
   return result;
 }
@@ -185,6 +197,16 @@ ScenarioDocument ScenarioDocument::load(const fs::path& file, const std::vector<
   Json doc = load_with_includes(file, chain);
   for (const auto& o : overrides) apply_override(doc, o, schema);
   auto dir = file.parent_path();
+  if (dir.empty()) dir = ".";
+  return from_json(std::move(doc), dir);
+}
+
+ScenarioDocument ScenarioDocument::parse(std::string_view text, const fs::path& name,
+                                         const std::vector<std::string>& overrides, const ObjectSchema* schema) {
+  std::vector<fs::path> chain{chain_entry(name)};
+  Json doc = merge_includes(parse_json(text, name.string()), name, chain);
+  for (const auto& o : overrides) apply_override(doc, o, schema);
+  auto dir = name.parent_path();
   if (dir.empty()) dir = ".";
   return from_json(std::move(doc), dir);
 }

@@ -124,7 +124,9 @@ SweepAxis read_axis(const Json& axis, const std::string& where, const fs::path& 
 
 SweepError::SweepError(const fs::path& file, const std::string& pointer, const std::string& message)
     : std::runtime_error(scenario::readable(file.string(), 2 * scenario::kQuotedChars) + ": " +
-                         (pointer.empty() ? "" : scenario::readable_pointer(pointer) + ": ") + scenario::readable(message)) {}
+                         (pointer.empty() ? "" : scenario::readable_pointer(pointer) + ": ") + scenario::readable(message)),
+      pointer_(pointer),
+      message_(message) {}
 
 std::vector<Json> expand_range(const Json& range, const fs::path& file, const std::string& pointer) {
   if (!range.is_object()) throw SweepError(file, pointer, "expected {\"from\": a, \"to\": b, \"step\": s}");

@@ -9,11 +9,14 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "latsim/des/time.hpp"
+#include "latsim/results/ledger.hpp"
+#include "latsim/results/timeline.hpp"
 #include "latsim/scenario/config.hpp"
 #include "latsim/scenario/schema.hpp"
 
@@ -33,6 +36,19 @@ struct RunProgress {
   des::Time now;          ///< simulated time reached
   des::Time end;          ///< simulated time the run stops at
   uint64_t events = 0;    ///< events executed so far
+};
+
+/// A finished run's tables in memory, for a program that embeds latsim and
+/// reads them without files: rows in the column order of the CSV files.
+struct RunTables {
+  std::vector<std::vector<int64_t>> frames;   ///< frames.csv rows (RunOptions::write_ledger)
+  std::vector<std::vector<int64_t>> fields;   ///< fields.csv rows (write_ledger)
+  std::vector<std::vector<int64_t>> tracker;  ///< tracker.csv rows (write_ledger)
+  std::vector<results::SampleLog::Sample> samples;  ///< samples.csv rows (write_samples)
+  /// The stage timeline when the run keeps it in memory: always when it
+  /// writes no files; a run with out_dir streams it to timeline.csv instead.
+  std::vector<results::Timeline::Entry> timeline;
+  size_t timeline_dropped = 0;  ///< entries past /output/timeline_max_entries, counted only
 };
 
 /// How to run a scenario and what to write.
@@ -71,6 +87,8 @@ struct RunOptions {
   /// The pipelines /pipeline/type may name; null: builtin_pipelines(). A
   /// program that embeds latsim runs its own pipelines through this.
   const pipelines::PipelineRegistry* pipelines = nullptr;
+  /// When set, receives the run's tables once it has finished (RunTables).
+  RunTables* tables = nullptr;
 };
 
 /// The simulation failed, not the input: which model's event, when, and why.
@@ -116,6 +134,10 @@ const scenario::ObjectSchema& scenario_schema();
 /// Loads a scenario file with overrides; an override may create an optional
 /// section the scenario left out ("--set /output/timeline=false").
 scenario::ScenarioDocument load_scenario(const std::filesystem::path& file, const std::vector<std::string>& overrides);
+/// The same for a scenario given as JSON text, `name` standing for its file
+/// in messages (ScenarioDocument::parse).
+scenario::ScenarioDocument load_scenario_text(std::string_view text, const std::filesystem::path& name,
+                                              const std::vector<std::string>& overrides);
 
 /// latsim's version string and the git revision it was built from.
 std::string latsim_version();

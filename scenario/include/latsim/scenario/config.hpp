@@ -112,6 +112,11 @@ class ScenarioDocument {
   /// section the scenario left out).
   static ScenarioDocument load(const std::filesystem::path& file, const std::vector<std::string>& overrides = {},
                                const ObjectSchema* schema = nullptr);
+  /// The same for a scenario given as JSON text rather than a file (a program
+  /// builds it in memory): `name` stands for the file in every message, and
+  /// its directory is where included and data files are looked for.
+  static ScenarioDocument parse(std::string_view text, const std::filesystem::path& name,
+                                const std::vector<std::string>& overrides = {}, const ObjectSchema* schema = nullptr);
   static ScenarioDocument from_json(nlohmann::json doc, std::filesystem::path base_dir);
 
   ConfigNode root() const;

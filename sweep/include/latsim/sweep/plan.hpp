@@ -79,6 +79,13 @@ class SweepPlan {
 class SweepError : public std::runtime_error {
  public:
   SweepError(const std::filesystem::path& file, const std::string& pointer, const std::string& message);
+  /// Where in the sweep file (empty: the whole file).
+  const std::string& pointer() const { return pointer_; }
+  const std::string& message() const { return message_; }
+
+ private:
+  std::string pointer_;
+  std::string message_;
 };
 
 /// Expands a {"from", "to", "step"} range into its values, both ends included;
