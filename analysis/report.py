@@ -8,8 +8,9 @@ a summary.json is one row). Writes into DIR: report.md, latency_table.csv,
 mtp_cdf.{png,svg}, mtp_histogram.{png,svg}, for sweeps sweep_<axis>.{png,svg}
 (figures against each axis, mean and 95 % t-interval over replications),
 registration_vs_latency.{png,svg} and a pose-prediction section when any run
-predicts, and gantt.{png,svg} next to every summary whose run has a
-timeline.csv.
+predicts, a pacing table and pacing_pareto.{png,svg} when some row is paced
+(analysis/pacing_plot.py), and gantt.{png,svg} next to every summary whose run
+has a timeline.csv.
 """
 
 import argparse
@@ -20,6 +21,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import gantt  # noqa: E402
 import latsim_results as lr  # noqa: E402
+import pacing_plot  # noqa: E402
 import plotting  # noqa: E402
 import prediction  # noqa: E402
 from plotting import plt  # noqa: E402
@@ -172,7 +174,7 @@ def markdown_table(coll):
     return lines
 
 
-def write_markdown(coll, plots, sweep_plots, gantts, skipped, prediction_plot=None):
+def write_markdown(coll, plots, sweep_plots, gantts, skipped, prediction_plot=None, pacing_lines=()):
     first = coll.rows[0].summaries[0]
     version = first.get("latsim", {})
     md = [f"# latsim report: {os.path.basename(os.path.normpath(coll.directory))}", ""]
@@ -195,6 +197,7 @@ def write_markdown(coll, plots, sweep_plots, gantts, skipped, prediction_plot=No
         md += ["## Figures against each swept axis", "",
                "Lines are means over replications; bands are 95 % Student-t intervals.", ""]
         md += [f"![{p}]({p}.png)" for p in sweep_plots] + [""]
+    md += list(pacing_lines)
     if prediction_plot or prediction.has_prediction(coll):
         md += prediction.markdown(coll)
         if prediction_plot:
@@ -228,7 +231,9 @@ def main(argv):
         sweep_plots = [p for p in (plot_sweep_axis(coll, a) for a in coll.axes) if p]
         gantts, skipped = draw_gantts(coll, args.gantt_limit)
         prediction_plot = prediction.plot_registration_vs_latency(coll) if prediction.has_prediction(coll) else None
-        write_markdown(coll, plots, sweep_plots, gantts, skipped, prediction_plot)
+        pacing_pareto = pacing_plot.plot(coll)
+        write_markdown(coll, plots, sweep_plots, gantts, skipped, prediction_plot,
+                       pacing_plot.markdown(coll, pacing_pareto))
     except OSError as e:
         # A full disk or a read-only directory: one line, no traceback.
         where = f"{e.filename}: " if e.filename else ""
@@ -238,6 +243,7 @@ def main(argv):
         print("report: interrupted; files written so far are whole", file=sys.stderr)
         return 130
     plots_drawn = len(plots) + len(sweep_plots) + len(gantts) + (1 if prediction_plot else 0)
+    plots_drawn += 1 if pacing_pareto else 0
     print(f"report: {len(coll.rows)} row(s), {plots_drawn} plot(s) -> "
           f"{os.path.join(coll.directory, 'report.md')}")
     return 0

@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "frame_stages/compositor.hpp"
+#include "frame_stages/pacing_compositor.hpp"
+#include "frame_stages/pacing_driver.hpp"
 #include "frame_stages/pose_sampler.hpp"
 #include "frame_stages/progress.hpp"
 #include "frame_stages/residual_errors.hpp"
@@ -35,12 +37,15 @@ class FrameStagesPipeline final : public Pipeline {
   void start(RunContext& ctx) override;
   /// Reports frames, misses, warps and residual errors to the recorder.
   void finish(RunContext& ctx) override;
+  /// The application's pacing (none with the fixed policy).
+  const AppPacing* app_pacing() const { return app_pacing_.get(); }
 
  private:
   FlowEnv env(des::RandomStream& stream);
   FlowHooks app_hooks();
   FlowHooks warp_hooks();
   des::Time app_photon_target(des::Time completion) const;
+  void start_pacing(RunContext& ctx);
 
   FrameStagesSpec spec_;
   RunContext* ctx_ = nullptr;
@@ -53,6 +58,8 @@ class FrameStagesPipeline final : public Pipeline {
   std::unique_ptr<Compositor> compositor_;
   std::unique_ptr<ResidualErrors> residuals_;
   std::unique_ptr<StageFlow> app_, warp_;
+  std::unique_ptr<AppPacing> app_pacing_;
+  std::unique_ptr<CompositorPacer> compositor_pacer_;
 };
 
 }  // namespace latsim::pipelines::frame_stages

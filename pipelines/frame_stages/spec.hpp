@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "frame_stages/cost_shape.hpp"
+#include "frame_stages/pacing.hpp"
 #include "latsim/des/time.hpp"
 #include "latsim/renderer/render_cost.hpp"
 
@@ -39,6 +41,7 @@ struct StageSpec {
   des::Time lag;                ///< stream: how long the previous stage runs before this one starts
   int until = -1;               ///< late: the stage whose end must meet the deadline (-1: this one)
   bool samples_pose = false;    ///< reads the head pose when it begins
+  CostShape shape;              ///< steps and spikes over the run (none: the cost model alone)
 };
 
 /// How late scheduling estimates a span: the longest of its nominal length
@@ -73,6 +76,7 @@ struct FrameStagesSpec {
   std::vector<ProcessorSpec> processors;
   std::vector<StageSpec> stages;
   std::optional<WarpSpec> warp;
+  PacingSpec pacing;  ///< when the application's frames and the compositor's warps wake
 };
 
 }  // namespace latsim::pipelines::frame_stages
