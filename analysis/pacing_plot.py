@@ -54,6 +54,9 @@ def pareto_front(points):
 
 
 def label_of(row, coll):
+    # A sweep that labels its points (a /description axis beside whole objects, zip mode) is shown by its labels.
+    if "/description" in coll.axes:
+        return str(row.axis_values["/description"])
     if coll.axes:
         return ", ".join(f"{lr.short_axis_name(a, coll.axes)}={row.axis_values[a]}" for a in coll.axes)
     return row.name

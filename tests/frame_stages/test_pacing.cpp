@@ -106,6 +106,41 @@ TEST_CASE("pacing: a step in GPU time past the period misses, steps the frame pe
   CHECK(rig.figures["frames_late_to_latch"].get<int64_t>() == 10);
 }
 
+TEST_CASE("pacing: GPU time stepping from 4 to 9 ms at 90 Hz misses five frames, the period stays one refresh") {
+  // 90 Hz (P = 11.111 ms), C 1 ms, R 1 ms, G 4 ms, from frame 200 9 ms, from
+  // frame 400 4 ms again; one frame in flight, no compositor. Frame 200 + k
+  // is planned with k samples of 9: gpu_est = 9 - 5 * 0.8^k (before the step
+  // the estimates sum to the 6 ms of work from the start), so it is done
+  // 5 * 0.8^k after its prediction and late to its latch while
+  // 5 * 0.8^k > 2 ms: k = 0 .. 4 (5 * 0.8^4 = 2.05, 5 * 0.8^5 = 1.64). No
+  // estimate exceeds P, so the frame period stays one refresh; with 11 ms of
+  // work and 2 of margin a frame planned when the previous is done (2 ms
+  // before its retrace) still fits before the next retrace, 0.11 ms to spare.
+  // After the step back frames are done early: none late. Away from the
+  // transient (frames 200 .. 219, when a frame planned with a smaller error
+  // than its predecessor's finds the next retrace too close) the display
+  // times are a refresh apart.
+  RigOptions o;
+  o.field_period = latsim::des::RationalSeconds::period_of_hz(90);
+  FrameStagesSpec spec = three_spans(1, 1, 4, 1);
+  spec.stages[2].shape.steps = {{200, Time::ms(9)}, {400, Time::ms(4)}};
+  Rig rig(spec, o);
+  rig.run(5.0);
+  const auto& log = rig.pipeline.app_pacing()->log();
+  REQUIRE(log.size() >= 440);
+  for (size_t n = 0; n < 440; ++n) {
+    INFO("frame " << n);
+    CHECK(log[n].sample.missed == (n >= 200 && n <= 204));
+    CHECK(log[n].plan.frame_periods == 1);
+    if (n >= 200 && n < 400)
+      CHECK(ms(log[n].sample.gpu_done - log[n].plan.predicted_done) ==
+            Approx(5.0 * std::pow(0.8, static_cast<double>(n - 200))).margin(1e-3));
+    if (n > 0 && (n < 200 || n >= 220))
+      CHECK(ms(log[n].plan.display - log[n - 1].plan.display) == Approx(1000.0 / 90.0).margin(1e-6));
+  }
+  CHECK(rig.figures["frames_late_to_latch"].get<int64_t>() == 5);
+}
+
 TEST_CASE("pacing: on a light steady workload Monado and just-in-time pacing save period minus work minus margin") {
   // 90 Hz (11.111 ms), C 1 + R 1 + G 2 = 4 ms of work, two frames in flight,
   // no compositor. Started at a retrace V, a frame reads its pose at V and is
