@@ -15,7 +15,8 @@ GANTT_SAMPLE points unless --gantt-limit says otherwise. A sweep's table in
 report.md holds the --top lowest and highest points by the chosen figure once
 it has more than twice as many. A sweep reads its headline figures from
 results.csv and one summary.json per point: the cost grows with the points
-drawn, not with the runs. Long work prints progress lines on stderr.
+drawn, not with the runs. Long work prints progress lines on stderr. A pacing
+table and pacing_pareto.{png,svg} when some row is paced (analysis/pacing_plot.py).
 """
 
 import argparse
@@ -27,6 +28,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import gantt_sample  # noqa: E402
 import heatmap  # noqa: E402
 import latsim_results as lr  # noqa: E402
+import pacing_plot  # noqa: E402
 import plotting  # noqa: E402
 import prediction  # noqa: E402
 from plotting import plt  # noqa: E402
@@ -267,6 +269,7 @@ def write_markdown(coll, drawn, top, figure):
                "Each cell is the mean over replications (`--figure` chooses another column); one panel per "
                "combination of the other axes" + (f", the first {panels} of {total}" if panels < total else "") +
                ".", "", f"![{base}]({base}.png)", ""]
+    md += list(pacing_plot.markdown(coll, drawn["pacing"]))
     if drawn["prediction"] or prediction.has_prediction(coll):
         md += prediction.markdown(coll)
         if drawn["prediction"]:
@@ -307,6 +310,7 @@ def draw_everything(coll, args, figure):
         limit = GANTT_SAMPLE
     drawn["gantt"], drawn["gantt_skipped"] = gantt_sample.draw(coll, limit)
     drawn["prediction"] = prediction.plot_registration_vs_latency(coll) if prediction.has_prediction(coll) else None
+    drawn["pacing"] = pacing_plot.plot(coll)
     return drawn
 
 
@@ -351,7 +355,7 @@ def main(argv):
         print("report: interrupted; files written so far are whole", file=sys.stderr)
         return 130
     plots_drawn = (len(drawn["distributions"]) + len(drawn["sweep"]) + len(drawn["gantt"]) +
-                   (1 if drawn["heatmap"] else 0) + (1 if drawn["prediction"] else 0))
+                   (1 if drawn["heatmap"] else 0) + (1 if drawn["prediction"] else 0) + (1 if drawn["pacing"] else 0))
     print(f"report: {len(coll.rows)} row(s), {plots_drawn} plot(s) -> "
           f"{os.path.join(coll.directory, 'report.md')}")
     return 0

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "frame_stages/frame_stages_pipeline.hpp"
+#include "frame_stages/pacing_bind.hpp"
 #include "latsim/des/time.hpp"
 #include "latsim/params/render_cost.hpp"
 #include "latsim/params/shared.hpp"
@@ -34,6 +35,7 @@ struct StageKeys {
   std::string until;
   bool samples_pose = false;
   renderer::RenderCost::Params cost;
+  CostShape shape;
 };
 
 struct WarpKeys {
@@ -77,6 +79,8 @@ void bind(Section& s, StageKeys& st) {
   s.flag("samples_pose", st.samples_pose, {.doc = "reads the head pose when it begins (the last such stage's pose is drawn)"});
   s.object("cost", st.cost, [](Section& c, renderer::RenderCost::Params& v) { params::bind(c, v); },
            {.doc = "how long it takes (the render-cost model)"});
+  s.object("cost_shape", st.shape, [](Section& c, CostShape& v) { bind_cost_shape(c, v); },
+           {.doc = "steps and spikes of its cost over the run (docs/pacing.md)"});
 }
 
 /// Processor units by index, and the units each processor name stands for.
@@ -142,6 +146,7 @@ std::vector<StageSpec> resolve(Section& s, const std::string& key, const std::ve
       st.until = u;
     }
     st.samples_pose = k.samples_pose;
+    st.shape = k.shape;
     samples = samples || k.samples_pose;
     out.push_back(std::move(st));
   }
@@ -200,6 +205,9 @@ void bind(Section& s, FrameStagesPipeline::Params& p, const params::SharedParams
   std::optional<WarpKeys> warp;
   s.optional_object("timewarp", warp, [](Section& w, WarpKeys& v) { bind_warp(w, v); },
                     {.doc = "a compositor re-projecting the newest image just before it is scanned out"});
+  PacingKeys pacing;
+  s.object("pacing", pacing, [](Section& e, PacingKeys& v) { bind_pacing(e, v); },
+           {.doc = "when the application's frames and the compositor's warps wake (docs/pacing.md)"});
   s.rule("processors", "processor names are unique");
   s.rule("stages",
          "each stage runs `on` a processor; a stream stage follows a stage on another processor; `until` names "
@@ -221,6 +229,8 @@ void bind(Section& s, FrameStagesPipeline::Params& p, const params::SharedParams
   }
   s.check("vsync", paced || total > des::Time::zero(),
           "frames that take no time and wait for nothing would follow each other without end: give a stage a cost");
+  resolve_pacing(s, pacing, spec.stages, warp.has_value());
+  spec.pacing = pacing.spec;
   if (!warp) return;
   WarpSpec w;
   w.mode = warp->mode;

@@ -24,6 +24,8 @@ class Compositor {
   Compositor(RunContext& ctx, const WarpSpec& spec, des::Resource& eye_buffers);
 
   const WarpClock& clock() const { return clock_; }
+  /// Half rate from now on (or not): a second showing of an image is synthesised, not missed.
+  void set_half_rate(bool on) { spec_.half_rate = on; }
 
   /// An application frame is complete: it becomes the newest image.
   void on_frame_complete(const JobRecord& frame);

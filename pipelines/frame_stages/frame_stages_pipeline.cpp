@@ -50,7 +50,9 @@ FlowHooks FrameStagesPipeline::app_hooks() {
     ctx_->app_frames.rendered(app_frame_times(frame, app_->last_run_first()));
     if (compositor_) compositor_->on_frame_complete(frame);
     else swap_chain_->on_frame_complete(frame);
+    if (app_pacing_) app_pacing_->on_complete(frame);
   };
+  if (app_pacing_) h.wake_up = [this](JobRecord& frame, des::Time now) { return app_pacing_->wake_up(frame, now); };
   h.retrace_divider = spec_.warp && spec_.warp->half_rate ? 2 : 1;
   return h;
 }
@@ -64,7 +66,12 @@ FlowHooks FrameStagesPipeline::warp_hooks() {
     return clock->middle_photon(clock->slot_of(clock->next_deadline(t)));
   };
   h.on_begin = [this](JobRecord& warp) { return compositor_->on_begin(warp); };
-  h.on_complete = [this](JobRecord& warp) { compositor_->on_complete(warp); };
+  h.on_complete = [this](JobRecord& warp) {
+    compositor_->on_complete(warp);
+    if (compositor_pacer_) compositor_pacer_->on_complete(warp, ctx_->recorder);
+  };
+  if (compositor_pacer_)
+    h.wake_up = [this](JobRecord& warp, des::Time now) { return compositor_pacer_->wake_up(warp, now); };
   return h;
 }
 
@@ -90,6 +97,7 @@ void FrameStagesPipeline::start(RunContext& ctx) {
     image_buffers_ = std::make_unique<des::Resource>(ctx.sim, spec_.swap_chain_images, "swap_chain");
     swap_chain_ = std::make_unique<SwapChain>(ctx, *image_buffers_, spec_.vsync);
   }
+  start_pacing(ctx);
   app_ = std::make_unique<StageFlow>("frame.stage", spec_.stages, spec_.late, env(*app_stream_), app_hooks());
   if (spec_.warp) {
     warp_stream_ = std::make_unique<des::RandomStream>(ctx.stream("compositor"));
@@ -133,6 +141,25 @@ void FrameStagesPipeline::warn_about_overload(RunContext& ctx) const {
     r.warn(std::to_string(late) + " of " + std::to_string(compositor_->warps()) +
            " warps ended after their retrace (warps_late)" + advice);
   }
+void FrameStagesPipeline::start_pacing(RunContext& ctx) {
+  const display::RasterTiming* timing = &ctx.display.timing();
+  const des::Time period = timing->field_start(1) - timing->field_start(0);
+  if (compositor_ && spec_.pacing.compositor.enabled)
+    compositor_pacer_ = std::make_unique<CompositorPacer>(spec_.pacing.compositor, period, compositor_->clock());
+  if (spec_.pacing.app == AppPolicy::fixed) return;
+  PacingClock clock;
+  clock.period = period;
+  clock.period_multiple = spec_.warp && spec_.warp->half_rate ? 2 : 1;
+  clock.next_display = [timing](des::Time t) { return timing->field_start(timing->field_at_or_after(t)); };
+  // The compositor latches its budget (or its late warp's lead) before the retrace; a swap chain at the retrace.
+  clock.compositor_time = [this] {
+    if (compositor_pacer_) return compositor_pacer_->budget();
+    return warp_ ? warp_->late_lead(0) : des::Time::zero();
+  };
+  std::function<void(bool)> set_half_rate;
+  if (compositor_) set_half_rate = [this](bool on) { compositor_->set_half_rate(on); };
+  app_pacing_ = std::make_unique<AppPacing>(spec_.pacing, spec_.stages, std::move(clock), ctx.recorder, ctx.timeline,
+                                            std::move(set_half_rate));
 }
 
 void FrameStagesPipeline::finish(RunContext& ctx) {
@@ -141,6 +168,8 @@ void FrameStagesPipeline::finish(RunContext& ctx) {
     if (flow)
       for (const StageSpec& st : flow->stages())
         if (st.cost.trace()) r.add_capture(params::trace_summary(st.cost));
+  if (app_pacing_) app_pacing_->finish(r);
+  if (compositor_pacer_) compositor_pacer_->finish(r);
   // frames_rendered, application_frame_rate_hz and frames_missed are ctx.app_frames'.
   // What an engineer of such a system reads first: behind a warp, the
   // latency of the orientation the warp used (the application pose's

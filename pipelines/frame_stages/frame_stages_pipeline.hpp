@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "frame_stages/compositor.hpp"
+#include "frame_stages/pacing_compositor.hpp"
+#include "frame_stages/pacing_driver.hpp"
 #include "frame_stages/pose_sampler.hpp"
 #include "frame_stages/progress.hpp"
 #include "frame_stages/residual_errors.hpp"
@@ -37,6 +39,8 @@ class FrameStagesPipeline final : public Pipeline {
   void finish(RunContext& ctx) override;
   /// Frames per second through the stages and warps per refresh (event_rates.cpp).
   std::vector<EventRate> event_rates(const params::SharedParams& shared) const override;
+  /// The application's pacing (none with the fixed policy).
+  const AppPacing* app_pacing() const { return app_pacing_.get(); }
 
  private:
   FlowEnv env(des::RandomStream& stream);
@@ -45,6 +49,7 @@ class FrameStagesPipeline final : public Pipeline {
   des::Time app_photon_target(des::Time completion) const;
   /// Warns when the application falls behind a compositor, or warps end late.
   void warn_about_overload(RunContext& ctx) const;
+  void start_pacing(RunContext& ctx);
 
   FrameStagesSpec spec_;
   RunContext* ctx_ = nullptr;
@@ -57,6 +62,8 @@ class FrameStagesPipeline final : public Pipeline {
   std::unique_ptr<Compositor> compositor_;
   std::unique_ptr<ResidualErrors> residuals_;
   std::unique_ptr<StageFlow> app_, warp_;
+  std::unique_ptr<AppPacing> app_pacing_;
+  std::unique_ptr<CompositorPacer> compositor_pacer_;
 };
 
 }  // namespace latsim::pipelines::frame_stages

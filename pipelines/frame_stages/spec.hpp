@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "frame_stages/cost_shape.hpp"
+#include "frame_stages/pacing.hpp"
 #include "latsim/des/time.hpp"
 #include "latsim/renderer/render_cost.hpp"
 
@@ -41,6 +43,7 @@ struct StageSpec {
   int until = -1;               ///< late: the stage whose end must meet the deadline (-1: this one)
   bool samples_pose = false;    ///< reads the head pose when it begins
   std::string pointer;          ///< where the scenario declares it (/pipeline/stages/i)
+  CostShape shape;              ///< steps and spikes over the run (none: the cost model alone)
 };
 
 /// How late scheduling estimates a span: the longest of its nominal length
@@ -75,6 +78,7 @@ struct FrameStagesSpec {
   std::vector<ProcessorSpec> processors;
   std::vector<StageSpec> stages;
   std::optional<WarpSpec> warp;
+  PacingSpec pacing;  ///< when the application's frames and the compositor's warps wake
 };
 
 }  // namespace latsim::pipelines::frame_stages

@@ -97,6 +97,11 @@ des::Time StageFlow::expected_completion(int from, des::Time t) const {
   return end;
 }
 
+des::Time StageFlow::late_lead(int stage) const {
+  if (stages_[static_cast<size_t>(stage)].start != StartRule::late) return des::Time::zero();
+  return estimates_[static_cast<size_t>(stage)].estimate() + late_.margin;
+}
+
 des::Time StageFlow::photon_target(int stage) const {
   return hooks_.photon_for_completion(expected_completion(stage, env_.sim.now()));
 }
@@ -115,7 +120,10 @@ JobRecord& StageFlow::new_record(int64_t j) {
 StageFlow::Wait StageFlow::rule_wait(int stage, JobRecord& rec) {
   const StageSpec& s = stages_[static_cast<size_t>(stage)];
   Wait w;
-  if (s.start == StartRule::retrace) {
+  if (stage == 0 && hooks_.wake_up) {
+    // A pacing policy decides instead of the stage's rule (it sets the deadline).
+    w.until = hooks_.wake_up(rec, env_.sim.now());
+  } else if (s.start == StartRule::retrace) {
     int64_t f = env_.retraces.value();
     while (f % hooks_.retrace_divider != 0) ++f;
     w.progress = &env_.retraces;
@@ -233,7 +241,7 @@ des::Process StageFlow::worker(int r, int lane) {
       begin_stage(s, record(j));
       // A measured cost with nothing left ends the run after this event.
       if (st.cost.exhausted() && env_.out_of_input) env_.out_of_input(st.cost);
-      des::Time remaining = st.cost.frame_time(env_.stream);
+      des::Time remaining = shaped_cost(st.cost, st.shape, j, env_.stream);
       record(j).cost[static_cast<size_t>(s)] = remaining;
       while (remaining > des::Time::zero()) {
         const des::Time step = slice > des::Time::zero() && slice < remaining ? slice : remaining;

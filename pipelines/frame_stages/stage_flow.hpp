@@ -50,6 +50,9 @@ struct FlowHooks {
   std::function<void(JobRecord&)> on_complete;
   /// The retrace rule waits for retraces whose index is a multiple of this.
   int retrace_divider = 1;
+  /// Set: replaces the first stage's start rule; when job `rec` may begin,
+  /// asked at the given time (a pacing policy; it sets rec.deadline).
+  std::function<des::Time(JobRecord&, des::Time)> wake_up;
 };
 
 /// The shared things a flow runs on.
@@ -101,6 +104,8 @@ class StageFlow {
   /// When a job whose stage `from` begins at t completes, by nominal times,
   /// retrace waits and late deadlines.
   des::Time expected_completion(int from, des::Time t) const;
+  /// A late stage: how long before its deadline it starts now (estimate plus margin); else zero.
+  des::Time late_lead(int stage) const;
 
  private:
   struct Run {

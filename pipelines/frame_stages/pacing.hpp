@@ -1,0 +1,132 @@
+// Frame pacing: when the application's frame thread is let go, as today's
+// runtimes decide it from what they measured of earlier frames
+// (docs/pacing.md). A policy sees only measured durations and the display's
+// retrace times, never the costs of frames to come.
+#pragma once
+
+#include <functional>
+#include <memory>
+
+#include "latsim/des/time.hpp"
+
+namespace latsim::pipelines::frame_stages {
+
+/// Which application pacing policy runs.
+enum class AppPolicy {
+  fixed,         ///< the first stage's own start rule (retrace, or late): today's behaviour
+  monado,        ///< Monado's u_pacing_app: IIR-smoothed CPU, draw and GPU times
+  just_in_time,  ///< a percentile of the last measured frame times plus a margin (Phase Sync, Reflex)
+  miss_rate,     ///< the median frame time plus a margin raised and lowered to hold a miss rate
+};
+
+/// Monado-style application pacing (u_pacing_app).
+struct MonadoAppParams {
+  double iir_weight = 0.8;                     ///< new = weight * old + (1 - weight) * sample
+  des::Time initial = des::Time::ms(2);        ///< the CPU, draw and GPU estimates before any frame
+  des::Time min_app_time = des::Time::ms(1);   ///< floor of their sum
+  des::Time margin = des::Time::ms(2);         ///< between the predicted GPU end and the compositor's latch
+};
+
+/// Just-in-time pacing: start the frame so that it ends `margin` before the latch.
+struct JustInTimeParams {
+  double percentile = 99.0;                   ///< of the last `window` frame times (nearest rank)
+  int window = 32;
+  des::Time margin = des::Time::ms(1);
+};
+
+/// A margin controller holding missed latches per minute below a target.
+struct MissRateParams {
+  double target_per_min = 6.0;                   ///< missed latches per minute to stay below
+  double window_s = 60.0;                        ///< misses counted over the last this long
+  int median_window = 32;                        ///< frame times the median is taken over
+  des::Time initial_margin = des::Time::ms(2);
+  des::Time raise = des::Time::us(500);          ///< added to the margin at each miss
+  des::Time lower = des::Time::us(2);            ///< taken off per clean frame while one more miss keeps the target
+};
+
+/// Falls back to half rate (the compositor synthesising every other refresh)
+/// after repeated misses, and returns after a run of clean frames.
+struct HalfRateFallbackParams {
+  bool enabled = false;
+  int misses = 3;         ///< misses among the last `window` frames that force half rate
+  int window = 10;
+  int clean_frames = 45;  ///< consecutive frames on time that return to full rate
+};
+
+/// Monado-style compositor pacing (u_pacing_compositor with display timing).
+struct CompositorPacingParams {
+  bool enabled = false;             ///< false: the warp's own late rule
+  double initial_percent = 10.0;    ///< of the refresh period: the first budget (also its floor)
+  double max_percent = 30.0;        ///< the budget's ceiling
+  double miss_step_percent = 4.0;   ///< added after a miss
+  double step_percent = 2.0;        ///< step towards the target margin; also the band's half width
+  des::Time target_margin = des::Time::ms(1);  ///< wanted between the warp's end and its deadline
+  des::Time late_slop = des::Time::us(500);    ///< shown later than this after its deadline: a miss
+};
+
+/// Where the application's measured spans begin (stage indices); -1: by runs
+/// (the GPU span from the last run's first stage, the draw span from the run
+/// before it).
+struct PacingStages {
+  int draw = -1;
+  int gpu = -1;
+};
+
+/// The pacing of a frame_stages pipeline, as the scenario selects it.
+struct PacingSpec {
+  AppPolicy app = AppPolicy::fixed;
+  MonadoAppParams monado;
+  JustInTimeParams just_in_time;
+  MissRateParams miss_rate;
+  HalfRateFallbackParams half_rate;
+  CompositorPacingParams compositor;
+  PacingStages stages;
+};
+
+/// What the runtime measured of one application frame.
+struct FrameSample {
+  des::Time woke;      ///< the thread was let go
+  des::Time cpu;       ///< woke to the draw span's start
+  des::Time draw;      ///< the draw (submission) span
+  des::Time gpu;       ///< the submission's end to the GPU's end
+  des::Time gpu_done;
+  des::Time latch;     ///< when the compositor (or the retrace) took frames
+  bool missed = false; ///< done after its latch
+};
+
+/// The display as a policy sees it, and what it plans around.
+struct PacingClock {
+  des::Time period;                              ///< refresh period
+  std::function<des::Time(des::Time)> next_display;  ///< first retrace at or after t
+  std::function<des::Time()> compositor_time;    ///< how long before a retrace the compositor latches
+  int period_multiple = 1;                       ///< 2 at half rate: frames at least two refreshes apart
+};
+
+/// One frame's plan: when it wakes, when it should be done, where it is shown.
+struct FramePlan {
+  des::Time wake_up;
+  des::Time predicted_done;  ///< wake_up plus the predicted application time
+  des::Time latch;           ///< display minus the compositor's time
+  des::Time display;         ///< the retrace it is meant for
+  int frame_periods = 1;     ///< refreshes the policy spaces frames by
+};
+
+/// A pacing policy: plans each frame, learns from each measured one.
+class AppPacer {
+ public:
+  virtual ~AppPacer() = default;
+  /// The plan for the next frame, asked at `now` when its thread is ready.
+  virtual FramePlan plan(des::Time now, const PacingClock& clock) = 0;
+  virtual void measured(const FrameSample& sample) = 0;
+};
+
+/// The plan for a frame that needs `lead` before its latch and a frame period
+/// of `frame_periods` refreshes: the first retrace at least that long after
+/// `last_display` whose wake-up is not before `now`.
+FramePlan plan_for(des::Time now, des::Time app_time, des::Time margin, int frame_periods, des::Time last_display,
+                   const PacingClock& clock);
+
+/// The pacer of a policy (fixed: none).
+std::unique_ptr<AppPacer> make_app_pacer(const PacingSpec& spec);
+
+}  // namespace latsim::pipelines::frame_stages
