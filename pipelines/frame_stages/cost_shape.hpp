@@ -23,7 +23,7 @@ struct CostShape {
 
 /// Job j's duration: the last step at or before j (else the cost model),
 /// plus a spike with its probability (drawn only when spikes are on).
-inline des::Time shaped_cost(const renderer::RenderCost& cost, const CostShape& shape, int64_t job,
+inline des::Time shaped_cost(renderer::RenderCost& cost, const CostShape& shape, int64_t job,
                              des::RandomStream& stream) {
   des::Time t;
   bool stepped = false;

@@ -141,6 +141,8 @@ void FrameStagesPipeline::warn_about_overload(RunContext& ctx) const {
     r.warn(std::to_string(late) + " of " + std::to_string(compositor_->warps()) +
            " warps ended after their retrace (warps_late)" + advice);
   }
+}
+
 void FrameStagesPipeline::start_pacing(RunContext& ctx) {
   const display::RasterTiming* timing = &ctx.display.timing();
   const des::Time period = timing->field_start(1) - timing->field_start(0);
