@@ -47,8 +47,15 @@ bool is_display_column(const std::string& name) {
   return lower.find("display") != std::string::npos;
 }
 
-des::Time CaptureColumn::min() const { return *std::min_element(values.begin(), values.end()); }
-des::Time CaptureColumn::max() const { return *std::max_element(values.begin(), values.end()); }
+des::Time CaptureColumn::min() const {
+  if (values.empty()) throw std::out_of_range("column " + name + " has no values");
+  return *std::min_element(values.begin(), values.end());
+}
+
+des::Time CaptureColumn::max() const {
+  if (values.empty()) throw std::out_of_range("column " + name + " has no values");
+  return *std::max_element(values.begin(), values.end());
+}
 
 std::vector<double> CaptureColumn::values_ms() const {
   std::vector<double> ms;
@@ -58,6 +65,7 @@ std::vector<double> CaptureColumn::values_ms() const {
 }
 
 des::Time CaptureColumn::mean() const {
+  if (values.empty()) throw std::out_of_range("column " + name + " has no values");
   // Summed as 128-bit integers: a million values of a second each do not overflow.
   __int128 sum = 0;
   for (des::Time v : values) sum += v.ticks();
