@@ -58,7 +58,7 @@ void bind_output(Section& s, OutputParams& p) {
   s.doc(
       "What a run keeps besides its figures. `latsim run` writes `summary.json` (last, atomically), `figures.json` "
       "(byte-identical for the same scenario and seed), `timeline.csv`/`.json` where a pipeline keeps one, "
-      "`frames.csv` with `--ledger`, `samples.csv` with `--samples`, and `frames/` when the scenario asks for "
+      "`presentmon.csv` where it has application frames (unless `--no-presentmon`), `frames.csv` with `--ledger`, `samples.csv` with `--samples`, and `frames/` when the scenario asks for "
       "captures. Each distribution is `{count, mean, stddev, min, p50, p90, p99, p999, max, histogram}` in the "
       "unit of its name; `warnings` lists legal but doubtful input.");
   s.flag("keep_samples", p.keep_samples, {.doc = "keep every sample for exact quantiles (memory grows with the run)"});

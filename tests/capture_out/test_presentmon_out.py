@@ -9,8 +9,11 @@
    truncates each instant to the nanosecond, so a duration from it is within
    1 ns of the exact one; presentmon.csv is exact to the picosecond.
 3. latsim compare of the run against itself gives KS distance 0 everywhere;
-   against a real capture it writes its table and plots.
-4. Bad input (missing capture, several processes and none chosen, a malformed
+   against a capture's process it reads what a hand count gives.
+4. A run whose CPU and GPU stages are driven by that presentmon.csv
+   (cost.trace, in order) repeats its values frame by frame, and compare
+   finds the driven columns' KS distance within the bound a prefix allows.
+5. Bad input (missing capture, several processes and none chosen, a malformed
    cell): exit 2, one line on stderr, nothing written.
 
 Usage: test_presentmon_out.py LATSIM SOURCE_DIR SCRATCH_DIR
@@ -149,7 +152,48 @@ check(abs(rows["MsGPUBusy"]["capture"]["mean"] - 0.67975) < 1e-12, "the capture'
 check(abs(rows["MsUntilDisplayed"]["capture"]["p50"] - 16.21625) < 1e-12, "the capture's p50, by hand")
 check(rows["MsGPUBusy"]["ks"] == 1.0, "a GPU busy of 0.68 ms against one of 9 ms +-30 %: disjoint, KS 1")
 
-# --- 4. bad input ----------------------------------------------------------
+# --- 4. a run driven by the first run's presentmon.csv --------------------
+# One CPU stage costing the capture's MsCPUBusy and the GPU stage its
+# MsGPUBusy, in order: frame k of the driven run costs row k's values, so its
+# own presentmon.csv repeats them exactly (the same nine decimals).
+# Stage costs from a capture (cost.trace) come with the capture reader's scenario keys; a latsim without them
+# has nothing to drive a run with, and this part says so.
+schema = subprocess.run([LATSIM, "schema", "--format", "json-schema"], capture_output=True, text=True).stdout
+if '"at_end"' not in schema:
+    print("part 4 not run: this latsim has no cost.trace")
+else:
+    driven = json.loads(json.dumps(scenario))
+    driven["duration_s"] = 0.9
+    capture_file = os.path.join(run_dir, "presentmon.csv")
+    trace = {"file": capture_file, "at_end": "stop"}
+    driven["pipeline"]["stages"] = [
+        {"name": "C", "on": "cpu", "start": "retrace", "samples_pose": True,
+         "cost": {"trace": dict(trace, column="MsCPUBusy")}},
+        {"name": "G", "on": "gpu", "cost": {"trace": dict(trace, column="MsGPUBusy")}},
+    ]
+    driven_file = os.path.join(SCRATCH, "driven.json")
+    with open(driven_file, "w") as f:
+        json.dump(driven, f)
+    driven_dir = os.path.join(SCRATCH, "driven")
+    r = subprocess.run([LATSIM, "run", driven_file, "--out", driven_dir, "--quiet"], capture_output=True, text=True)
+    check(r.returncode == 0, f"the driven run exits 0 ({r.stderr.strip()})")
+    with open(os.path.join(driven_dir, "presentmon.csv"), newline="") as f:
+        replayed = list(csv.DictReader(f))
+    check(40 <= len(replayed) < len(pm), f"the driven run shows fewer frames than the capture has ({len(replayed)})")
+    for k, row in enumerate(replayed):
+        check(row["MsGPUBusy"] == pm[k]["MsGPUBusy"], f"driven frame {k}: MsGPUBusy is the capture's row {k}")
+        check(row["MsCPUBusy"] == pm[k]["MsCPUBusy"], f"driven frame {k}: MsCPUBusy is the capture's row {k}")
+    # The driven values are the first n of the capture's N: for every x, F_capture and F_driven differ by at
+    # most (N - n) / N (the n shared values count 1/n against 1/N, the N - n others only on one side).
+    bound = (len(pm) - len(replayed)) / len(pm)
+    r = subprocess.run([LATSIM, "compare", capture_file, driven_dir], capture_output=True, text=True)
+    check(r.returncode == 0, f"compare of a capture and a run driven by it exits 0 ({r.stderr.strip()})")
+    ks = {x["column"]: float(x["ks_distance"]) for x in csv.DictReader(open(os.path.join(driven_dir, "compare",
+                                                                                         "compare.csv")))}
+    for column in ("MsCPUBusy", "MsGPUBusy"):
+        check(ks[column] <= bound + 1e-6, f"driven column {column}: KS {ks[column]} within {bound:.4f}")
+
+# --- 5. bad input ----------------------------------------------------------
 def bad(args, what):
     target = os.path.join(SCRATCH, "bad_out")
     shutil.rmtree(target, ignore_errors=True)

@@ -66,7 +66,7 @@ TEST_CASE("presentmon.csv read back with the capture reader gives each frame's d
 
   // The k-th G, drawn again: 9 ms times 1 + U(-0.3, 0.3) from stream "frame_stages" of seed 11.
   latsim::des::RandomStream stream(11, "frame_stages", 0);
-  const latsim::renderer::RenderCost g({.fixed_ms = 9, .variation = latsim::renderer::RenderCost::Variation::Uniform,
+  latsim::renderer::RenderCost g({.fixed_ms = 9, .variation = latsim::renderer::RenderCost::Variation::Uniform,
                                         .variation_fraction = 0.3},
                                        0, 0);
   for (size_t k = 0; k < gpu.size(); ++k) {
