@@ -110,12 +110,13 @@ void bind_cost_shape(Section& s, CostShape& shape) {
                 {.count = 2, .doc = "[frame, ms] rows: from that frame on the stage takes that long (replaces the cost)"});
   s.number("spike_probability", shape.spike_probability, {.min = 0.0, .max = 1.0, .doc = "chance that a frame spikes"});
   s.duration("spike_ms", shape.spike, {.unit = "ms", .min = 0.0, .doc = "added to a spiking frame"});
-  s.rule("steps", "frames in increasing order, durations at least 0");
+  s.rule("steps", "frames in increasing order, from 0 to 1e15; durations from 0 to 1e6 ms");
   if (s.describing()) return;
   shape.steps.clear();
   for (size_t i = 0; i < steps.size(); ++i) {
     const std::string at = s.pointer() + "/steps/" + std::to_string(i);
     s.check_pointer(at, steps[i][0] >= 0.0 && steps[i][1] >= 0.0, "a frame and a duration, neither negative");
+    s.check_pointer(at, steps[i][0] <= 1e15 && steps[i][1] <= 1e6, "at most frame 1e15 and 1e6 ms");
     s.check_pointer(at, i == 0 || steps[i][0] > steps[i - 1][0], "frames in increasing order");
     shape.steps.emplace_back(static_cast<int64_t>(steps[i][0]), des::Time::from_ms(steps[i][1]));
   }

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "rig.hpp"
+#include "scenario_helpers.hpp"
 
 using latsim::testing::Rig;
 using latsim::testing::RigOptions;
@@ -127,4 +128,16 @@ TEST_CASE("pacing: the miss-rate controller holds missed latches per minute near
   INFO("late to latch per minute: " << per_min);
   CHECK(per_min <= 6.0 * 1.25);
   CHECK(per_min >= 6.0 * 0.25);
+}
+
+TEST_CASE("pacing: keys a policy cannot use are errors at their pointer") {
+  using latsim::testing::run_shipped;
+  CHECK_THROWS_WITH(run_shipped("pacing/fixed.json", {"/duration_s=0.1", "/pipeline/pacing/half_rate_fallback={}"}),
+                    Catch::Contains("/pipeline/pacing/half_rate_fallback"));
+  CHECK_THROWS_WITH(run_shipped("pacing/monado.json", {"/duration_s=0.1", "/pipeline/pacing/gpu_stage=\"X\""}),
+                    Catch::Contains("/pipeline/pacing/gpu_stage"));
+  CHECK_THROWS_WITH(run_shipped("pacing/monado.json", {"/duration_s=0.1", "/pipeline/pacing/draw_stage=\"G\"",
+                                                       "/pipeline/pacing/gpu_stage=\"R\""}),
+                    Catch::Contains("/pipeline/pacing/draw_stage"));
+  CHECK_NOTHROW(run_shipped("pacing/miss_rate.json", {"/duration_s=0.1", "/pipeline/pacing/compositor=\"monado\""}));
 }
