@@ -3,6 +3,7 @@
 // swap at once without vsync (tearing).
 #include <algorithm>
 #include <deque>
+#include <limits>
 #include <memory>
 
 #include "double_buffer/analytic.hpp"
@@ -47,7 +48,7 @@ class DoubleBufferPipeline final : public Pipeline {
   std::vector<EventRate> event_rates(const params::SharedParams& shared) const override {
     const des::Time frame = p_.cost.nominal_frame_time();
     const double fields_per_s = 1.0 / shared.display.raster.field_period.to_seconds();
-    if (!p_.vsync) return {{"/pipeline/render", "renderer", paced_per_s(frame, 1e300)}};
+    if (!p_.vsync) return {{"/pipeline/render", "renderer", paced_per_s(frame, std::numeric_limits<double>::infinity())}};
     const bool render_bound = frame.to_seconds() * fields_per_s > 1.0;
     return {{render_bound ? "/pipeline/render" : "/display/refresh_hz", "renderer", paced_per_s(frame, fields_per_s)}};
   }

@@ -22,7 +22,7 @@ constexpr double kEventsPerExtraSlice = 2.0;
 // over several units count on each by their share); and which stage's cost
 // holds the most of it.
 struct Bottleneck {
-  des::Time per_job;
+  double per_job_s = 0.0;
   std::string pointer;
 };
 
@@ -41,7 +41,7 @@ Bottleneck bottleneck_of(const std::vector<StageSpec>& stages, size_t processors
   }
   const auto it = std::max_element(busy_s.begin(), busy_s.end());
   if (it == busy_s.end()) return {};
-  return {des::Time::from_seconds(*it), largest[static_cast<size_t>(it - busy_s.begin())]};
+  return {*it, largest[static_cast<size_t>(it - busy_s.begin())]};
 }
 
 // The events of `jobs_per_s` jobs through `stages`: kEventsPerStage each, under
@@ -76,21 +76,20 @@ std::vector<EventRate> FrameStagesPipeline::event_rates(const params::SharedPara
   for (const StageSpec& st : spec_.stages) paced = paced || st.start == StartRule::retrace || st.start == StartRule::late;
   Bottleneck app = bottleneck_of(spec_.stages, spec_.processors.size());
   // N frames in flight: at most N per the time all stages of one take.
-  des::Time total;
-  for (const StageSpec& st : spec_.stages) total += st.cost.nominal_frame_time();
-  const des::Time per_job_in_flight = des::Time::ps(total.ticks() / std::max(1, spec_.max_frames_in_flight));
-  if (per_job_in_flight > app.per_job) app.per_job = per_job_in_flight;
+  double total_s = 0.0;
+  for (const StageSpec& st : spec_.stages) total_s += st.cost.nominal_frame_time().to_seconds();
+  app.per_job_s = std::max(app.per_job_s, total_s / std::max(1, spec_.max_frames_in_flight));
   const double cap_hz = paced ? fields_per_s : std::numeric_limits<double>::infinity();
-  const double frames_per_s = paced_per_s(app.per_job, cap_hz);
-  const bool refresh_bound = paced && app.per_job.to_seconds() * fields_per_s <= 1.0;
+  const double frames_per_s = paced_per_s(app.per_job_s, cap_hz);
+  const bool refresh_bound = paced && app.per_job_s * fields_per_s <= 1.0;
   add_flow(out, spec_.stages, spec_.processors, frames_per_s, refresh_bound ? "/display/refresh_hz" : app.pointer,
            "frame");
   if (!spec_.warp) return out;
   // The compositor warps once per strip of every refresh, as far as its busiest processor keeps up.
   const double slots_per_s = fields_per_s * spec_.warp->strips;
   const Bottleneck warp = bottleneck_of(spec_.warp->stages, spec_.processors.size());
-  const double warps_per_s = paced_per_s(warp.per_job, slots_per_s);
-  const bool slot_bound = warp.per_job.to_seconds() * slots_per_s <= 1.0;
+  const double warps_per_s = paced_per_s(warp.per_job_s, slots_per_s);
+  const bool slot_bound = warp.per_job_s * slots_per_s <= 1.0;
   add_flow(out, spec_.warp->stages, spec_.processors, warps_per_s,
            !slot_bound ? warp.pointer : spec_.warp->strips > 1 ? "/pipeline/timewarp/strips" : "/display/refresh_hz",
            "compositor");

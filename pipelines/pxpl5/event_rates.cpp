@@ -37,9 +37,9 @@ std::vector<EventRate> slats_event_rates(const pxpl5::SlatsParams& p, const Pxpl
   const double eyes = common.stereo ? 2.0 : 1.0;
   const double triangles = static_cast<double>(common.synthetic.triangles);
   // The GP starts a field at a retrace once it is free: one per refresh at most.
-  const des::Time gp_field = p.gp_field_overhead + des::Time::from_seconds(p.gp_time_per_triangle.to_seconds() * triangles);
-  const double fields_per_s = paced_per_s(gp_field, fields_per_s_of(shared));
-  const bool gp_bound = gp_field.to_seconds() * fields_per_s_of(shared) > 1.0;
+  const double gp_field_s = p.gp_field_overhead.to_seconds() + p.gp_time_per_triangle.to_seconds() * triangles;
+  const double fields_per_s = paced_per_s(gp_field_s, fields_per_s_of(shared));
+  const bool gp_bound = gp_field_s * fields_per_s_of(shared) > 1.0;
   const std::string field_key = gp_bound ? "/pipeline/gp_us_per_triangle" : "/display/refresh_hz";
   // Each full message goes to every renderer over the ring and is rendered there.
   const double per_message =

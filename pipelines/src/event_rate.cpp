@@ -5,9 +5,11 @@
 
 namespace latsim::pipelines {
 
-double paced_per_s(des::Time period, double cap_hz) {
-  if (period <= des::Time::zero()) return cap_hz;
-  return std::min(cap_hz, 1.0 / period.to_seconds());
+double paced_per_s(des::Time period, double cap_hz) { return paced_per_s(period.to_seconds(), cap_hz); }
+
+double paced_per_s(double period_s, double cap_hz) {
+  if (period_s <= 0.0) return cap_hz;
+  return std::min(cap_hz, 1.0 / period_s);
 }
 
 std::vector<EventRate> shared_event_rates(const params::SharedParams& p) {

@@ -128,8 +128,10 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
   resolve_clocks(run, options.replication);
   const params::SharedParams& p = run.shared;
   // A run that could never finish is refused before anything is built.
-  built_from("/pipeline", "pipeline", [&] { run.pipeline = make_pipeline(); });
-  run.estimate = estimate_events(p, *run.pipeline);
+  built_from("/pipeline", "pipeline", [&] {
+    run.pipeline = make_pipeline();
+    run.estimate = estimate_events(p, *run.pipeline);
+  });
   check_event_budget(run.estimate, options.max_events);
   built_from("/motion", "head motion", [&] { run.motion = tracker::make_motion(p.motion); });
   built_from("/tracker", "tracker", [&] {

@@ -5,7 +5,6 @@
 // accepted when it fits any one of its declarations.
 #include <algorithm>
 #include <cstdint>
-#include <limits>
 #include <memory>
 #include <optional>
 #include <string>

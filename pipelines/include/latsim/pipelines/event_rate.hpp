@@ -26,6 +26,8 @@ struct EventRate {
 /// Per second, one per `period`: 1 / period, or `cap_hz` when that is lower
 /// or the period is zero (work paced by something else, such as retraces).
 double paced_per_s(des::Time period, double cap_hz);
+/// The same for a period in seconds (a sum of times that need not fit des::Time).
+double paced_per_s(double period_s, double cap_hz);
 
 /// The rates of the shared models: the tracker's samples (/tracker/rate_hz),
 /// a serial link's line events, the display's retraces and scanout events
