@@ -77,6 +77,8 @@ SweepOutcome sweep_into(const SweepCall& call, const std::atomic<bool>& stop) {
   sweep::SweepWorkspace work(request);
   sweep::write_file_if_changed(work.store.out_dir() / "plan.json", plan.to_json().dump(2) + "\n");
 
+  // Which runs keep their traces: the sweep file's "keep", else figures only.
+  const sweep::KeepPolicy keep = plan.keep().value_or(sweep::KeepPolicy{});
   sweep::SweepTally tally;
   std::vector<size_t> pending;
   for (size_t i : all) {
@@ -91,7 +93,7 @@ SweepOutcome sweep_into(const SweepCall& call, const std::atomic<bool>& stop) {
       attempts[i].result = sweep::RunAttempt::Result::not_started;
       return;
     }
-    attempts[i] = work.executor.execute(sweep::RunTask::of(plan, plan.runs()[pending[i]]));
+    attempts[i] = work.executor.execute(sweep::RunTask::of(plan, plan.runs()[pending[i]], keep));
     if (attempts[i].storage_unusable) storage_unusable.store(true);
   });
   tally.add(plan, pending, attempts);
