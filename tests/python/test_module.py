@@ -59,7 +59,7 @@ figures_file = json.loads(read(os.path.join(cli_out, "figures.json")))
 check(r.figures == figures_file["figures"], "Result.figures differs from figures.json")
 check(r.fingerprint == figures_file["fingerprint"], "Result.fingerprint differs from figures.json")
 # The command line prints the mean to three decimals.
-printed = [line for line in proc.stdout.splitlines() if "motion-to-photon ms: mean" in line]
+printed = [line for line in proc.stdout.splitlines() if "motion_to_photon_ms: mean" in line]
 check(printed and f"mean {r.figures['motion_to_photon_ms']['mean']:.3f} " in printed[0],
       f"mean: {printed} against {r.figures['motion_to_photon_ms']['mean']}")
 
