@@ -244,48 +244,51 @@ void Timeline::Writer::finish(RunFiles& files) {
   files.commit(json_, "timeline.json");
 }
 
-void Timeline::add(std::string_view stage, int64_t frame, int eye, std::string_view unit, des::Time start,
-                   des::Time end) {
+bool Timeline::accept() {
   if (max_entries_ > 0 && accepted_ >= max_entries_) {
     ++dropped_;
-    return;
+    return false;
   }
   ++accepted_;
-  if (files_ == nullptr) {
+  return true;
+}
+
+Timeline::Writer* Timeline::stream() {
+  if (files_ == nullptr) return nullptr;
+  if (!stream_.is_open()) stream_.open(*files_);
+  return &stream_;
+}
+
+void Timeline::add(std::string_view stage, int64_t frame, int eye, std::string_view unit, des::Time start,
+                   des::Time end) {
+  if (!accept()) return;
+  Writer* out = stream();
+  if (out == nullptr) {
     entries_.push_back(Entry{std::string(stage), frame, eye, std::string(unit), start, end, Kind::interval, 0, {}});
     return;
   }
-  if (!stream_.is_open()) stream_.open(*files_);
-  stream_.write(stage, frame, eye, unit, start, end);
+  out->write(stage, frame, eye, unit, start, end);
 }
 
 void Timeline::add_counter(std::string_view name, des::Time at, double value) {
-  if (max_entries_ > 0 && accepted_ >= max_entries_) {
-    ++dropped_;
-    return;
-  }
-  ++accepted_;
-  if (files_ == nullptr) {
+  if (!accept()) return;
+  Writer* out = stream();
+  if (out == nullptr) {
     entries_.push_back(Entry{std::string(name), 0, -1, {}, at, at, Kind::counter, value, {}});
     return;
   }
-  if (!stream_.is_open()) stream_.open(*files_);
-  stream_.write_counter(name, at, value);
+  out->write_counter(name, at, value);
 }
 
 void Timeline::add_flow(int64_t id, std::string_view from_unit, des::Time from, std::string_view to_unit,
                         des::Time to) {
-  if (max_entries_ > 0 && accepted_ >= max_entries_) {
-    ++dropped_;
-    return;
-  }
-  ++accepted_;
-  if (files_ == nullptr) {
+  if (!accept()) return;
+  Writer* out = stream();
+  if (out == nullptr) {
     entries_.push_back(Entry{{}, id, -1, std::string(from_unit), from, to, Kind::flow, 0, std::string(to_unit)});
     return;
   }
-  if (!stream_.is_open()) stream_.open(*files_);
-  stream_.write_flow(id, from_unit, from, to_unit, to);
+  out->write_flow(id, from_unit, from, to_unit, to);
 }
 
 void Timeline::stream_to(RunFiles& files) {

@@ -96,6 +96,11 @@ class Timeline {
     std::string buffer_;  // one formatted entry, reused (its size is what is reserved, not what is used)
   };
 
+  // Counts an entry, or the one the limit drops (false).
+  bool accept();
+  // The files' writer, opened on first use; nullptr while entries are held.
+  Writer* stream();
+
   std::vector<Entry> entries_;
   size_t max_entries_ = 0;
   size_t dropped_ = 0;
