@@ -84,6 +84,12 @@ void bind(Section& s, tracker::PredictionParams& p, const tracker::TrackerParams
             .doc = "a fixed horizon past each sample's measurement",
             .default_doc = "the pipeline's expected photon time"});
   if (horizon_ms) p.fixed_horizon = des::Time::from_ms(*horizon_ms);
+  s.choice("knowledge", p.knowledge,
+           {{"oracle", tracker::PredictionKnowledge::oracle}, {"runtime", tracker::PredictionKnowledge::runtime}},
+           {.doc = "what the predictor knows of each sample's measurement time: `oracle`, the true instant; "
+                   "`runtime`, only the host's own clock (when the record became visible, less the tracker's "
+                   "internal delay and the record's time on the link), so that tracker jitter, poll waits and "
+                   "queueing distort its rates and horizon (docs/prediction.md)"});
 }
 
 void bind(Section& s, tracker::MotionPhaseParams& p) {

@@ -74,16 +74,27 @@ std::optional<des::RationalSeconds> rational_lcm(des::RationalSeconds x, des::Ra
 }
 
 /// Per-line latencies summed exactly in picoseconds. Every field has the
-/// same line offsets from its retrace, so a displayed field adds
-/// lines x (retrace - measured) + the sum of the offsets. At most
-/// `max_fields` fields are taken: the work follows what the run can afford,
-/// not the render time (one frame of a long render spans many fields).
+/// same photon offsets of its lines from its retrace (the middle of each
+/// line's lit interval under the display's persistence: the line's scanout
+/// instant on an impulse display, a constant later on full or rolling
+/// persistence, one instant after the field's last line for a global flash),
+/// so a displayed field adds lines x (retrace - measured) + the sum of the
+/// offsets. At most `max_fields` fields are taken: the work follows what the
+/// run can afford, not the render time (one frame of a long render spans
+/// many fields).
 class Tally {
  public:
-  Tally(const display::RasterTiming& t, int64_t max_fields) : lines_(t.lines_per_field()), max_fields_(max_fields) {
-    for (int j = 0; j < lines_; ++j) offsets_sum_ += (t.line_time(0, j) - t.field_start(0)).ticks();
-    first_ = t.line_time(0, 0) - t.field_start(0);
-    last_ = t.line_time(0, lines_ - 1) - t.field_start(0);
+  Tally(const display::RasterTiming& t, const display::PersistenceParams& persistence, int64_t max_fields)
+      : lines_(t.lines_per_field()), max_fields_(max_fields) {
+    const display::Persistence lit(persistence, t);
+    first_ = des::Time::max();
+    last_ = -des::Time::max();
+    for (int j = 0; j < lines_; ++j) {
+      const des::Time offset = lit.lit(0, t.line_time(0, j)).middle() - t.field_start(0);
+      offsets_sum_ += offset.ticks();
+      first_ = std::min(first_, offset);
+      last_ = std::max(last_, offset);
+    }
   }
   /// False, and nothing added, once the budget of fields is spent.
   bool field(des::Time retrace, des::Time measured) {
@@ -168,7 +179,7 @@ std::optional<AnalyticLatency> enumerate_fixed(const AnalyticInputs& in, const L
   const auto fields = cycle_fields(in.raster.field_period, frames.swap_after(s) - s, in.tracker_period, link.poll,
                                    a.hyperperiod_s);
   if (!fields) return std::nullopt;
-  Tally tally(timing, in.max_fields);
+  Tally tally(timing, in.persistence, in.max_fields);
   const int64_t s0 = s;
   while (s - s0 < *fields && a.frames < kMaxFrames && !tally.truncated()) {
     s = frames.add(s, vis, tally);
@@ -207,7 +218,7 @@ std::optional<AnalyticLatency> integrate(const AnalyticInputs& in, const Link& l
   };
   const int64_t nt = in.integrate_tracker ? a.phase_grid : 1;
   const int64_t np = poll_integrated ? a.phase_grid : 1;
-  Tally tally(timing, in.max_fields);
+  Tally tally(timing, in.persistence, in.max_fields);
   for (int64_t i = 0; i < nt; ++i)
     for (int64_t j = 0; j < np; ++j) {
       const des::Time tp = in.integrate_tracker ? midpoint(tracker_step, i, nt) : in.tracker_phase - in.display_phase;

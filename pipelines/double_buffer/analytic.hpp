@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "latsim/display/persistence.hpp"
 #include "latsim/display/raster_timing.hpp"
 #include "latsim/tracker/tracker.hpp"
 #include "latsim/tracker/transport.hpp"
@@ -15,6 +16,7 @@ namespace latsim::pipelines {
 /// What the analytic calculation needs to know of a run.
 struct AnalyticInputs {
   display::RasterParams raster;          ///< with the nominal field period
+  display::PersistenceParams persistence; ///< how each line is lit (photon time: middle of its lit interval)
   des::RationalSeconds tracker_period;   ///< nominal
   des::Time tracker_delay;               ///< internal delay
   des::Time tracker_jitter;
@@ -31,7 +33,8 @@ struct AnalyticInputs {
   int64_t max_fields = 4'000'000;
 };
 
-/// Motion-to-photon latency per displayed line over every phase the system takes.
+/// Motion-to-photon latency per displayed line over every phase the system
+/// takes, to the middle of each line's lit interval (as the simulation measures it).
 struct AnalyticLatency {
   std::string link;         ///< "direct", "serial poll" or "serial interrupt"
   std::string method;       ///< how the phases were covered

@@ -83,6 +83,7 @@ class DoubleBufferPipeline final : public Pipeline {
     auto varies = [](const des::Clock* c) { return c && (c->drawn || c->rate_error_ppm != 0.0); };
     AnalyticInputs in;
     in.raster = ctx.display_params.raster;  // the nominal periods
+    in.persistence = ctx.display.persistence().params();
     in.tracker_period = ctx.tracker.period;
     in.tracker_delay = ctx.tracker.internal_delay;
     in.tracker_jitter = ctx.tracker.jitter;
@@ -135,12 +136,13 @@ class DoubleBufferPipeline final : public Pipeline {
   }
 
   // When a frame started now is expected to be lit: after its nominal render
-  // time, at the next retrace behind the frames already queued (vsync), or
-  // as soon as the beam reaches the middle line (no vsync).
+  // time, at the next retrace behind the frames already queued (vsync: the
+  // middle line's photon time), or on the first line the beam writes after
+  // it (no vsync: the image appears there, mid-field).
   des::Time expected_photon_time() const {
     const des::Time now = ctx_->sim.now();
     const des::Time ready = now + p_.cost.nominal_frame_time();
-    if (!p_.vsync) return ctx_->next_middle_line_time(ready);
+    if (!p_.vsync) return ctx_->first_line_photon_time(ready);
     // Each queued image takes one of the retraces after now (the one at now,
     // if any, has already swapped).
     const display::RasterTiming& t = ctx_->display.timing();

@@ -32,10 +32,11 @@ FlowEnv FrameStagesPipeline::env(des::RandomStream& stream) {
 }
 
 des::Time FrameStagesPipeline::app_photon_target(des::Time completion) const {
-  const display::RasterTiming& timing = ctx_->display.timing();
-  // Without vsync a frame is shown at once, on average half a field lit
-  // later; otherwise from the next retrace, the middle line as its centre.
-  if (!spec_.vsync && !spec_.warp) return completion + des::Time::ps(timing.field_start(1).ticks() / 2);
+  // Without vsync a frame is shown at once: it first appears on the line
+  // the beam writes next, lit as the display lights that line (the runtime
+  // knows the display's timing and its expected completion). Otherwise from
+  // the next retrace, the middle line as its centre.
+  if (!spec_.vsync && !spec_.warp) return ctx_->first_line_photon_time(completion);
   return ctx_->photon_time_after(completion);
 }
 
@@ -62,8 +63,9 @@ FlowHooks FrameStagesPipeline::warp_hooks() {
   h.max_in_flight = 1;
   const WarpClock* clock = &compositor_->clock();
   h.next_deadline = [clock](des::Time t) { return clock->next_deadline(t); };
-  h.photon_for_completion = [clock](des::Time t) {
-    return clock->middle_photon(clock->slot_of(clock->next_deadline(t)));
+  h.photon_for_completion = [clock, ctx = ctx_](des::Time t) {
+    const WarpClock::Slot slot = clock->slot_of(clock->next_deadline(t));
+    return ctx->photon_time(slot.field, clock->middle_line(slot.strip));
   };
   h.on_begin = [this](JobRecord& warp) { return compositor_->on_begin(warp); };
   h.on_complete = [this](JobRecord& warp) {

@@ -36,10 +36,10 @@ WarpClock::Slot WarpClock::slot_of(des::Time d) const {
   return Slot{m, 0};
 }
 
-des::Time WarpClock::middle_photon(Slot slot) const {
-  const int a = first_line(slot.strip);
-  const int b = slot.strip + 1 < strips_ ? first_line(slot.strip + 1) : timing_.lines_per_field();
-  return timing_.line_time(slot.field, a + (b - a - 1) / 2);
+int WarpClock::middle_line(int strip) const {
+  const int a = first_line(strip);
+  const int b = strip + 1 < strips_ ? first_line(strip + 1) : timing_.lines_per_field();
+  return a + (b - a - 1) / 2;
 }
 
 }  // namespace latsim::pipelines::frame_stages

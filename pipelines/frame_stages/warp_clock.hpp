@@ -30,8 +30,9 @@ class WarpClock {
   des::Time next_deadline(des::Time t) const;
   /// The slot whose deadline is d (d must be a deadline).
   Slot slot_of(des::Time d) const;
-  /// Photon time of the middle line of the slot's strip.
-  des::Time middle_photon(Slot slot) const;
+  /// The middle line of strip s (its photon time, through the display's
+  /// persistence, is what a warp of the strip predicts for).
+  int middle_line(int strip) const;
 
  private:
   display::RasterTiming timing_;

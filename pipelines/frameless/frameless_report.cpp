@@ -37,7 +37,8 @@ void FramelessPipeline::sample_line(const display::ScanoutSpan& span, int line, 
   const int row = ctx_->display.timing().row_of(span.field, line);
   const auto& xs = sampled_[static_cast<size_t>(span.eye) * static_cast<size_t>(height_) + static_cast<size_t>(row)];
   for (auto it = std::lower_bound(xs.begin(), xs.end(), span.x_begin); it != xs.end() && *it < span.x_end; ++it) {
-    const des::Time photon = ctx_->display.timing().pixel_time(span.field, line, *it);
+    // Lit as the display lights the pixel (the middle of its lit interval).
+    const des::Time photon = ctx_->photon_time(span.field, line, *it);
     if (image != nullptr) {
       ctx_->recorder.pixel_age(image->sample, photon);
       continue;
@@ -73,7 +74,7 @@ std::pair<int64_t, tracker::PosePrediction> FramelessPipeline::pixel_pose(const 
   int64_t field = st.field;
   int line = t.line_of_row(field, row);
   if (line < 0) line = t.line_of_row(++field, row);
-  return {field, basis_of(st.slot).for_photon_time(t.pixel_time(field, line, x))};
+  return {field, basis_of(st.slot).for_photon_time(ctx_->photon_time(field, line, x))};
 }
 
 void FramelessPipeline::registration(int eye, int x, int row, const PixelState& st, const tracker::Pose& head,

@@ -51,19 +51,32 @@ void RunContext::present_display_memory(int64_t frame, const tracker::PosePredic
   if (timeline) timeline->add("RENDER", frame, -1, unit, start, end);
 }
 
+des::Time RunContext::photon_time(int64_t field, int line, int x) const {
+  return display.persistence().lit(field, display.timing().pixel_time(field, line, x)).middle();
+}
+
 des::Time RunContext::frame_photon_time(int64_t field) const {
-  const display::RasterTiming& t = display.timing();
-  return t.line_time(field, t.lines_per_field() / 2);
+  return photon_time(field, display.timing().lines_per_field() / 2);
 }
 
 des::Time RunContext::photon_time_after(des::Time ready, int64_t later_fields) const {
   return frame_photon_time(display.timing().field_at_or_after(ready) + later_fields);
 }
 
-des::Time RunContext::next_middle_line_time(des::Time t) const {
-  const int64_t field = display.timing().field_at_or_before(t);
-  const des::Time lit = frame_photon_time(field);
-  return lit >= t ? lit : frame_photon_time(field + 1);
+des::Time RunContext::first_line_photon_time(des::Time t) const {
+  const display::RasterTiming& timing = display.timing();
+  const int64_t field = timing.field_at_or_before(t);
+  const int lines = timing.lines_per_field();
+  // Line times grow with the line: the first one at or after t by bisection;
+  // past the field's last line, the next field's first.
+  if (timing.line_time(field, lines - 1) < t) return photon_time(field + 1, 0);
+  int lo = 0, hi = lines - 1;
+  while (lo < hi) {
+    const int mid = lo + (hi - lo) / 2;
+    if (timing.line_time(field, mid) >= t) hi = mid;
+    else lo = mid + 1;
+  }
+  return photon_time(field, lo);
 }
 
 void RunContext::fetch_orientation_at_scanout() {

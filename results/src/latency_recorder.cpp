@@ -308,10 +308,16 @@ void LatencyRecorder::first_shown(const ImageRecord& img, const display::Scanout
   }
   // Once per image (stereo pairs share one head pose): what it was predicted
   // from, for when, and how far off. Address recalculation replaces the
-  // orientation at scanout, so only its position counts here.
-  if (predicting_ && img.eye == 0)
-    add_prediction_error(tracker::PosePrediction{img.sample, img.predicted_for, img.head_pose},
-                         !img.orientation_at_scanout, true);
+  // orientation at scanout, so only its position counts here. A rotation
+  // warp's prediction is the warp's own: its orientation, from the warp's
+  // sample to the warp's target (the position it keeps was predicted by the
+  // application for another instant, and is not judged here).
+  if (predicting_ && img.eye == 0) {
+    tracker::PosePrediction p{img.sample, img.predicted_for, img.head_pose};
+    const bool rotation_warp = img.warp == ImageRecord::Warp::rotation;
+    if (rotation_warp) p.sample.measured_at = img.orientation_measured_at;
+    add_prediction_error(p, !img.orientation_at_scanout, !rotation_warp);
+  }
   if (ledger_.on()) ledger_.image_shown(span.image_id, img, span, timing_);
   if (app_frames_ && img.shows_app_frame) app_frames_->shown(img.frame, span.photon_time);
 }

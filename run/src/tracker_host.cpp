@@ -94,7 +94,7 @@ void TrackerHost::line_free() {
 void TrackerHost::send(const tracker::TrackerSample& s, des::Time start) {
   const tracker::Carriage c = transport_.carry(start);
   link_free_at_ = start + transport_.occupancy();
-  prediction_.observe(s);
+  prediction_.observe(s, stamp_of(s, c));
   delivered_.push_back(Delivered{c.visible, s});
   for (auto& fn : carried_fns_) fn(s, c);
   if (timeline_ && transport_.occupancy() > des::Time::zero()) {
@@ -109,6 +109,11 @@ void TrackerHost::send(const tracker::TrackerSample& s, des::Time start) {
       for (auto& fn : delivery_fns_) fn(s, at);
     });
   }
+}
+
+des::Time TrackerHost::stamp_of(const tracker::TrackerSample& s, const tracker::Carriage& c) const {
+  if (prediction_.params().knowledge == tracker::PredictionKnowledge::oracle) return s.measured_at;
+  return c.visible - transport_.occupancy() - tracker_.params().internal_delay;
 }
 
 void TrackerHost::prune() {

@@ -211,7 +211,9 @@ def check_prediction(scenario, scen, raster, figures, frames, fields, newest):
     if scen["pipeline"]["type"] == "frameless":
         return  # per sampled pixel: not in the ledger
     fixed = scen["host"]["prediction"].get("horizon_ms")
-    horizons = [ms(f["predicted_for_ps"] - f["measured_ps"]) for f in frames if f["eye"] == 0]
+    # A rotation warp predicts its orientation from its own sample (fields.csv's orientation_measured_ps).
+    orientation = {row["image"]: row["orientation_measured_ps"] for row in fields if row["orientation_measured_ps"] >= 0}
+    horizons = [ms(f["predicted_for_ps"] - orientation.get(f["image"], f["measured_ps"])) for f in frames if f["eye"] == 0]
     middle = raster.lines // 2
     for row in fields:
         if row["eye"] != 0 or not row["orientation_at_scanout"] or not row["first_line"] <= middle <= row["last_line"]:

@@ -27,12 +27,24 @@ HostPrediction::HostPrediction(PredictionParams params) : params_(std::move(para
     predictor_ = make_predictor(params_.predictor);
 }
 
-void HostPrediction::observe(const TrackerSample& sample) {
+void HostPrediction::observe(const TrackerSample& sample, des::Time stamp) {
   if (!predictor_) return;
   if (!estimates_.empty() && sample.index <= estimates_.back().index)
     throw std::logic_error("host prediction: sample " + std::to_string(sample.index) + " arrived after sample " +
                            std::to_string(estimates_.back().index));
-  predictor_->observe(sample);
+  // A record cannot be known to be older than the one before it.
+  if (last_stamp_) stamp = std::max(stamp, *last_stamp_);
+  TrackerSample seen = sample;
+  seen.measured_at = stamp;
+  if (last_stamp_ && stamp == *last_stamp_ && before_last_) {
+    // Two records the host cannot tell apart in time: the newer one stands
+    // for both, observed from the state before the older one.
+    predictor_ = before_last_->clone();
+  } else if (params_.knowledge == PredictionKnowledge::runtime) {
+    before_last_ = predictor_->clone();
+  }
+  last_stamp_ = stamp;
+  predictor_->observe(seen);
   estimates_.push_back(Entry{sample.index, *predictor_->estimate()});
 }
 

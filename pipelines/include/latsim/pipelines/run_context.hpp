@@ -87,20 +87,27 @@ struct RunContext {
   void present_display_memory(int64_t frame, const tracker::PosePrediction& p, des::Time start, des::Time end,
                               const std::string& unit);
 
-  /// Expected photon times, the horizons of prediction. An image is
-  /// represented by its middle active line: the lines above and below it are
-  /// lit up to half a field earlier and later, a skew that prediction per
-  /// image cannot remove (per-line and per-pixel pipelines predict per line
-  /// or pixel instead).
+  /// Expected photon times, the horizons of prediction. Every one is the
+  /// middle of a lit interval under the display's persistence (the scanout
+  /// instant itself on an impulse display): what a predictor must aim at
+  /// for the drawn pose to match the head while the pixel emits light.
+  /// An image is represented by its middle active line: the lines above and
+  /// below it are lit up to half a field earlier and later, a skew that
+  /// prediction per image cannot remove (per-line and per-pixel pipelines
+  /// predict per line or pixel instead).
+  /// The middle of the lit interval of pixel `x` of `field`'s active line
+  /// `line`; every prediction target of every pipeline goes through here.
+  des::Time photon_time(int64_t field, int line, int x = 0) const;
   /// The photon time of the middle line of `field`.
   des::Time frame_photon_time(int64_t field) const;
   /// The photon time of the middle line of the first field whose retrace is
   /// at or after `ready`, plus `later_fields` (an image swapped in at the
   /// next retrace after it is ready, behind that many queued images).
   des::Time photon_time_after(des::Time ready, int64_t later_fields = 0) const;
-  /// The first instant at or after `t` at which the middle line is lit (an
-  /// image shown at once, without vsync).
-  des::Time next_middle_line_time(des::Time t) const;
+  /// An image shown at once, without vsync, at `t`: the photon time of the
+  /// first active line written at or after `t`, the line on which it first
+  /// appears (the lines below it follow, each a line period later).
+  des::Time first_line_photon_time(des::Time t) const;
   /// Address recalculation reads the newest orientation as each pixel is
   /// fetched: at batched pixel fidelity every arrival splits the line being
   /// scanned (arrival events exist only then).

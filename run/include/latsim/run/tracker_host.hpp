@@ -58,6 +58,12 @@ class TrackerHost final : public results::HostFeed {
   void send(const tracker::TrackerSample& s, des::Time start);
   void line_free();
   void prune();
+  // When the host believes a record carried as `c` was measured: its
+  // measurement time for an oracle host; for a runtime host, when the record
+  // became visible on the host's clock less the delays it knows of (the
+  // tracker's internal delay and the record's time on the link), so that
+  // tracker jitter, waits for a poll and queueing on the line are unknown to it.
+  des::Time stamp_of(const tracker::TrackerSample& s, const tracker::Carriage& c) const;
 
   struct Delivered {
     des::Time at;

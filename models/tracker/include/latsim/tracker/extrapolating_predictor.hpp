@@ -34,6 +34,7 @@ class ExtrapolatingPredictor final : public Predictor {
   void observe(const TrackerSample& sample) override;
   std::optional<MotionEstimate> estimate() const override { return estimate_; }
   PredictorKind kind() const override;
+  std::unique_ptr<Predictor> clone() const override { return std::make_unique<ExtrapolatingPredictor>(*this); }
 
  private:
   void update_estimate();

@@ -22,9 +22,16 @@ struct PosePrediction {
   des::Time horizon() const { return target - sample.measured_at; }
 };
 
+/// What the host's predictor knows of when each sample was measured.
+enum class PredictionKnowledge {
+  oracle,   ///< the true measurement instant of every sample
+  runtime,  ///< only its own clock: when the record became visible, less the link's nominal delay
+};
+
 /// Settings of the host's prediction (the scenario's host.prediction).
 struct PredictionParams {
   PredictorParams predictor;
+  PredictionKnowledge knowledge = PredictionKnowledge::oracle;
   /// When set, every pose is predicted this far past its sample's
   /// measurement, whatever the pipeline expects; otherwise to the pipeline's
   /// expected photon time.
@@ -58,8 +65,14 @@ class HostPrediction {
   /// negative fixed horizon.
   explicit HostPrediction(PredictionParams params);
 
-  /// Takes the next sample (increasing measurement time).
-  void observe(const TrackerSample& sample);
+  /// Takes the next sample (increasing measurement time), as measured at
+  /// `stamp` as far as the host knows (its measurement time for an oracle
+  /// host; see PredictionKnowledge). A stamp earlier than the previous one counts as
+  /// the previous one's; a sample stamped at the previous one's instant (several records reaching the
+  /// host at one poll) replaces it in the predictor, which then goes on from
+  /// its state before that one (the replaced sample keeps its estimate).
+  void observe(const TrackerSample& sample, des::Time stamp);
+  void observe(const TrackerSample& sample) { observe(sample, sample.measured_at); }
   /// The basis of an observed sample; throws std::logic_error if the sample
   /// was never observed or has been forgotten.
   PredictionBasis basis_of(const TrackerSample& sample) const;
@@ -76,6 +89,8 @@ class HostPrediction {
   };
   PredictionParams params_;
   std::unique_ptr<Predictor> predictor_;  ///< null when nothing is predicted
+  std::unique_ptr<Predictor> before_last_;  ///< the predictor before its newest sample (runtime stamps only)
+  std::optional<des::Time> last_stamp_;
   std::deque<Entry> estimates_;           ///< increasing index
 };
 

@@ -51,6 +51,7 @@ class KalmanPredictor final : public Predictor {
   void observe(const TrackerSample& sample) override;
   std::optional<MotionEstimate> estimate() const override { return estimate_; }
   PredictorKind kind() const override { return PredictorKind::Kalman; }
+  std::unique_ptr<Predictor> clone() const override { return std::make_unique<KalmanPredictor>(*this); }
 
   /// Posterior error covariances after the newest sample: orientation
   /// [dtheta (rad), dw (rad/s)] and position [dp (m), dv (m/s)].

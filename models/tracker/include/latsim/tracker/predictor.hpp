@@ -95,6 +95,8 @@ class Predictor {
   /// The estimate after the samples observed so far (nullopt before the first).
   virtual std::optional<MotionEstimate> estimate() const = 0;
   virtual PredictorKind kind() const = 0;
+  /// A copy of this predictor in its current state.
+  virtual std::unique_ptr<Predictor> clone() const = 0;
 };
 
 /// A predictor of the given kind. Throws std::invalid_argument for Kalman
