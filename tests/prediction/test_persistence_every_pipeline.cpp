@@ -85,7 +85,7 @@ Json run_with(const Case& c, const Json& persistence) {
 /// each a line period T / (L + V), w - r_f averages (V + (L - 1) / 2) line
 /// periods; sampled at every pixel (frameless), plus (W - 1) / 2 pixel
 /// times of W + H_blank per line. For instance the 60 Hz progressive HMD
-/// (480 lines, 22 blank): 16.667 + 1 - 8.333 - 261.5 x 0.0332 = 0.645 ms;
+/// (480 lines, 22 blank): 16.667 + 1 - 8.333 - 261.5 x 0.03320 = 0.651 ms;
 /// Pixel-Planes 5's interlaced NTSC (240 lines a field, 22 blank, F = 2):
 /// 16.667 + 1 - 16.667 - 141.5 x 0.0636 = -8.00 ms; the 62.5 Hz reference
 /// display without blanking: 16 + 1 - 8 - 239.5 x 0.0333 = 1.017 ms.
