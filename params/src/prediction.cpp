@@ -88,8 +88,8 @@ void bind(Section& s, tracker::PredictionParams& p, const tracker::TrackerParams
            {{"oracle", tracker::PredictionKnowledge::oracle}, {"runtime", tracker::PredictionKnowledge::runtime}},
            {.doc = "what the predictor knows of each sample's measurement time: `oracle`, the true instant; "
                    "`runtime`, only the host's own clock (when the record became visible, less the tracker's "
-                   "internal delay and the record's time on the link), so that tracker jitter, poll waits and "
-                   "queueing distort its rates and horizon (docs/prediction.md)"});
+                   "internal delay and the record's time on the link), so that poll waits, queueing and "
+                   "interrupt handlers distort its rates and horizon (docs/prediction.md)"});
 }
 
 void bind(Section& s, tracker::MotionPhaseParams& p) {

@@ -62,7 +62,8 @@ class TrackerHost final : public results::HostFeed {
   // measurement time for an oracle host; for a runtime host, when the record
   // became visible on the host's clock less the delays it knows of (the
   // tracker's internal delay and the record's time on the link), so that
-  // tracker jitter, waits for a poll and queueing on the line are unknown to it.
+  // waits for a poll, queueing on the line and interrupt handlers are unknown
+  // to it (tracker jitter is not: a sample measured late arrives late).
   des::Time stamp_of(const tracker::TrackerSample& s, const tracker::Carriage& c) const;
 
   struct Delivered {
