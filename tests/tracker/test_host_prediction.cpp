@@ -91,3 +91,34 @@ TEST_CASE("forgotten and unknown samples are reported", "[host_prediction]") {
   params.fixed_horizon = -Time::ms(1);
   CHECK_THROWS_AS(HostPrediction(params), std::invalid_argument);
 }
+
+TEST_CASE("a runtime host predicts from its own stamps; records it cannot tell apart in time merge",
+          "[host_prediction]") {
+  PredictionParams params;
+  params.predictor.kind = PredictorKind::ConstantVelocity;
+  params.knowledge = PredictionKnowledge::runtime;
+  HostPrediction host(params);
+  // Measured at 0, 10 and 20 ms (100 deg/s: 0, 1 and 2 degrees); the host
+  // sees the first at its measurement and the other two together (one poll),
+  // both stamped 20 ms. The newest stands for both: the rate is taken from
+  // the first to it, (2 - 0) deg / 20 ms = 100 deg/s, not from the middle
+  // sample over a zero interval.
+  const TrackerSample a = sample_at(0, Time::ms(0), yaw_with_reversal(Time::ms(0)));
+  const TrackerSample b = sample_at(1, Time::ms(10), yaw_with_reversal(Time::ms(10)));
+  const TrackerSample c = sample_at(2, Time::ms(20), yaw_with_reversal(Time::ms(20)));
+  host.observe(a, Time::ms(0));
+  host.observe(b, Time::ms(20));
+  host.observe(c, Time::ms(20));
+  const PosePrediction p = host.basis_of(c).for_photon_time(Time::ms(25));
+  CHECK(p.sample.index == 2);  // the latency origin stays the true sample
+  CHECK(p.horizon() == Time::ms(5));
+  CHECK(yaw_of(p.pose.orientation) * 180.0 / std::numbers::pi == Approx(2.5).epsilon(1e-12));
+  // A sample stamped late (a wait the host does not know of) stretches the
+  // interval its rate is taken over and is extrapolated from its stamp.
+  HostPrediction late(params);
+  late.observe(a, Time::ms(0));
+  late.observe(c, Time::ms(25));
+  const PosePrediction q = late.basis_of(c).for_photon_time(Time::ms(30));
+  // Rate 2 deg / 25 ms = 80 deg/s, from 2 degrees at the 25 ms stamp for 5 ms: 2.4 degrees.
+  CHECK(yaw_of(q.pose.orientation) * 180.0 / std::numbers::pi == Approx(2.4).epsilon(1e-12));
+}
