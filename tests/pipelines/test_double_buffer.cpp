@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include "latsim/display/raster_timing.hpp"
 #include "run_helpers.hpp"
@@ -272,4 +273,45 @@ TEST_CASE("no analytic figure where the configuration is not tractable", "[doubl
   Json s = base_scenario();
   s["tracker"]["jitter_ms"] = 1;
   CHECK_FALSE(run(s)["figures"].contains("analytic"));
+}
+
+TEST_CASE("the analytic figure lights each line as the display's persistence does", "[double_buffer][analytic]") {
+  // The 60 Hz case above (F = 16.667 ms, 2 lines without blanking, every
+  // retrace sees a sample 6.667 ms old): 27.5 ms per line on average, the
+  // lines lit at 0 and F/2 after the retrace. With persistence each line's
+  // photon is the middle of its lit interval (response r = 0.1 ms, flash 2 ms):
+  //   full:    + r/2 + F/2 (held a whole field)    27.5 + 0.05 + 8.333 = 35.883 ms
+  //   rolling: + r + 1                             27.5 + 1.1 = 28.6 ms
+  //   global:  every line at F + r + 1 after its retrace (after the field's
+  //            last line) instead of F/4 on average: 27.5 - 4.167 + 17.767 = 41.1 ms,
+  //            the same for every line and frame, so min = mean = max.
+  struct Case {
+    const char* name;
+    Json persistence;
+    double expected_mean_ms;
+  };
+  const double f = 1000.0 / 60.0;
+  const Case cases[] = {
+      {"full", {{"type", "full"}, {"response_ms", 0.1}}, 27.5 + 0.05 + f / 2},
+      {"rolling", {{"type", "rolling"}, {"lit_ms", 2}, {"response_ms", 0.1}}, 27.5 + 1.1},
+      {"global", {{"type", "global"}, {"lit_ms", 2}, {"response_ms", 0.1}}, 27.5 - f / 4 + f + 1.1},
+  };
+  for (const auto& c : cases) {
+    SECTION(c.name) {
+      Json s = base_scenario();
+      s["duration_s"] = 3;
+      s["tracker"] = {{"rate_hz", 60}, {"internal_delay_ms", 1.5}, {"phase_ms", 10}};
+      s["display"]["height_px"] = 2;
+      s["display"]["vblank_lines"] = 0;
+      s["display"]["hblank_px"] = 0;
+      s["display"]["persistence"] = c.persistence;
+      const Json out = run(s);
+      REQUIRE(out["figures"].contains("analytic"));
+      const auto& a = out["figures"]["analytic"]["motion_to_photon_ms"];
+      CHECK(a["mean"].get<double>() == Approx(c.expected_mean_ms).margin(1e-6));
+      if (std::string(c.name) == "global") CHECK(a["min"].get<double>() == Approx(a["max"].get<double>()).margin(1e-6));
+      // And the simulation, measuring at the same instants, agrees.
+      CHECK(fig(out, "motion_to_photon_ms")["mean"].get<double>() == Approx(c.expected_mean_ms).margin(1e-3));
+    }
+  }
 }
