@@ -87,14 +87,15 @@ struct RunContext {
   void present_display_memory(int64_t frame, const tracker::PosePrediction& p, des::Time start, des::Time end,
                               const std::string& unit);
 
-  /// Expected photon times, the horizons of prediction. Every one is the
-  /// middle of a lit interval under the display's persistence (the scanout
-  /// instant itself on an impulse display): what a predictor must aim at
-  /// for the drawn pose to match the head while the pixel emits light.
-  /// An image is represented by its middle active line: the lines above and
-  /// below it are lit up to half a field earlier and later, a skew that
-  /// prediction per image cannot remove (per-line and per-pixel pipelines
-  /// predict per line or pixel instead).
+  // Expected photon times, the horizons of prediction. Every one is the
+  // middle of a lit interval under the display's persistence (the scanout
+  // instant itself on an impulse display): what a predictor must aim at for
+  // the drawn pose to match the head while the pixel emits light. An image
+  // is represented by its middle active line: the lines above and below it
+  // are lit up to half a field earlier and later, a skew that prediction per
+  // image cannot remove (per-line and per-pixel pipelines predict per line
+  // or pixel instead).
+
   /// The middle of the lit interval of pixel `x` of `field`'s active line
   /// `line`; every prediction target of every pipeline goes through here.
   des::Time photon_time(int64_t field, int line, int x = 0) const;
