@@ -92,7 +92,7 @@ TEST_CASE("forgotten and unknown samples are reported", "[host_prediction]") {
   CHECK_THROWS_AS(HostPrediction(params), std::invalid_argument);
 }
 
-TEST_CASE("a runtime host predicts from its own stamps; records it cannot tell apart in time merge",
+TEST_CASE("a runtime host predicts from its own stamps and merges records it cannot tell apart in time",
           "[host_prediction]") {
   PredictionParams params;
   params.predictor.kind = PredictorKind::ConstantVelocity;
