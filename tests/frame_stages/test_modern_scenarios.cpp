@@ -92,6 +92,22 @@ TEST_CASE("modern scenarios: under overload the compositor serves every refresh 
   CHECK(by.at(1).at("position_mm_mean").get<double>() > by.at(0).at("position_mm_mean").get<double>() + 5.0);
 }
 
+TEST_CASE("modern scenarios: a walk that turns its corners at 90 deg/s leaves no 90 degree spike behind the warp") {
+  // The square's corners are 90 degree turns, centred on the corner, at the
+  // default 90 deg/s. The warp reads a sample at most P = 1 ms old, starts at
+  // most its 1 ms cost plus one 0.5 ms preemption slice before the retrace,
+  // and the field's last line is lit (1199/1200) x 11.11 ms after it: the
+  // orientation shown is at most 13.61 ms old, so it is off by at most
+  // 90 deg/s x 13.61 ms = 1.225 deg. Turned at once, the corner puts the
+  // whole 90 degrees between a sample before it and a photon after it.
+  const double bound_deg = 90.0 * (1.0 + 1.0 + 0.5 + 1000.0 / 90.0) / 1000.0;
+  const auto turned = run_shipped("modern/timewarp_overload.json", {"/duration_s=5"});
+  CHECK(turned.at("residual_orientation_error_deg").at("max").get<double>() <= bound_deg);
+  CHECK(turned.at("residual_orientation_error_deg").at("max").get<double>() > 0.5 * bound_deg);  // the turn is seen
+  const auto instant = run_shipped("modern/timewarp_overload.json", {"/duration_s=5", "/motion/turn_rate_deg_s=0"});
+  CHECK(instant.at("residual_orientation_error_deg").at("max").get<double>() == Approx(90.0).margin(1e-6));
+}
+
 TEST_CASE("modern scenarios: the low-persistence HMD smears far less than its full-persistence twin") {
   // 120 deg/s: a 2 ms flash smears 0.24 deg = 14.4 arcmin, a frame held for
   // 11.1 ms 1.333 deg = 80 arcmin.
