@@ -5,9 +5,9 @@ A quoted figure is marked in the Markdown with an HTML comment right after it:
 
     tear gap max 6.16 px<!-- fig arp/gallery_experiment.json tear_gap_px.max -->
 
-naming a scenario (under scenarios/) and a figure of its figures.json (keys
-joined by dots, list items as [i]; a key holding dots is written in quotes,
-e.g. "analytic.x".mean). An optional third word scales the run's value before
+naming a scenario (under scenarios/) and one of its figures (keys under
+"figures" in its figures.json, joined by dots, list items as [i]; a key
+holding dots is written in quotes, e.g. "analytic.x".mean). An optional third word scales the run's value before
 it is compared (e.g. x1000 for seconds quoted in ms, x100 for a percentage).
 The number checked is the last one between the previous marker (or the
 start of the line) and this marker; thousands separators are allowed. It must
@@ -25,7 +25,7 @@ import shutil
 import subprocess
 import sys
 
-MARK = re.compile(r"<!--\s*fig\s+(\S+)\s+(\S+)(?:\s+x(\S+))?\s*-->")
+MARK = re.compile(r"<!--\s*fig\s+(\S+\.json)\s+(\S+)(?:\s+x(\S+))?\s*-->")
 NUMBER = re.compile(r"-?\d{1,3}(?:,\d{3})+(?:\.\d+)?|-?\d+(?:\.\d+)?")
 DEFAULT_DOCS = ["docs/arp.md", "docs/pxpl5.md"]
 
@@ -66,7 +66,7 @@ def run(latsim, source, work, scenario, cache):
         print(f"{scenario}: run failed ({done.returncode}): {done.stderr.strip()}")
         return None
     with open(os.path.join(out, "figures.json")) as f:
-        cache[scenario] = json.load(f)
+        cache[scenario] = json.load(f)["figures"]
     return cache[scenario]
 
 
