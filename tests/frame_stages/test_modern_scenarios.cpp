@@ -56,6 +56,25 @@ TEST_CASE("modern scenarios: each reference configuration's latency range is the
   }
 }
 
+TEST_CASE("modern scenarios: on the article's clocks each range is the diagram's exactly; a sample's age moves it") {
+  // base.json puts the 1000 Hz samples and the retraces on whole
+  // milliseconds from t = 0, the diagrams' assumption: every read finds a
+  // sample taken that instant (age 0), so min = D_min and max = D_max - 16/480.
+  for (const Reference& r : kReferences) {
+    INFO(r.file);
+    const auto f = run_shipped(std::string("modern/") + r.file + ".json", {"/duration_s=2"});
+    const double span = std::string(r.file) == "unsynchronized" ? 4.0 : 16.0;
+    CHECK(f.at("motion_to_photon_ms").at("min").get<double>() == Approx(r.min_ms).margin(1e-6));
+    CHECK(f.at("motion_to_photon_ms").at("max").get<double>() == Approx(r.min_ms + span - 1.0 / 30.0).margin(1e-6));
+  }
+  // Samples taken 0.4 ms after each whole millisecond: a read on a whole
+  // millisecond finds one 0.6 ms old, and the whole range moves by 0.6 ms
+  // (unsynchronized: the article's 5 - 8 would need 1 ms, a whole period).
+  const auto late = run_shipped("modern/unsynchronized.json", {"/duration_s=2", "/tracker/phase_ms=0.4"});
+  CHECK(late.at("motion_to_photon_ms").at("min").get<double>() == Approx(4.6).margin(1e-6));
+  CHECK(late.at("motion_to_photon_ms").at("max").get<double>() == Approx(8.6 - 1.0 / 30.0).margin(1e-6));
+}
+
 TEST_CASE("modern scenarios: continuous time warp is 1 ms plus its 2 ms strip plus a 500 Hz sample's age") {
   // Strip s is warped in the millisecond before its first line, from a sample
   // up to 2 ms old: min in [1, 3), max in [1 + 2 - 1/30, 3 + 2).
