@@ -148,7 +148,7 @@ TEST_CASE("Display clock noise keeps retraces in order and field lookups consist
   }
 }
 
-TEST_CASE("Display clock noise is drawn from its stream: same seed, same retraces; none configured, none moved") {
+TEST_CASE("Display clock noise is drawn from its stream: same seed, same retraces, and a steady clock has none") {
   ClockNoiseParams p;
   p.jitter_rms = Time::ps(50000);
   p.wander_ppm_per_sqrt_s = 0.5;

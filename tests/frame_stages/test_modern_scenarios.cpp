@@ -56,7 +56,7 @@ TEST_CASE("modern scenarios: each reference configuration's latency range is the
   }
 }
 
-TEST_CASE("modern scenarios: on the article's clocks each range is the diagram's exactly; a sample's age moves it") {
+TEST_CASE("modern scenarios: on the article's clocks each range is the diagram's exactly, and a sample's age moves it") {
   // base.json puts the 1000 Hz samples and the retraces on whole
   // milliseconds from t = 0, the diagrams' assumption: every read finds a
   // sample taken that instant (age 0), so min = D_min and max = D_max - 16/480.
