@@ -1,5 +1,6 @@
 #include "latsim/params/shared.hpp"
 
+#include <cmath>
 #include <memory>
 
 #include "latsim/renderer/obj_loader.hpp"
@@ -55,6 +56,19 @@ void persistence(Section& s, display::PersistenceParams& p, const display::Raste
           "a flash cannot last longer than the frame period (each row is written once a frame)");
 }
 
+void clock_noise(Section& s, display::ClockNoiseParams& p) {
+  s.doc("The display oscillator's short-term instability (docs/display-clock.md): white jitter on every retrace and a "
+        "rate that wanders as a random walk, drawn from the run's stream `display.clock_noise`.");
+  double jitter_ns = static_cast<double>(p.jitter_rms.ticks()) / 1e3;
+  s.number("jitter_ns_rms", jitter_ns,
+           {.unit = "ns", .min = 0.0, .max = 1e6,
+            .doc = "standard deviation of each retrace about the clock's time (cut at 4 standard deviations)"});
+  p.jitter_rms = des::Time::ps(std::llround(jitter_ns * 1e3));
+  s.number("wander_ppm_per_sqrt_s", p.wander_ppm_per_sqrt_s,
+           {.unit = "ppm/√s", .min = 0.0, .max = 1e3,
+            .doc = "random walk of the rate: after t seconds its deviation has standard deviation this × √t ppm"});
+}
+
 }  // namespace
 
 void bind(Section& s, display::DisplayParams& p) {
@@ -78,6 +92,8 @@ void bind(Section& s, display::DisplayParams& p) {
            {.doc = "fidelity: latency sampled per field, per line (sees mid-field swaps) or per pixel (one event per "
                    "line, split where the image changes mid-line)"});
   clock(s, "", p.clock, "display (its first retrace)");
+  s.optional_object("clock_noise", p.clock_noise, [](Section& o, display::ClockNoiseParams& v) { clock_noise(o, v); },
+                    {.doc = "jitter and wander of the display clock (absent: a steady clock)"});
   s.integer("pixel_stride", p.pixel_stride,
             {.unit = "px", .min = 1.0, .max = 16384.0, .doc = "pixel fidelity: pixels per latency sample"});
   s.flag("pixel_events", p.pixel_events,

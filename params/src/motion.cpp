@@ -59,6 +59,10 @@ void walk(Section& s, tracker::MotionParams& p) {
   s.flag("loop", w.loop, {.doc = "return to the first point and go round again; false: stop at the end"});
   s.flag("face_direction", w.face_direction,
          {.doc = "look along the direction of travel; false: keep yaw_deg and pitch_deg"});
+  s.number("turn_rate_deg_s", w.turn_rate_deg_s,
+           {.unit = "deg/s", .min = 0.0, .max = 1e5,
+            .doc = "facing the direction: yaw rate of the turn at each corner, centred on it (0: at once); 90 deg/s "
+                   "turns a 90° corner in 1 s, over 1 m of walk at walking speed"});
   if (!w.face_direction || s.describing()) start_orientation(s, p);
   w.orientation = p.start_orientation();
 }
@@ -137,6 +141,19 @@ void serial(Section& s, tracker::SerialLinkParams& p) {
           {.doc = "how the host learns of received characters"});
 }
 
+void usb_hid(Section& s, tracker::UsbHidParams& p) {
+  s.integer("poll_hz", p.poll_hz,
+            {.unit = "Hz", .min = 1.0, .max = 8000.0,
+             .doc = "how often the host controller polls the device (bInterval: 125, 250, 500 or 1000 Hz)"});
+  clock(s, "poll_", p.poll_clock, "host controller's poll");
+  s.duration("os_delay_ms", p.os_delay, {.unit = "ms", .doc = "fixed delay from the transfer to the application"});
+  s.duration("os_jitter_ms", p.os_jitter,
+             {.unit = "ms", .doc = "random delay added per poll: its bound (uniform) or its mean (exponential)"});
+  using Shape = tracker::UsbHidParams::DelayShape;
+  s.choice("os_jitter", p.os_jitter_shape, {{"uniform", Shape::Uniform}, {"exponential", Shape::Exponential}},
+           {.doc = "shape of the random delay"});
+}
+
 }  // namespace
 
 void bind(Section& s, tracker::MotionParams& p) {
@@ -179,6 +196,11 @@ void bind(Section& s, tracker::TransportParams& p) {
             [&p](Section& m) {
               p.type = Type::Serial;
               serial(m, p.serial);
+            }},
+           {"usb_hid", "a USB HID device polled by the host, then handed on by the operating system",
+            [&p](Section& m) {
+              p.type = Type::UsbHid;
+              usb_hid(m, p.usb);
             }}},
           {.doc = "which link"});
 }

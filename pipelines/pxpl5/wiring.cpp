@@ -2,6 +2,7 @@
 #include "pxpl5/wiring.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/pxpl5/view_workload.hpp"
@@ -25,6 +26,9 @@ Pxpl5Wiring::Pxpl5Wiring(RunContext& ctx) : ctx_(&ctx) { ctx.recorder.expects_im
 
 pxpl5::FieldTiming Pxpl5Wiring::field_timing() const {
   const display::RasterTiming& t = ctx_->display.timing();
+  // The engines schedule against retraces of their own, t0 + k x period.
+  if (t.clock_noise())
+    throw std::invalid_argument("the Pixel-Planes 5 pipelines follow a steady display clock: remove /display/clock_noise");
   return pxpl5::FieldTiming(t.field_start(0), t.params().field_period, t.params().vblank_lines, t.lines_per_field(),
                             t.params().interlaced);
 }

@@ -73,6 +73,8 @@ void resolve_clocks(Run& run, uint64_t replication) {
   tracker::SerialLinkParams& serial = p.transport.serial;
   if (p.transport.type == tracker::TransportParams::Type::Serial && serial.host_mode == tracker::SerialLinkParams::Poll)
     resolve("poll", "/transport/poll_", tracker::exact_period(serial.poll_interval), serial.poll_clock);
+  if (p.transport.type == tracker::TransportParams::Type::UsbHid)
+    resolve("usb_poll", "/transport/poll_", des::RationalSeconds{1, p.transport.usb.poll_hz}, p.transport.usb.poll_clock);
   resolve("display", "/display/", p.display.raster.field_period, p.display.clock);
 }
 
@@ -90,6 +92,23 @@ void built_from(const char* pointer, const char* what, F&& make) {
   } catch (const std::exception& e) {
     throw scenario::ScenarioError(pointer, std::string("cannot build the ") + what + ": " + e.what());
   }
+}
+
+// The display clock's jitter and wander for every field of the run (and a
+// few beyond), from the run's stream "display.clock_noise".
+std::shared_ptr<const display::ClockNoise> clock_noise(const display::RasterTiming& timing,
+                                                       const display::ClockNoiseParams& params, const Run& run,
+                                                       const RunOptions& options) {
+  const des::Time slack = timing.end_slack();
+  const std::string at = "/display/clock_noise/jitter_ns_rms";
+  if (params.jitter_rms * 16 > slack)
+    throw scenario::ScenarioError(at, "four standard deviations of jitter must fit in a quarter of the blank time after "
+                                      "a field's last pixel (" + slack.str() + "): a field would start before the "
+                                      "previous one was lit; lower the jitter or widen hblank_px");
+  const int64_t fields = timing.field_at_or_after(run.duration) + 16;
+  return std::make_shared<const display::ClockNoise>(params, timing.params().field_period, slack, fields,
+                                                     des::RandomStream(run.seed, "display.clock_noise",
+                                                                       options.replication));
 }
 
 }  // namespace
@@ -138,7 +157,9 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
     run.tracker = std::make_unique<tracker::Tracker>(p.tracker, *run.motion,
                                                      des::RandomStream(run.seed, "tracker", options.replication));
   });
-  built_from("/transport", "transport", [&] { run.transport = tracker::make_transport(p.transport); });
+  built_from("/transport", "transport", [&] { 
+    run.transport = tracker::make_transport(p.transport, des::RandomStream(run.seed, "transport", options.replication));
+  });
   Timeline* timeline = p.output.timeline && options.write_timeline ? &run.timeline : nullptr;
   run.timeline.set_max_entries(static_cast<size_t>(p.output.timeline_max_entries));
   run.host = std::make_unique<TrackerHost>(run.sim, *run.tracker, *run.transport, timeline, p.host.prediction);
@@ -146,10 +167,10 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
   built_from("/display", "display", [&] {
     display::RasterParams raster = p.display.raster;
     raster.field_period = run.clocks->find("display")->period;
-    run.display = std::make_unique<display::Display>(run.sim,
-                                                     display::RasterTiming(raster, *p.display.clock.phase),
-                                                     stereo ? 2 : 1, p.display.fidelity, p.display.pixel_stride,
-                                                     p.display.pixel_events);
+    display::RasterTiming timing(raster, *p.display.clock.phase);
+    if (p.display.clock_noise) timing.set_clock_noise(clock_noise(timing, *p.display.clock_noise, run, options));
+    run.display = std::make_unique<display::Display>(run.sim, timing, stereo ? 2 : 1, p.display.fidelity,
+                                                     p.display.pixel_stride, p.display.pixel_events);
   });
   built_from("/probes", "registration probes", [&] {
     run.recorder = std::make_unique<LatencyRecorder>(run.sim, *run.motion, *run.host, run.images, run.display->timing(),

@@ -45,6 +45,14 @@ printf 't_s,px,py,pz,qw,qx,qy,qz\n0,0,0,0,1,0,0,0\n0.5,0,0,0,1,0,zero,0\n' >"$tm
 check malformed_trace "bad_trace.csv:3:" "{$base}" --set /motion='{"type": "trace", "file": "'"$tmp"'/bad_trace.csv"}'
 check include_missing "/include" "{\"include\": \"no_such_base.json\", $base}"
 
+# Display clock noise: jitter that could make a field start before the previous
+# one's last pixel (4 sigma above a quarter of the 6.68 us slack), and the
+# Pixel-Planes 5 engines, which keep a steady clock of their own; USB HID rates.
+check clock_jitter "/display/clock_noise/jitter_ns_rms" "{$base}" --set /display/clock_noise='{"jitter_ns_rms": 500}'
+check clock_negative_wander "/display/clock_noise/wander_ppm_per_sqrt_s" "{$base}" --set /display/clock_noise='{"wander_ppm_per_sqrt_s": -1}'
+check usb_poll_rate "/transport/poll_hz" "{$base}" --set /transport='{"type": "usb_hid", "poll_hz": 0}'
+check usb_negative_delay "/transport/os_delay_ms" "{$base}" --set /transport='{"type": "usb_hid", "os_delay_ms": -1}'
+
 # The staged frame pipeline's cross-field rules and the display's persistence.
 # (A key given twice is refused, so the pipeline is given once.)
 fs="$shared"', "pipeline": {"type": "frame_stages", "processors": [{"name": "cpu"}, {"name": "gpu"}], "stages": [{"name": "I", "on": "cpu", "samples_pose": true, "cost": {"fixed_ms": 1}}, {"name": "G", "on": "gpu", "cost": {"fixed_ms": 1}}]}'

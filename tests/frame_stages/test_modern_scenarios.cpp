@@ -56,6 +56,25 @@ TEST_CASE("modern scenarios: each reference configuration's latency range is the
   }
 }
 
+TEST_CASE("modern scenarios: on the article's clocks each range is the diagram's exactly, and a sample's age moves it") {
+  // base.json puts the 1000 Hz samples and the retraces on whole
+  // milliseconds from t = 0, the diagrams' assumption: every read finds a
+  // sample taken that instant (age 0), so min = D_min and max = D_max - 16/480.
+  for (const Reference& r : kReferences) {
+    INFO(r.file);
+    const auto f = run_shipped(std::string("modern/") + r.file + ".json", {"/duration_s=2"});
+    const double span = std::string(r.file) == "unsynchronized" ? 4.0 : 16.0;
+    CHECK(f.at("motion_to_photon_ms").at("min").get<double>() == Approx(r.min_ms).margin(1e-6));
+    CHECK(f.at("motion_to_photon_ms").at("max").get<double>() == Approx(r.min_ms + span - 1.0 / 30.0).margin(1e-6));
+  }
+  // Samples taken 0.4 ms after each whole millisecond: a read on a whole
+  // millisecond finds one 0.6 ms old, and the whole range moves by 0.6 ms
+  // (unsynchronized: the article's 5 - 8 would need 1 ms, a whole period).
+  const auto late = run_shipped("modern/unsynchronized.json", {"/duration_s=2", "/tracker/phase_ms=0.4"});
+  CHECK(late.at("motion_to_photon_ms").at("min").get<double>() == Approx(4.6).margin(1e-6));
+  CHECK(late.at("motion_to_photon_ms").at("max").get<double>() == Approx(8.6 - 1.0 / 30.0).margin(1e-6));
+}
+
 TEST_CASE("modern scenarios: continuous time warp is 1 ms plus its 2 ms strip plus a 500 Hz sample's age") {
   // Strip s is warped in the millisecond before its first line, from a sample
   // up to 2 ms old: min in [1, 3), max in [1 + 2 - 1/30, 3 + 2).
@@ -90,6 +109,22 @@ TEST_CASE("modern scenarios: under overload the compositor serves every refresh 
   CHECK(by.at(0).at("rewarps") == 0);
   CHECK(by.at(1).at("rewarps") == 1);
   CHECK(by.at(1).at("position_mm_mean").get<double>() > by.at(0).at("position_mm_mean").get<double>() + 5.0);
+}
+
+TEST_CASE("modern scenarios: a walk that turns its corners at 90 deg/s leaves no 90 degree spike behind the warp") {
+  // The square's corners are 90 degree turns, centred on the corner, at the
+  // default 90 deg/s. The warp reads a sample at most P = 1 ms old, starts at
+  // most its 1 ms cost plus one 0.5 ms preemption slice before the retrace,
+  // and the field's last line is lit (1199/1200) x 11.11 ms after it: the
+  // orientation shown is at most 13.61 ms old, so it is off by at most
+  // 90 deg/s x 13.61 ms = 1.225 deg. Turned at once, the corner puts the
+  // whole 90 degrees between a sample before it and a photon after it.
+  const double bound_deg = 90.0 * (1.0 + 1.0 + 0.5 + 1000.0 / 90.0) / 1000.0;
+  const auto turned = run_shipped("modern/timewarp_overload.json", {"/duration_s=5"});
+  CHECK(turned.at("residual_orientation_error_deg").at("max").get<double>() <= bound_deg);
+  CHECK(turned.at("residual_orientation_error_deg").at("max").get<double>() > 0.5 * bound_deg);  // the turn is seen
+  const auto instant = run_shipped("modern/timewarp_overload.json", {"/duration_s=5", "/motion/turn_rate_deg_s=0"});
+  CHECK(instant.at("residual_orientation_error_deg").at("max").get<double>() == Approx(90.0).margin(1e-6));
 }
 
 TEST_CASE("modern scenarios: the low-persistence HMD smears far less than its full-persistence twin") {

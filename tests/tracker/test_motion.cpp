@@ -1,10 +1,12 @@
 // Motion sources: still, constant rotation, sinusoid, polyline walk.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "latsim/tracker/motion_source.hpp"
 
@@ -113,6 +115,46 @@ TEST_CASE("polyline walk follows the path at constant speed", "[motion]") {
   // Facing the direction of travel: +x on the first leg, +z on the second.
   check_forward(walk.pose_at(Time::s(1)), {1.0, 0.0, 0.0});
   check_forward(walk.pose_at(Time::s(4)), {0.0, 0.0, 1.0});
+}
+
+TEST_CASE("walk turns its corners at the turn rate, centred on the corner", "[motion]") {
+  // A right-angle corner at 3 m, walked at 1 m/s with 90 deg/s: the turn
+  // takes 1 s, from 2.5 s to 3.5 s; halfway through the corner the head
+  // faces 45 degrees between +x and +z.
+  WalkParams p;
+  p.points_m = {{0.0, 1.7, 0.0}, {3.0, 1.7, 0.0}, {3.0, 1.7, 4.0}};
+  p.speed_m_s = 1.0;
+  p.turn_rate_deg_s = 90.0;
+  const PolylineWalk walk(p);
+  check_forward(walk.pose_at(Time::ms(2499)), {1.0, 0.0, 0.0});
+  check_forward(walk.pose_at(Time::s(3)), {std::sqrt(0.5), 0.0, std::sqrt(0.5)});
+  check_forward(walk.pose_at(Time::ms(3501)), {0.0, 0.0, 1.0});
+  check_position(walk.pose_at(Time::s(3)), {3.0, 1.7, 0.0});  // the path itself is unchanged
+  // Millisecond by millisecond, the head never turns faster than 90 deg/s,
+  // and in the middle of the turn it turns at exactly that rate.
+  double max_step_deg = 0.0;
+  for (int64_t ms = 0; ms < 7000; ++ms) {
+    const glm::dquat a = walk.pose_at(Time::ms(ms)).orientation, b = walk.pose_at(Time::ms(ms + 1)).orientation;
+    const double step = 2.0 * std::acos(std::min(1.0, std::abs(glm::dot(a, b)))) * 180.0 / std::numbers::pi;
+    max_step_deg = std::max(max_step_deg, step);
+  }
+  CHECK(max_step_deg <= 0.09 + 1e-6);
+  CHECK(max_step_deg >= 0.09 - 1e-6);
+  // Turned at once, the whole corner falls between two milliseconds.
+  p.turn_rate_deg_s = 0.0;
+  const PolylineWalk sharp(p);
+  const glm::dquat a = sharp.pose_at(Time::ms(2999)).orientation, b = sharp.pose_at(Time::ms(3001)).orientation;
+  CHECK(2.0 * std::acos(std::min(1.0, std::abs(glm::dot(a, b)))) * 180.0 / std::numbers::pi == Approx(90.0));
+}
+
+TEST_CASE("walk shortens a turn that would not fit its legs", "[motion]") {
+  // Legs of 0.4 m and 4 m: the 1 m turn is cut to 0.2 m either side of the corner.
+  WalkParams p;
+  p.points_m = {{0.0, 0.0, 0.0}, {0.4, 0.0, 0.0}, {0.4, 0.0, 4.0}};
+  const PolylineWalk walk(p);
+  check_forward(walk.pose_at(Time::ms(199)), {1.0, 0.0, 0.0});
+  check_forward(walk.pose_at(Time::ms(601)), {0.0, 0.0, 1.0});
+  check_forward(walk.pose_at(Time::ms(400)), {std::sqrt(0.5), 0.0, std::sqrt(0.5)});
 }
 
 TEST_CASE("looping walk closes the polygon and keeps its speed", "[motion]") {

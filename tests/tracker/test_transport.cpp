@@ -1,7 +1,10 @@
-// Links from tracker to host (direct, serial poll, serial interrupt) and the mailbox.
+// Links from tracker to host (direct, serial poll, serial interrupt, USB HID) and the mailbox.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <stdexcept>
 
 #include "latsim/tracker/transport.hpp"
 
@@ -154,4 +157,80 @@ TEST_CASE("mailbox ignores stale records and keeps memory bounded", "[mailbox]")
     most = std::max(most, stream.held());
   }
   CHECK(most <= 6);
+}
+
+TEST_CASE("USB HID: a report waits for the next poll, then the operating system's delay") {
+  // Reports every 997 us against polls every P = 1e6/poll_hz us, poll phase
+  // 0: 997 and P (a multiple of 1000) are coprime, so over P reports the
+  // wait to the poll, (-t) mod P, takes each whole microsecond 0 .. P-1 once:
+  // its mean is (P - 1 us) / 2 exactly, its maximum P - 1 us.
+  for (const int64_t hz : {125, 250, 500, 1000}) {
+    UsbHidParams p;
+    p.poll_hz = hz;
+    p.poll_clock.phase = Time::zero();
+    p.os_delay = Time::us(1500);
+    UsbHidLink link(p, latsim::des::RandomStream(1, "test.usb"));
+    const int64_t period_us = 1000000 / hz;
+    int64_t sum_us = 0, max_us = 0;
+    for (int64_t i = 0; i < period_us; ++i) {
+      const Time start = Time::us(997 * i);
+      const Carriage c = link.carry(start);
+      const int64_t added = (c.visible - start).ticks();
+      REQUIRE(added % 1000000 == 0);  // whole microseconds: no jitter configured
+      sum_us += added / 1000000;
+      max_us = std::max(max_us, added / 1000000);
+      REQUIRE(c.end >= start);
+      REQUIRE(c.end - start < Time::us(period_us));
+    }
+    INFO(hz << " Hz");
+    // Twice the mean, to stay in integers: (P - 1) + 2 x 1500 us.
+    CHECK(2 * sum_us == period_us * (period_us - 1 + 2 * 1500));
+    CHECK(max_us == period_us - 1 + 1500);
+    CHECK(link.name() == "usb_hid");
+  }
+}
+
+TEST_CASE("USB HID: the random operating system delay adds its mean, within its bound") {
+  // Uniform on [0, 0.8 ms]: mean 0.4 ms, standard deviation 0.8/sqrt(12) ms
+  // per poll. 250 Hz polls (P = 4 ms), reports every 997 us for 4000 cycles of
+  // 4000 us: the wait part has mean (4000 - 1)/2 us exactly as above; the
+  // delay part is one draw per poll, about 997/4000 of a draw per report.
+  UsbHidParams p;
+  p.poll_hz = 250;
+  p.poll_clock.phase = Time::zero();
+  p.os_delay = Time::us(500);
+  p.os_jitter = Time::us(800);
+  UsbHidLink link(p, latsim::des::RandomStream(2, "test.usb"));
+  const int64_t n = 4000 * 4;  // four full cycles of the wait
+  double sum_ms = 0.0, max_ms = 0.0;
+  for (int64_t i = 0; i < n; ++i) {
+    const Time start = Time::us(997 * i);
+    const double added = (link.carry(start).visible - start).to_ms();
+    sum_ms += added;
+    max_ms = std::max(max_ms, added);
+    REQUIRE(added >= 0.5);
+  }
+  const double expected_ms = (4.0 - 0.001) / 2.0 + 0.5 + 0.4;
+  // Reports share their poll's draw: the mean is over about n x 997 / 4000
+  // polls' draws, standard error 0.8 / sqrt(12 x polls) ms; allow six.
+  const double polls = static_cast<double>(n) * 997.0 / 4000.0;
+  const double tol_ms = 6.0 * 0.8 / std::sqrt(12.0 * polls);
+  CHECK(sum_ms / static_cast<double>(n) == Approx(expected_ms).margin(tol_ms));
+  CHECK(max_ms <= 4.0 + 0.5 + 0.8);  // at most P + delay + the jitter's bound
+  CHECK(max_ms > 4.0 + 0.5);         // some report waits most of P and draws more than 1 us of jitter
+}
+
+TEST_CASE("USB HID: reports one poll carries reach the application together") {
+  UsbHidParams p;
+  p.poll_hz = 125;
+  p.poll_clock.phase = Time::zero();
+  p.os_jitter = Time::ms(2);
+  p.os_jitter_shape = UsbHidParams::DelayShape::Exponential;
+  UsbHidLink link(p, latsim::des::RandomStream(3, "test.usb"));
+  // Three reports inside (0, 8 ms] all cross at the 8 ms poll.
+  const Carriage a = link.carry(Time::ms(1)), b = link.carry(Time::ms(4)), c = link.carry(Time::ms(8));
+  CHECK(a.end == Time::ms(8));
+  CHECK(a.visible == b.visible);
+  CHECK(b.visible == c.visible);
+  CHECK_THROWS_AS(link.carry(Time::ms(7)), std::logic_error);  // out of order
 }

@@ -29,7 +29,23 @@ RasterTiming::RasterTiming(RasterParams params, des::Time t0) : p_(params), sche
   d_ = den / g;
 }
 
-des::Time RasterTiming::field_start(int64_t field) const { return schedule_.at(field); }
+des::Time RasterTiming::field_start(int64_t field) const {
+  if (noise_) return schedule_.at(field) + noise_->offset(field);
+  return schedule_.at(field);
+}
+
+des::Time RasterTiming::end_slack() const {
+  const int64_t last = slot(lines_per_field() - 1, p_.width_px - 1);
+  return schedule_.nominal_period() - offset(last);
+}
+
+int64_t RasterTiming::noisy_index_at_or_after(des::Time t) const {
+  const int64_t guess = schedule_.index_at_or_after(t);
+  int64_t k = schedule_.index_at_or_after(t - noise_->offset(guess));
+  while (field_start(k) < t) ++k;
+  while (field_start(k - 1) >= t) --k;
+  return k;
+}
 
 des::Time RasterTiming::offset(int64_t slot_times_px) const {
   // slot pixel times of period / (total lines * pixels per line) each, floored

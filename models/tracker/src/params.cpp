@@ -27,8 +27,9 @@ std::unique_ptr<MotionSource> make_motion(const MotionParams& p) {
   return std::make_unique<StillMotion>(start);
 }
 
-std::unique_ptr<Transport> make_transport(const TransportParams& p) {
+std::unique_ptr<Transport> make_transport(const TransportParams& p, des::RandomStream stream) {
   if (p.type == TransportParams::Type::Serial) return std::make_unique<SerialLink>(p.serial);
+  if (p.type == TransportParams::Type::UsbHid) return std::make_unique<UsbHidLink>(p.usb, stream);
   return std::make_unique<DirectLink>();
 }
 

@@ -1,8 +1,10 @@
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "latsim/tracker/motion_source.hpp"
 
@@ -37,6 +39,42 @@ PolylineWalk::PolylineWalk(WalkParams params) : params_(std::move(params)) {
     segments_.push_back(Segment{corners[i], corners[i + 1], path_length_m_, length_m, facing});
     path_length_m_ += length_m;
   }
+  if (!(params_.turn_rate_deg_s >= 0.0) || !std::isfinite(params_.turn_rate_deg_s))
+    throw std::invalid_argument("turn rate must be finite and not negative");
+  if (!params_.face_direction || params_.turn_rate_deg_s == 0.0) return;
+  // Each corner's turn takes angle / rate, centred on the corner: it starts
+  // half of that walk before it and ends half after, at most half of either leg.
+  const size_t n = segments_.size();
+  for (size_t i = 0; i < n; ++i) {
+    if (i == 0 && !params_.loop) continue;
+    const Segment& before = segments_[(i + n - 1) % n];
+    Segment& after = segments_[i];
+    const double cos_half = std::min(1.0, std::abs(glm::dot(before.facing, after.facing)));
+    const double angle_deg = 2.0 * std::acos(cos_half) * 180.0 / std::numbers::pi;
+    const double walk_m = params_.speed_m_s * angle_deg / params_.turn_rate_deg_s;
+    after.turn_in_m = std::min({walk_m / 2.0, before.length_m / 2.0, after.length_m / 2.0});
+  }
+}
+
+glm::dquat PolylineWalk::facing_at(size_t i, double s) const {
+  const size_t n = segments_.size();
+  const Segment& seg = segments_[i];
+  // The turn into this segment, and the turn into the next (or, looping, the first).
+  if (seg.turn_in_m > 0.0 && s - seg.start_s_m < seg.turn_in_m) {
+    const Segment& before = segments_[(i + n - 1) % n];
+    const double f = 0.5 + (s - seg.start_s_m) / (2.0 * seg.turn_in_m);
+    return glm::slerp(before.facing, seg.facing, f);
+  }
+  const bool has_next = i + 1 < n || params_.loop;
+  if (has_next) {
+    const Segment& next = segments_[(i + 1) % n];
+    const double to_end = seg.start_s_m + seg.length_m - s;
+    if (next.turn_in_m > 0.0 && to_end < next.turn_in_m) {
+      const double f = 0.5 - to_end / (2.0 * next.turn_in_m);
+      return glm::slerp(seg.facing, next.facing, f);
+    }
+  }
+  return seg.facing;
 }
 
 Pose PolylineWalk::pose_at(des::Time t) const {
@@ -61,7 +99,8 @@ Pose PolylineWalk::pose_at_distance(double s_m) const {
   // Interpolate from whichever end is nearer so endpoints come out exactly.
   p.position_m = f <= 0.5 ? seg.from_m + (seg.to_m - seg.from_m) * f
                           : seg.to_m + (seg.from_m - seg.to_m) * (1.0 - f);
-  p.orientation = params_.face_direction ? seg.facing : params_.orientation;
+  p.orientation = params_.face_direction ? facing_at(static_cast<size_t>(std::prev(it) - segments_.begin()), s)
+                                         : params_.orientation;
   return p;
 }
 

@@ -80,4 +80,37 @@ Carriage SerialLink::carry(des::Time start) {
   return Carriage{start, end, handler_done};
 }
 
+UsbHidLink::UsbHidLink(UsbHidParams params, des::RandomStream stream) : params_(params), stream_(stream) {
+  if (params_.poll_hz <= 0 || params_.poll_hz > 8000)
+    throw std::invalid_argument("a USB poll rate is between 1 and 8000 Hz");
+  if (params_.os_delay < des::Time::zero() || params_.os_jitter < des::Time::zero())
+    throw std::invalid_argument("operating system delays must not be negative");
+  polls_ = des::PeriodicSchedule(params_.poll_clock.phase.value_or(des::Time::zero()),
+                                 des::period_with_rate_error(des::RationalSeconds{1, params_.poll_hz},
+                                                             params_.poll_clock.rate_error_ppm));
+}
+
+Carriage UsbHidLink::carry(des::Time start) {
+  if (any_ && start < last_start_)
+    throw std::logic_error("USB reports must be carried in order of start (" + start.str() + " after " +
+                           last_start_.str() + ")");
+  last_start_ = start;
+  const int64_t poll = polls_.index_at_or_after(start);
+  // One draw per poll: every report a poll carries reaches the application together.
+  if (!any_ || poll != last_poll_) {
+    des::Time extra;
+    if (params_.os_jitter > des::Time::zero()) {
+      const double j = static_cast<double>(params_.os_jitter.ticks());
+      const double x = params_.os_jitter_shape == UsbHidParams::DelayShape::Uniform ? stream_.uniform(0.0, j)
+                                                                                   : stream_.exponential(j);
+      extra = des::Time::ps(static_cast<int64_t>(std::llround(x)));
+    }
+    last_delay_ = params_.os_delay + extra;
+    last_poll_ = poll;
+    any_ = true;
+  }
+  const des::Time transfer = polls_.at(poll);
+  return Carriage{start, transfer, transfer + last_delay_};
+}
+
 }  // namespace latsim::tracker

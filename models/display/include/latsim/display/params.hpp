@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "latsim/des/clock.hpp"
+#include "latsim/display/clock_noise.hpp"
 #include "latsim/display/display.hpp"
 #include "latsim/display/persistence.hpp"
 #include "latsim/display/raster_timing.hpp"
@@ -22,6 +23,8 @@ struct DisplayParams {
   std::optional<PersistenceParams> persistence;
   /// The display's oscillator: retrace phase and refresh rate error.
   des::ClockSettings clock;
+  /// The oscillator's jitter and wander (none: a steady clock).
+  std::optional<ClockNoiseParams> clock_noise;
 };
 
 }  // namespace latsim::display

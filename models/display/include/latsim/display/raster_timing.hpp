@@ -3,9 +3,11 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 
 #include "latsim/des/tick_run.hpp"
 #include "latsim/des/time.hpp"
+#include "latsim/display/clock_noise.hpp"
 
 namespace latsim::display {
 
@@ -21,7 +23,9 @@ struct RasterParams {
 };
 
 /// Exact photon times of a raster: field k starts (vertical retrace) at
-/// t0 + k·period; its j-th active line is lit (vblank + j) line periods later.
+/// t0 + k·period (plus the clock noise's offset D(k) when the display clock
+/// jitters or wanders); its j-th active line is lit (vblank + j) line periods
+/// later.
 ///
 /// A pixel's offset from its field's start is floor(slot · K / D) ticks, slot
 /// counting pixel times from the retrace (blanking included), K / D the pixel
@@ -31,6 +35,14 @@ class RasterTiming {
  public:
   RasterTiming() = default;
   RasterTiming(RasterParams params, des::Time t0 = des::Time::zero());
+
+  /// Moves every retrace by `noise`'s offset (nullptr: a steady clock, at no
+  /// cost). Lines and pixels keep their offsets from their own field's start.
+  void set_clock_noise(std::shared_ptr<const ClockNoise> noise) { noise_ = std::move(noise); }
+  const ClockNoise* clock_noise() const { return noise_.get(); }
+  /// Blank time from the field's last lit pixel to the nominal next retrace:
+  /// how far the clock may shorten a field before fields overlap.
+  des::Time end_slack() const;
 
   const RasterParams& params() const { return p_; }
   int fields_per_frame() const { return p_.interlaced ? 2 : 1; }
@@ -66,20 +78,28 @@ class RasterTiming {
   /// is a multiple of).
   des::i128 ticks_per_slot_num() const { return k_; }
   /// The field whose retrace is the first at or after t.
-  int64_t field_at_or_after(des::Time t) const { return schedule_.index_at_or_after(t); }
+  int64_t field_at_or_after(des::Time t) const {
+    return noise_ ? noisy_index_at_or_after(t) : schedule_.index_at_or_after(t);
+  }
   /// The field whose retrace is the last at or before t.
-  int64_t field_at_or_before(des::Time t) const { return schedule_.index_at_or_before(t); }
+  int64_t field_at_or_before(des::Time t) const {
+    return noise_ ? noisy_index_at_or_after(t + des::Time::ps(1)) - 1 : schedule_.index_at_or_before(t);
+  }
   double field_period_ms() const { return p_.field_period.to_seconds() * 1e3; }
 
  private:
   // Offset from the field start of line-slot `slot` plus a fraction of a line,
   // as exact integer arithmetic on the rational field period.
   des::Time offset(int64_t slot_times_px) const;
+  // field_at_or_after with clock noise: retraces stay in order, so a search
+  // from the steady clock's answer, moved by the noise there.
+  int64_t noisy_index_at_or_after(des::Time t) const;
 
   RasterParams p_;
   des::PeriodicSchedule schedule_;
   des::i128 k_ = 1;  // ticks per pixel time = k_ / d_, reduced
   des::i128 d_ = 1;
+  std::shared_ptr<const ClockNoise> noise_;
 };
 
 }  // namespace latsim::display

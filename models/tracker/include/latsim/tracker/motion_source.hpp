@@ -87,9 +87,13 @@ struct WalkParams {
   /// Looping walks return from the last point to the first along a closing
   /// segment and go round again; otherwise the walker stops at the ends.
   bool loop = false;
-  /// Look horizontally along the direction of travel (turning instantly at
-  /// corners); otherwise keep `orientation`.
+  /// Look horizontally along the direction of travel; otherwise keep `orientation`.
   bool face_direction = true;
+  /// Facing the direction: how fast the head turns at a corner (yaw, deg/s;
+  /// 0: at once). The turn is centred on the corner, at this constant rate,
+  /// unless the legs on either side are shorter than half the turn's walk,
+  /// which then shortens (and speeds) it.
+  double turn_rate_deg_s = 90.0;
   glm::dquat orientation{1.0, 0.0, 0.0, 0.0};
 };
 
@@ -113,7 +117,11 @@ class PolylineWalk final : public MotionSource {
     double start_s_m;
     double length_m;
     glm::dquat facing;
+    double turn_in_m = 0.0;  ///< half-length of the turn at this segment's start (0: none)
   };
+  // Orientation at arc length s (in [0, path length]) on segment i.
+  glm::dquat facing_at(size_t i, double s) const;
+
   WalkParams params_;
   std::vector<Segment> segments_;  // only segments of positive length
   double path_length_m_ = 0.0;

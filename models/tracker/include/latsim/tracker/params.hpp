@@ -38,11 +38,14 @@ std::unique_ptr<MotionSource> make_motion(const MotionParams& params);
 
 /// The link from tracker to host.
 struct TransportParams {
-  enum class Type { Direct, Serial };
+  enum class Type { Direct, Serial, UsbHid };
   Type type = Type::Direct;
   SerialLinkParams serial;
+  UsbHidParams usb;
 };
 
-std::unique_ptr<Transport> make_transport(const TransportParams& params);
+/// The link; `stream` drives what is random in it (a USB host's delivery delay).
+std::unique_ptr<Transport> make_transport(const TransportParams& params,
+                                          des::RandomStream stream = des::RandomStream(0, "transport"));
 
 }  // namespace latsim::tracker

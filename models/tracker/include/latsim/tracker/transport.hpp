@@ -7,6 +7,7 @@
 #include <string>
 
 #include "latsim/des/clock.hpp"
+#include "latsim/des/random.hpp"
 #include "latsim/des/time.hpp"
 #include "latsim/tracker/tracker.hpp"
 
@@ -108,6 +109,47 @@ class SerialLink final : public Transport {
   des::PeriodicSchedule polls_;
   std::optional<des::Time> handler_free_at_;
   std::optional<des::Time> last_start_;
+};
+
+/// Settings of UsbHidLink.
+struct UsbHidParams {
+  enum class DelayShape { Uniform, Exponential };
+  /// The host controller polls the device's interrupt endpoint this often
+  /// (bInterval: 125, 250, 500 or 1000 Hz for today's trackers).
+  int64_t poll_hz = 1000;
+  des::ClockSettings poll_clock;  ///< the host controller's frame clock
+  /// From the transfer to the application: a fixed part, plus a random part
+  /// drawn once per poll, uniform on [0, os_jitter] or exponential of mean os_jitter.
+  des::Time os_delay;
+  des::Time os_jitter;
+  DelayShape os_jitter_shape = DelayShape::Uniform;
+};
+
+/// A USB HID device polled by the host: a report ready at t crosses at the
+/// first poll at or after t (a report waits in the device's endpoint; a newer
+/// one found by the same poll wins, as the host reads the newest), then the
+/// operating system hands it to the application os_delay plus a random part
+/// later, the same for everything one poll carries. With the poll phase
+/// unrelated to the reports, the wait for the poll is uniform on one poll
+/// interval P: the added latency has mean P/2 + os_delay + E[jitter] and is at
+/// most P + os_delay + the jitter's bound.
+class UsbHidLink final : public Transport {
+ public:
+  /// Throws std::invalid_argument for a poll rate outside (0, 8000] Hz or a
+  /// negative delay.
+  UsbHidLink(UsbHidParams params, des::RandomStream stream);
+  Carriage carry(des::Time start) override;
+  std::string name() const override { return "usb_hid"; }
+  const UsbHidParams& params() const { return params_; }
+
+ private:
+  UsbHidParams params_;
+  des::RandomStream stream_;
+  des::PeriodicSchedule polls_;
+  int64_t last_poll_ = 0;
+  des::Time last_start_;
+  des::Time last_delay_;
+  bool any_ = false;
 };
 
 /// The host's view of arrived samples. Records are posted with the time the
