@@ -24,6 +24,7 @@ TEST_CASE("apparent latency of a pure delay is that delay", "[apparent_latency]"
   // The centre pixel (line 240) is lit (1 + (22 + 240) / 502) fields after
   // the measurement of the pose it shows: a constant delay.
   Json s = base_scenario();
+  s["motion"]["rate_deg_s"] = 60;  // above the 40 deg/s of the default motion phases: steady motion
   s["apparent_latency"] = Json::object();
   const Json out = run(s);
   const double d_ms = (1.0 + 262.0 / 502.0) * 1000.0 / 60.0;  // 25.365 ms
@@ -44,6 +45,7 @@ TEST_CASE("without prediction apparent latency is motion-to-photon in steady mot
   // less than the 1 ms spread of the ages.
   Json s = base_scenario();
   s["duration_s"] = 5;
+  s["motion"]["rate_deg_s"] = 60;
   s["tracker"] = {{"rate_hz", 1000}};
   s["display"].erase("phase_ms");
   s["apparent_latency"] = Json::object();

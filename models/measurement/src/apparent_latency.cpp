@@ -83,12 +83,12 @@ ApparentLatencyResult apparent_latency(std::span<const ShownSample> shown, const
   for (int64_t k = 0; p.step * k <= last; ++k) {
     const des::Time centre = p.step * k;
     const tracker::MotionPhase phase = phases.phase_at(centre);
-    if (phase == tracker::MotionPhase::Still) continue;
     const auto begin = std::lower_bound(shown.begin(), shown.end(), centre - half, photon_before);
     const auto end = std::lower_bound(begin, shown.end(), centre + half + des::Time::ps(1), photon_before);
     const std::optional<double> shift = fit_shift_ms(std::span(begin, end), truth, p.max_shift);
     if (!shift) {
-      ++result.unresolved;
+      // At rest an undetermined shift is expected: nothing moves.
+      if (phase != tracker::MotionPhase::Still) ++result.unresolved;
       continue;
     }
     result.windows.push_back(WindowShift{centre, phase, *shift});

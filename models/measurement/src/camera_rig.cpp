@@ -12,8 +12,13 @@ double unwrap_near(double a, double near) { return a + 360.0 * std::round((near 
 
 // A reading per frame, unwrapped from frame to frame; frames the camera saw
 // no light in keep the previous reading (the first ones the first reading).
-std::optional<std::vector<double>> readings(const FilmedSignal& signal, const des::PeriodicSchedule& camera,
-                                            int64_t first, int64_t n, des::Time exposure) {
+struct Readings {
+  std::vector<double> value;
+  std::vector<bool> lit;  ///< the frame caught light (else it holds the previous value)
+};
+
+std::optional<Readings> readings(const FilmedSignal& signal, const des::PeriodicSchedule& camera, int64_t first,
+                                 int64_t n, des::Time exposure) {
   std::vector<std::optional<double>> seen(static_cast<size_t>(n));
   for (int64_t k = 0; k < n; ++k) {
     const des::Time open = camera.at(first + k);
@@ -21,11 +26,12 @@ std::optional<std::vector<double>> readings(const FilmedSignal& signal, const de
   }
   const auto lit = std::find_if(seen.begin(), seen.end(), [](const auto& v) { return v.has_value(); });
   if (lit == seen.end()) return std::nullopt;
-  std::vector<double> out(static_cast<size_t>(n));
+  Readings out{std::vector<double>(static_cast<size_t>(n)), std::vector<bool>(static_cast<size_t>(n))};
   double last = **lit;
-  for (size_t k = 0; k < out.size(); ++k) {
+  for (size_t k = 0; k < out.value.size(); ++k) {
     if (seen[k]) last = unwrap_near(*seen[k], last);
-    out[k] = last;
+    out.value[k] = last;
+    out.lit[k] = seen[k].has_value();
   }
   return out;
 }
@@ -42,8 +48,9 @@ bool steady(const std::vector<double>& a, const std::vector<double>& b, int64_t 
 }
 
 // Least-squares shift (ms) of display readings d onto object readings r over
-// frames [a, b], frame k at time `t_ms[k]`; frames `frame_ms` apart.
-std::optional<double> trajectory_shift_ms(const std::vector<double>& r, const std::vector<double>& d,
+// the frames in [a, b] that caught the display lit, frame k at time
+// `t_ms[k]`; frames `frame_ms` apart.
+std::optional<double> trajectory_shift_ms(const std::vector<double>& r, const Readings& d,
                                           const std::vector<double>& t_ms, int64_t a, int64_t b, double frame_ms,
                                           double max_shift_ms) {
   const auto n = static_cast<int64_t>(r.size());
@@ -56,7 +63,8 @@ std::optional<double> trajectory_shift_ms(const std::vector<double>& r, const st
   auto misfit = [&](double s) {
     double sum = 0.0;
     for (int64_t k = a; k <= b; ++k) {
-      const double e = d[static_cast<size_t>(k)] - object_at(t_ms[static_cast<size_t>(k)] - s);
+      if (!d.lit[static_cast<size_t>(k)]) continue;
+      const double e = d.value[static_cast<size_t>(k)] - object_at(t_ms[static_cast<size_t>(k)] - s);
       sum += e * e;
     }
     return sum;
@@ -145,9 +153,10 @@ RigResult film(const FilmedSignal& object, const FilmedSignal& display, const de
   const int64_t n = last - first + 1;
   if (n < 2) return result;
   result.frames = n;
-  const auto r = readings(object, camera, first, n, exposure);
+  const auto object_readings = readings(object, camera, first, n, exposure);
   const auto d = readings(display, camera, first, n, exposure);
-  if (!r || !d) return result;
+  if (!object_readings || !d) return result;
+  const std::vector<double>* r = &object_readings->value;
   std::vector<double> t_ms(static_cast<size_t>(n));
   for (int64_t k = 0; k < n; ++k) t_ms[static_cast<size_t>(k)] = camera.at(first + k).to_ms();
   const auto rest_frames = static_cast<int64_t>(std::ceil(p.rest.to_ms() / frame_ms));
@@ -157,14 +166,14 @@ RigResult film(const FilmedSignal& object, const FilmedSignal& display, const de
   double rest_r = 0.0, rest_d = 0.0;
   int64_t start = -1, shown = -1;
   for (int64_t k = 0; k < n; ++k) {
-    const double rk = (*r)[static_cast<size_t>(k)], dk = (*d)[static_cast<size_t>(k)];
+    const double rk = (*r)[static_cast<size_t>(k)], dk = d->value[static_cast<size_t>(k)];
     if (state == State::Rest && std::abs(rk - rest_r) > p.threshold_deg) {
       state = State::Moving;
       start = k;
       shown = -1;
     }
     if (state == State::Moving && shown < 0 && std::abs(dk - rest_d) > p.threshold_deg) shown = k;
-    if (state == State::Rest || !steady(*r, *d, k, rest_frames, tol)) continue;
+    if (state == State::Rest || !steady(*r, d->value, k, rest_frames, tol)) continue;
     if (state == State::Moving && shown >= 0) {
       result.frame_counting_ms.push_back(static_cast<double>(shown - start) * frame_ms);
       const std::optional<double> s = trajectory_shift_ms(*r, *d, t_ms, std::max<int64_t>(0, start - shift_frames), k,

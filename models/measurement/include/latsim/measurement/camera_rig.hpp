@@ -86,8 +86,8 @@ struct RigResult {
 /// tenth of the threshold for `rest`, and only then is the next rest value
 /// taken (the rig first waits for rest). The shift is the s minimising
 /// Σ (display_k − object(t_k − s))² over the movement's frames from
-/// max_shift before its start to its end, the object read between frames by
-/// linear interpolation: a 2 ms-or-quarter-frame grid, a finer grid, then a
+/// max_shift before its start to its end that caught the display lit, the
+/// object read between frames by linear interpolation: a 2 ms-or-quarter-frame grid, a finer grid, then a
 /// parabola's vertex.
 RigResult film(const FilmedSignal& object, const FilmedSignal& display, const des::PeriodicSchedule& camera,
                des::Time exposure, des::Time end, const CameraRigParams& params);
