@@ -44,23 +44,24 @@ void LatencyRecorder::offer_shown_slow(const display::ScanoutSpan& span, const g
 }
 
 void LatencyRecorder::measurement_figures(des::Time duration) {
-  if (centre_trace_) {
+  if ((centre_trace_ && centre_trace_->sorted().empty()) || (rig_trace_ && rig_trace_->sorted().empty()))
+    warn("apparent latency and the camera rig need whole images at the display point; this run lit none there "
+         "(frameless rendering shows no images), so their figures are absent");
+  if (centre_trace_ && !centre_trace_->sorted().empty()) {
     tracker::MotionPhaseClassifier phases(motion_, apparent_phases_);
     const measurement::ApparentLatencyResult r =
         measurement::apparent_latency(centre_trace_->sorted(), motion_, phases, apparent_);
-    distribution_ref("apparent_latency_ms");
     for (const measurement::WindowShift& w : r.windows) {
       add("apparent_latency_ms", w.shift_ms);
       add("apparent_latency_ms_" + std::string(tracker::phase_name(w.phase)), w.shift_ms);
     }
     table_.set("apparent_latency_windows_unresolved", r.unresolved);
     if (r.steady_ms) {
-      distribution_ref("prediction_catch_up_ms");
       for (double c : r.catch_up_ms) add("prediction_catch_up_ms", c);
       table_.set("prediction_never_caught_up", r.never_caught_up);
     }
   }
-  if (rig_trace_) {
+  if (rig_trace_ && !rig_trace_->sorted().empty()) {
     const glm::dquat reference = motion_.pose_at(des::Time::zero()).orientation;
     const glm::dvec3 axis = rig_.axis;
     const tracker::MotionSource& motion = motion_;
@@ -69,8 +70,6 @@ void LatencyRecorder::measurement_figures(des::Time duration) {
     const measurement::DisplaySignal display(measurement::lit_angles(rig_trace_->sorted(), reference, axis));
     const des::Time exposure = rig_.exposure ? *rig_.exposure : camera_.nominal_period();
     const measurement::RigResult r = measurement::film(object, display, camera_, exposure, duration, rig_);
-    distribution_ref("measured_latency_ms");
-    distribution_ref("measured_latency_shift_ms");
     for (double v : r.frame_counting_ms) add("measured_latency_ms", v);
     for (double v : r.shift_ms) add("measured_latency_shift_ms", v);
     table_.set("measurement_resolution_ms", r.resolution_ms);
