@@ -47,6 +47,24 @@ void sinusoid(Section& s, tracker::MotionParams& p) {
   s.number("pitch_phase_deg", q.pitch_phase_deg, {.unit = "deg", .doc = "pitch phase"});
 }
 
+void minimum_jerk(Section& s, tracker::MotionParams& p) {
+  tracker::MinimumJerkParams& m = p.minimum_jerk;
+  start_position(s, p);
+  start_orientation(s, p);
+  s.number("amplitude_deg", m.amplitude_deg,
+           {.unit = "deg", .min = -3600.0, .max = 3600.0, .doc = "angle of one movement about the axis"});
+  s.duration("duration_s", m.duration,
+             {.unit = "s", .min = 0.0, .max = 1e6, .above_min = true, .doc = "length of one movement"});
+  s.duration("rest_s", m.rest, {.unit = "s", .min = 0.0, .max = 1e6, .doc = "stillness before each movement"});
+  vec3(s, "axis", m.axis, {.doc = "rotation axis in world coordinates ([0, 1, 0]: yaw)"});
+  s.check("axis", m.axis != glm::dvec3(0.0), "the rotation axis must not be zero");
+  enum class Direction { Alternate, Same };
+  Direction d = m.alternate ? Direction::Alternate : Direction::Same;
+  s.choice("direction", d, {{"alternate", Direction::Alternate}, {"same", Direction::Same}},
+           {.doc = "alternate: back and forth between the start and the amplitude; same: every movement turns further"});
+  m.alternate = d == Direction::Alternate;
+}
+
 void walk(Section& s, tracker::MotionParams& p) {
   tracker::WalkParams& w = p.walk;
   std::vector<std::vector<double>> rows;
@@ -170,6 +188,8 @@ void bind(Section& s, tracker::MotionParams& p) {
             }},
            {"constant", "turning at a constant angular velocity", [&p](Section& m) { p.type = Type::Constant; constant(m, p); }},
            {"sinusoid", "shaking (yaw) and nodding (pitch) sinusoidally", [&p](Section& m) { p.type = Type::Sinusoid; sinusoid(m, p); }},
+           {"minimum_jerk", "repeated minimum-jerk turns (10τ³ − 15τ⁴ + 6τ⁵) with rests between",
+            [&p](Section& m) { p.type = Type::MinimumJerk; minimum_jerk(m, p); }},
            {"walk", "walking a polyline at constant speed", [&p](Section& m) { p.type = Type::Walk; walk(m, p); }},
            {"trace", "a recorded head motion", [&p](Section& m) { p.type = Type::Trace; trace(m, p); }}},
           {.doc = "which motion"});

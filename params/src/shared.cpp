@@ -125,6 +125,12 @@ void bind(Section& s, SharedParams& p) {
   s.optional_object("motion_phases", p.motion_phases,
                     [](Section& m, tracker::MotionPhaseParams& v) { bind(m, v); },
                     {.doc = "figures split by motion phase (not split when absent)"});
+  s.optional_object("apparent_latency", p.apparent_latency,
+                    [](Section& a, measurement::ApparentLatencyParams& v) { bind(a, v); },
+                    {.doc = "apparent latency (not computed when absent)"});
+  s.optional_object("measurement", p.measurement,
+                    [](Section& m, measurement::CameraRigParams& v) { bind(m, v); },
+                    {.doc = "a simulated camera measurement rig (none when absent)"});
 }
 
 }  // namespace latsim::params

@@ -108,6 +108,7 @@ void LatencyRecorder::finish(const RunTotals& totals) {
   if (deadlines_) table_.set("missed_refreshes", missed_);
   table_.set("fields", totals.fields);
   table_.set("tracker_samples", totals.tracker_samples);
+  measurement_figures(totals.duration);
   if (images && first_shown_eye0_ == 0)
     warn("no image was shown in " + fixed(duration_s, 3) + " s of simulated time: rendering never finished");
   else if (missed_ > 0)

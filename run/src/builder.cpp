@@ -76,6 +76,7 @@ void resolve_clocks(Run& run, uint64_t replication) {
   if (p.transport.type == tracker::TransportParams::Type::UsbHid)
     resolve("usb_poll", "/transport/poll_", des::RationalSeconds{1, p.transport.usb.poll_hz}, p.transport.usb.poll_clock);
   resolve("display", "/display/", p.display.raster.field_period, p.display.clock);
+  if (p.measurement) resolve("camera", "/measurement/", p.measurement->frame_period, p.measurement->clock);
 }
 
 // Builds one part of a run. Building depends on the scenario alone, so
@@ -179,6 +180,9 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
   for (const auto& w : run.input_warnings) run.recorder->warn(w);
   run.recorder->enable_prediction(p.host.prediction.has_value());
   if (p.motion_phases) run.recorder->split_by_phase(*p.motion_phases);
+  if (p.apparent_latency)
+    run.recorder->measure_apparent_latency(*p.apparent_latency, p.motion_phases.value_or(tracker::MotionPhaseParams{}));
+  if (p.measurement) run.recorder->film(*p.measurement, run.clocks->find("camera")->schedule());
   run.recorder->enable_ledger(options.write_ledger);
   run.recorder->enable_sample_log(options.write_samples);
   run.display->add_listener(run.recorder.get());

@@ -15,7 +15,7 @@ import sys
 
 ROOT = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else ".")
 
-MODELS = {"tracker", "display", "renderer", "pxpl5", "arp", "capture"}
+MODELS = {"tracker", "display", "renderer", "pxpl5", "arp", "capture", "measurement"}
 # Library -> the latsim libraries it may include (its own included).
 ALLOWED = {
     "des": {"des"},
@@ -26,6 +26,7 @@ ALLOWED = {
     "renderer": {"des", "tracker", "capture", "renderer"},
     "pxpl5": {"des", "tracker", "pxpl5"},
     "arp": {"des", "tracker", "renderer", "arp"},
+    "measurement": {"des", "tracker", "measurement"},
     "params": {"des", "scenario", "params"} | MODELS,
     "results": {"des", "scenario", "params", "results"} | MODELS,
     "pipelines": {"des", "scenario", "params", "results", "pipelines"} | MODELS,

@@ -45,6 +45,15 @@ void MotionPhaseClassifier::extend_to(int64_t k) {
   }
 }
 
+std::vector<des::Time> MotionPhaseClassifier::starts_until(des::Time t) {
+  if (t < des::Time::zero()) return {};
+  extend_to(t / params_.step);
+  std::vector<des::Time> starts;
+  for (const Transition& tr : transitions_)
+    if (tr.moving && tr.at <= t) starts.push_back(tr.at);
+  return starts;
+}
+
 MotionPhase MotionPhaseClassifier::phase_at(des::Time t) {
   if (t < des::Time::zero()) t = des::Time::zero();
   const int64_t k = t / params_.step;

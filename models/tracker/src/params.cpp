@@ -16,6 +16,11 @@ std::unique_ptr<MotionSource> make_motion(const MotionParams& p) {
       return std::make_unique<ConstantAngularVelocity>(start, p.axis, p.rate_deg_s);
     case MotionParams::Type::Sinusoid:
       return std::make_unique<SinusoidalMotion>(p.sinusoid);
+    case MotionParams::Type::MinimumJerk: {
+      MinimumJerkParams m = p.minimum_jerk;
+      m.start = start;
+      return std::make_unique<MinimumJerkMotion>(m);
+    }
     case MotionParams::Type::Walk:
       return std::make_unique<PolylineWalk>(p.walk);
     case MotionParams::Type::Trace:

@@ -10,6 +10,8 @@
 
 #include "latsim/des/clock.hpp"
 #include "latsim/display/params.hpp"
+#include "latsim/measurement/apparent_latency.hpp"
+#include "latsim/measurement/camera_rig.hpp"
 #include "latsim/renderer/scene_spec.hpp"
 #include "latsim/scenario/params.hpp"
 #include "latsim/tracker/params.hpp"
@@ -77,6 +79,10 @@ struct SharedParams {
   std::optional<FramesParams> frames;
   /// /motion_phases: split figures by motion phase (not split when absent).
   std::optional<tracker::MotionPhaseParams> motion_phases;
+  /// /apparent_latency: the shift aligning the shown movement with the true one (not computed when absent).
+  std::optional<measurement::ApparentLatencyParams> apparent_latency;
+  /// /measurement: a simulated camera rig (none when absent).
+  std::optional<measurement::CameraRigParams> measurement;
 };
 
 /// Declares (and reads) every top-level key except /pipeline.
@@ -90,6 +96,8 @@ void bind(scenario::Section& s, SceneParams& p);
 /// /host/prediction; the Kalman filter's noise defaults to `tracker`'s.
 void bind(scenario::Section& s, tracker::PredictionParams& p, const tracker::TrackerParams& tracker);
 void bind(scenario::Section& s, tracker::MotionPhaseParams& p);
+void bind(scenario::Section& s, measurement::ApparentLatencyParams& p);
+void bind(scenario::Section& s, measurement::CameraRigParams& p);
 
 /// A clock's `<prefix>phase_ms` (absent: drawn per replication, uniformly
 /// over one period, from the clock's own stream) and `<prefix>rate_error_ppm`.

@@ -16,6 +16,9 @@
 #include "latsim/des/simulator.hpp"
 #include "latsim/des/stats.hpp"
 #include "latsim/display/display.hpp"
+#include "latsim/measurement/apparent_latency.hpp"
+#include "latsim/measurement/camera_rig.hpp"
+#include "latsim/measurement/shown_trace.hpp"
 #include "latsim/results/figures.hpp"
 #include "latsim/results/image_book.hpp"
 #include "latsim/results/image_record.hpp"
@@ -147,6 +150,15 @@ class LatencyRecorder : public display::ScanoutListener {
   /// (when `orientation`) and millimetres (when `position`), and its horizon.
   void add_prediction_error(const tracker::PosePrediction& prediction, bool orientation, bool position);
 
+  /// Keeps the orientation shown at the centre of eye 0's display, one
+  /// sample per refresh, and at finish() reports apparent_latency_ms (split
+  /// by the motion phases of `phases`) and prediction_catch_up_ms.
+  void measure_apparent_latency(const measurement::ApparentLatencyParams& params,
+                                const tracker::MotionPhaseParams& phases);
+  /// Keeps the orientation shown at the rig's display point and at finish()
+  /// films it and the true head with a camera whose frames open at `camera`.
+  void film(const measurement::CameraRigParams& params, const des::PeriodicSchedule& camera);
+
   void on_field_start(int eye, int64_t field, des::Time retrace) override;
   void on_scanout(const display::ScanoutSpan& span) override;
 
@@ -219,6 +231,14 @@ class LatencyRecorder : public display::ScanoutListener {
   /// per-sample events would.
   void log_run(const char* name, const display::ScanoutSpan& span, des::Time origin);
   void refuse(const std::string& name, const char* how) const;
+  /// Hands the orientation a span of eye 0 shows to the shown traces whose pixel it lights.
+  void offer_shown(const display::ScanoutSpan& span, const glm::dquat& orientation) {
+    if (shown_traces_ != 0 && span.eye == 0) [[unlikely]]
+      offer_shown_slow(span, orientation);
+  }
+  void offer_shown_slow(const display::ScanoutSpan& span, const glm::dquat& orientation);
+  /// The figures of measure_apparent_latency() and film().
+  void measurement_figures(des::Time duration);
   void link_figures(const RunTotals& totals);
 
   const des::Simulator& sim_;
@@ -291,6 +311,14 @@ class LatencyRecorder : public display::ScanoutListener {
   SampleLog sample_log_;
   FigureTable table_;
   std::vector<std::string> headline_;
+  // Apparent latency and the camera rig (absent unless the scenario asks).
+  int shown_traces_ = 0;
+  std::optional<measurement::ShownTrace> centre_trace_;
+  measurement::ApparentLatencyParams apparent_;
+  tracker::MotionPhaseParams apparent_phases_;
+  std::optional<measurement::ShownTrace> rig_trace_;
+  measurement::CameraRigParams rig_;
+  des::PeriodicSchedule camera_;
 };
 
 }  // namespace latsim::results

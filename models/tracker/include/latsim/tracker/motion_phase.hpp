@@ -48,6 +48,9 @@ class MotionPhaseClassifier {
 
   /// The phase at t >= 0 (earlier times count as time zero).
   MotionPhase phase_at(des::Time t);
+  /// Instants at or before t at which the head started moving (the grid is
+  /// evaluated that far).
+  std::vector<des::Time> starts_until(des::Time t);
   /// Starts and stops found so far.
   int64_t transitions() const { return static_cast<int64_t>(transitions_.size()); }
   const MotionPhaseParams& params() const { return params_; }

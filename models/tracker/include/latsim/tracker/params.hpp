@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "latsim/tracker/minimum_jerk.hpp"
 #include "latsim/tracker/motion_source.hpp"
 #include "latsim/tracker/trace.hpp"
 #include "latsim/tracker/transport.hpp"
@@ -13,7 +14,7 @@ namespace latsim::tracker {
 
 /// Which true head motion to simulate, with the settings of every kind.
 struct MotionParams {
-  enum class Type { Still, Constant, Sinusoid, Walk, Trace };
+  enum class Type { Still, Constant, Sinusoid, Walk, Trace, MinimumJerk };
   Type type = Type::Still;
   /// Starting pose of still and constant motion (sinusoid: the position only;
   /// walk: the orientation only, when it does not face its direction).
@@ -24,6 +25,7 @@ struct MotionParams {
   double rate_deg_s = 100.0;       ///< constant: angular speed
   SinusoidParams sinusoid{30.0, 0.5, 0.0, 0.0, 0.5, 0.0, {0.0, 0.0, 0.0}};
   WalkParams walk;
+  MinimumJerkParams minimum_jerk;  ///< minimum_jerk: the movements (start pose from position_m, yaw_deg, pitch_deg)
   /// trace: the recording (loaded while the scenario is read), its start offset and looping.
   std::filesystem::path trace_file;
   std::shared_ptr<const Trace> trace;
