@@ -32,6 +32,7 @@ struct StageKeys {
   std::string on;
   StartKey start = StartKey::automatic;
   des::Time lag;
+  des::Time offset;
   std::string until;
   bool samples_pose = false;
   renderer::RenderCost::Params cost;
@@ -75,6 +76,8 @@ void bind(Section& s, StageKeys& st) {
                    "as the measured span to the end of `until` still meets its deadline; auto: retrace for an "
                    "application's first stage with vsync (else after), late for a warp's first stage, else after"});
   s.duration("lag_ms", st.lag, {.unit = "ms", .doc = "stream: how long the previous stage runs first"});
+  s.duration("offset_ms", st.offset,
+             {.unit = "ms", .doc = "retrace: start this long after the retrace (the render start offset; 0: at it)"});
   s.text("until", st.until, {.doc = "late: the stage whose end must meet the deadline (default: this one)"});
   s.flag("samples_pose", st.samples_pose, {.doc = "reads the head pose when it begins (the last such stage's pose is drawn)"});
   s.object("cost", st.cost, [](Section& c, renderer::RenderCost::Params& v) { params::bind(c, v); },
@@ -137,6 +140,9 @@ std::vector<StageSpec> resolve(Section& s, const std::string& key, const std::ve
                     !(st.start == StartRule::stream && i > 0 && out[i - 1].processors == st.processors),
                     "a stage streams from a stage on another processor");
     st.lag = k.lag;
+    s.check_pointer(at + "/offset_ms", k.offset == des::Time::zero() || st.start == StartRule::retrace,
+                    "only a stage that starts at a retrace has a start offset");
+    st.offset = k.offset;
     if (!k.until.empty()) {
       int u = -1;
       for (size_t j = i; j < stages.size(); ++j)

@@ -40,6 +40,7 @@ struct StageSpec {
   renderer::RenderCost cost;              ///< how long it takes
   StartRule start = StartRule::after;
   des::Time lag;                ///< stream: how long the previous stage runs before this one starts
+  des::Time offset;             ///< retrace: how long after the retrace it starts (render start offset)
   int until = -1;               ///< late: the stage whose end must meet the deadline (-1: this one)
   bool samples_pose = false;    ///< reads the head pose when it begins
   std::string pointer;          ///< where the scenario declares it (/pipeline/stages/i)

@@ -84,7 +84,7 @@ des::Time StageFlow::expected_completion(int from, des::Time t) const {
     switch (s.start) {
       case StartRule::after: start = end; break;
       case StartRule::stream: start = start + s.lag; break;
-      case StartRule::retrace: start = env_.next_retrace(end); break;
+      case StartRule::retrace: start = env_.next_retrace(end) + s.offset; break;
       case StartRule::late: {
         const des::Time est = estimates_[static_cast<size_t>(k)].estimate() + late_.margin;
         start = hooks_.next_deadline(end + est) - est;
@@ -128,6 +128,7 @@ StageFlow::Wait StageFlow::rule_wait(int stage, JobRecord& rec) {
     while (f % hooks_.retrace_divider != 0) ++f;
     w.progress = &env_.retraces;
     w.target = f + 1;
+    w.after = s.offset;
   } else if (s.start == StartRule::late) {
     // The latest start from which the estimated span still meets a deadline
     // this stage has not aimed for yet.
@@ -211,6 +212,7 @@ des::Process StageFlow::worker(int r, int lane) {
     {
       const Wait w = rule_wait(run.first, record(j));
       if (w.progress) co_await w.progress->reached(w.target);
+      if (w.after > des::Time::zero()) co_await sim.delay(w.after);
       if (w.until > sim.now()) co_await sim.until(w.until);
       release_stage(run.first, record(j));
     }
@@ -225,6 +227,7 @@ des::Process StageFlow::worker(int r, int lane) {
       if (s > run.first) {
         const Wait w = rule_wait(s, record(j));
         if (w.progress) co_await w.progress->reached(w.target);
+        if (w.after > des::Time::zero()) co_await sim.delay(w.after);
         if (w.until > sim.now()) co_await sim.until(w.until);
         release_stage(s, record(j));
       }

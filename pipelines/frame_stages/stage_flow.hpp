@@ -118,6 +118,7 @@ class StageFlow {
   struct Wait {
     Progress* progress = nullptr;
     int64_t target = 0;
+    des::Time after;  ///< once `progress` reaches `target`, wait this long more
     des::Time until;
   };
 
