@@ -2,6 +2,7 @@
 # Installs latsim's Debian packages if any are missing, then configures and
 # builds into build/. Safe to run again: it only does what is not done yet.
 #   BUILD_DIR=build  BUILD_TYPE=Release  LATSIM_SANITIZE=OFF  JOBS=$(nproc)
+#   TARGET=latsim builds the command alone (the main job); unset: everything, tests included
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
@@ -28,4 +29,4 @@ fi
 BUILD_DIR=${BUILD_DIR:-build}
 cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE="${BUILD_TYPE:-Release}" \
       -DLATSIM_SANITIZE="${LATSIM_SANITIZE:-OFF}" >/dev/null
-cmake --build "$BUILD_DIR" -j"${JOBS:-$(nproc)}"
+cmake --build "$BUILD_DIR" -j"${JOBS:-$(nproc)}" ${TARGET:+--target "$TARGET"}
