@@ -9,8 +9,10 @@ retrace after G ends (vsync, no compositor).
 Hand derivation. The period is T = 1000/90 = 11.111 ms. A frame started at
 retrace k + o completes at o + 7 ms. While o + 7 <= T it is shown at retrace
 k + 1, so its motion-to-photon is (T - o) + d, where d (the time from the
-retrace to the photons, plus the tracker sample's age) does not depend on o:
-the figure falls with o. Beyond o = T - 7 = 4.111 ms the frame misses its
+retrace to the photons, plus the tracker sample's age) does not depend on o
+to within the tracker's period: the tracker samples at 1 MHz, so a sample is at
+most 1 us old (at 1 kHz the age would step by up to 1 ms as o moves, and the
+figure would have plateaus wider than the tolerance). The figure falls with o. Beyond o = T - 7 = 4.111 ms the frame misses its
 retrace. So the best offset with no missed frame is o* = T - 7 ms, and there
 motion-to-photon is 7 ms + d, T - o* less than at o = 0 (the retrace start of
 today): mtp(0) - mtp(o*) = 4.111 ms.
@@ -34,10 +36,10 @@ tolerance = 0.01
 
 scenario = {
     "description": "90 Hz, vsync, CPU 1 ms then GPU 6 ms; the CPU stage starts offset_ms after each retrace",
-    "duration_s": 2,
+    "duration_s": 1,
     "seed": 1,
     "motion": {"type": "constant", "axis": [0, 1, 0], "rate_deg_s": 120, "position_m": [0, 1.6, 0]},
-    "tracker": {"rate_hz": 1000, "internal_delay_ms": 0},
+    "tracker": {"rate_hz": 1000000, "phase_ms": 0, "internal_delay_ms": 0},
     "transport": {"type": "direct"},
     "display": {"refresh_hz": 90, "width_px": 1080, "height_px": 1200, "vblank_lines": 40, "hblank_px": 0,
                 "hfov_deg": 100, "scanout": "line"},
