@@ -126,7 +126,7 @@ void bind(Section& s, SceneParams& p) {
            {"obj", "a Wavefront OBJ mesh",
             [&g](Section& m) {
               g.type = Type::Obj;
-              m.path("file", g.file, {.required = true, .doc = "the mesh, relative to the scenario file"});
+              m.path("file", g.file, {.required = true, .doc = "the mesh, relative to the file that names it"});
               // Read and checked with the scenario: a bad mesh is this key's error, in validate as in run.
               m.guard("file", [&g] { g.mesh = std::make_shared<const renderer::Scene>(renderer::load_obj(g.file)); });
             }}},

@@ -36,7 +36,7 @@ void check_smallest(Section& t, const TraceKeys& k, const capture::CaptureColumn
 void bind_keys(Section& t, TraceKeys& k, std::shared_ptr<const renderer::TraceCost>& out) {
   t.doc("A measured cost: the values of one column of a PresentMon capture (current, v1 or v2 columns, told "
         "apart by the header) or of any CSV with a header, in milliseconds, one per frame. See docs/measured.md.");
-  t.path("file", k.file, {.required = true, .doc = "the capture (CSV), relative to the scenario file; at most 1 GiB"});
+  t.path("file", k.file, {.required = true, .doc = "the capture (CSV), relative to the file that names it; at most 1 GiB"});
   t.text("column", k.column,
          {.required = true, .doc = "the header name, exactly (MsGPUBusy, msGPUActive, GPUBusy, ...)"});
   t.text("application", k.application,

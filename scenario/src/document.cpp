@@ -37,15 +37,22 @@ void deep_merge(Json& base, const Json& over) {
   }
 }
 
-// The files a document includes, each with the pointer of its name.
-std::vector<std::pair<std::string, fs::path>> includes_of(const Json& doc, const fs::path& file) {
-  std::vector<std::pair<std::string, fs::path>> out;
+// The files a document includes: the pointer of each name, the file, and its
+// directory as the name gives it (what its relative paths are rebased by).
+struct Include {
+  std::string where;
+  fs::path file;
+  fs::path named_dir;
+};
+
+std::vector<Include> includes_of(const Json& doc, const fs::path& file) {
+  std::vector<Include> out;
   const Json& inc = doc["include"];
   const auto add = [&](const std::string& where, const Json& name) {
     if (!name.is_string() || name.get<std::string>().empty())
       throw ScenarioError(where, "expected a file name, got " + (name.is_string() ? std::string("\"\"") : json_type_name(name)), file);
     fs::path p = name.get<std::string>();
-    out.emplace_back(where, p.is_relative() ? file.parent_path() / p : p);
+    out.push_back({where, p.is_relative() ? file.parent_path() / p : p, p.parent_path()});
   };
   if (inc.is_array()) {
     for (size_t i = 0; i < inc.size(); ++i) add("/include/" + std::to_string(i), inc[i]);
@@ -57,15 +64,37 @@ std::vector<std::pair<std::string, fs::path>> includes_of(const Json& doc, const
   return out;
 }
 
-Json load_with_includes(const fs::path& file, std::vector<fs::path>& chain);
+// A relative file name is relative to the file that names it. An included
+// file's relative paths (the keys the schema declares as paths) are rebased
+// onto the including file's directory by `dir`, the included file's directory
+// as the including file named it, so the merged document reads as if written
+// in the including file. Without a schema nothing is known to be a path.
+void rebase_paths(Json& doc, const fs::path& dir, const ObjectSchema* schema) {
+  if (!schema || !doc.is_object() || dir.empty()) return;
+  for (auto it = doc.begin(); it != doc.end(); ++it) {
+    const KeySchema* key = schema->find(it.key());
+    if (!key) continue;
+    Json& value = it.value();
+    if (key->type == "path" && value.is_string()) {
+      const fs::path p = value.get<std::string>();
+      if (!p.empty() && p.is_relative()) value = (dir / p).lexically_normal().generic_string();
+    } else if (key->type == "object" && key->object) {
+      rebase_paths(value, dir, key->object.get());
+    } else if (key->type == "objects" && key->object && value.is_array()) {
+      for (Json& item : value) rebase_paths(item, dir, key->object.get());
+    }
+  }
+}
+
+Json load_with_includes(const fs::path& file, std::vector<fs::path>& chain, const ObjectSchema* schema);
 
 // `doc`, read from `file` (the last of `chain`), with the files it includes
 // merged under it: theirs first, in order, then its own keys over them.
-Json merge_includes(Json doc, const fs::path& file, std::vector<fs::path>& chain) {
+Json merge_includes(Json doc, const fs::path& file, std::vector<fs::path>& chain, const ObjectSchema* schema) {
   if (!doc.is_object()) throw ScenarioError("", "a scenario must be a JSON object, not " + json_type_name(doc), file);
   Json result = Json::object();
   if (doc.contains("include")) {
-    for (const auto& [where, included] : includes_of(doc, file)) {
+    for (const auto& [where, included, named_dir] : includes_of(doc, file)) {
       std::error_code canon_ec;
       fs::path included_canon = fs::weakly_canonical(included, canon_ec);
       if (canon_ec) included_canon = included.lexically_normal();
@@ -83,7 +112,9 @@ Json merge_includes(Json doc, const fs::path& file, std::vector<fs::path>& chain
         throw ScenarioError(where, "cannot read the included file " + quote_value(included.string()) + ": " + why, file);
       }
       try {
-        deep_merge(result, load_with_includes(included, chain));
+        Json included_doc = load_with_includes(included, chain, schema);
+        rebase_paths(included_doc, named_dir, schema);
+        deep_merge(result, included_doc);
       } catch (const ScenarioError& e) {
         // Name the chain: the file, and the pointer in it, that included the one at fault.
         throw ScenarioError(e.pointer(), e.message() + " (included by " + file.string() + " at " + where + ")",
@@ -103,9 +134,10 @@ fs::path chain_entry(const fs::path& file) {
   return ec ? file.lexically_normal() : canon;
 }
 
-Json load_with_includes(const fs::path& file, std::vector<fs::path>& chain) {
+Json load_with_includes(const fs::path& file, std::vector<fs::path>& chain, const ObjectSchema* schema) {
   chain.push_back(chain_entry(file));
-  Json result = merge_includes(read_json_file(file, chain.size() == 1 ? "scenario file" : "included file"), file, chain);
+  Json result =
+      merge_includes(read_json_file(file, chain.size() == 1 ? "scenario file" : "included file"), file, chain, schema);
   chain.pop_back();
   return result;
 }
@@ -194,7 +226,7 @@ void apply_override(Json& doc, const std::string& assignment, const ObjectSchema
 ScenarioDocument ScenarioDocument::load(const fs::path& file, const std::vector<std::string>& overrides,
                                         const ObjectSchema* schema) {
   std::vector<fs::path> chain;
-  Json doc = load_with_includes(file, chain);
+  Json doc = load_with_includes(file, chain, schema);
   for (const auto& o : overrides) apply_override(doc, o, schema);
   auto dir = file.parent_path();
   if (dir.empty()) dir = ".";
@@ -204,7 +236,7 @@ ScenarioDocument ScenarioDocument::load(const fs::path& file, const std::vector<
 ScenarioDocument ScenarioDocument::parse(std::string_view text, const fs::path& name,
                                          const std::vector<std::string>& overrides, const ObjectSchema* schema) {
   std::vector<fs::path> chain{chain_entry(name)};
-  Json doc = merge_includes(parse_json(text, name.string()), name, chain);
+  Json doc = merge_includes(parse_json(text, name.string()), name, chain, schema);
   for (const auto& o : overrides) apply_override(doc, o, schema);
   auto dir = name.parent_path();
   if (dir.empty()) dir = ".";

@@ -273,7 +273,9 @@ Json without_required(Json j) {
 Json json_schema(const ObjectSchema& root) {
   Json strict = object_json(root);
   strict["properties"]["include"] = {
-      {"description", "a base scenario file (or a list), relative to this file, merged under this one"},
+      {"description",
+       "a base scenario file (or a list), relative to this file, merged under this one; a relative file name "
+       "in an included file stays relative to that file"},
       {"anyOf", Json::array({Json{{"type", "string"}},
                              Json{{"type", "array"}, {"items", {{"type", "string"}}}}})}};
   // A file that includes a base may leave anything, required or not, to the base.
@@ -296,7 +298,7 @@ std::string markdown_reference(const ObjectSchema& root) {
     if (!k.object) scalars.push_back(&k);
   md << "| key | type | default | range | unit | meaning |\n| --- | --- | --- | --- | --- | --- |\n"
      << "| `include` | string or array | — |  |  | a base scenario file (or a list), relative to this file; objects "
-        "merge key by key, an object whose `type` changes replaces the base's |\n";
+        "merge key by key, an object whose `type` changes replaces the base's; a relative file name in an included file stays relative to that file |\n";
   for (const KeySchema* k : scalars)
     md << "| " << code(k->name) << " | " << type_text(*k) << " | " << default_text(*k) << " | " << range_text(*k)
        << " | " << k->unit << " | " << k->doc << " |\n";

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "latsim/des/random.hpp"
+#include "latsim/run/runner.hpp"
 #include "latsim/scenario/config.hpp"
 #include "latsim/scenario/json_text.hpp"
 #include "latsim/scenario/readable.hpp"
@@ -61,7 +62,7 @@ uint64_t non_negative_integer(const Json& sweep, const char* key, uint64_t def, 
 // The base scenario with its includes merged, as a plain document.
 Json load_base(const fs::path& base_file, const fs::path& sweep_file) {
   try {
-    return scenario::ScenarioDocument::load(base_file).json();
+    return scenario::ScenarioDocument::load(base_file, {}, &run::scenario_schema()).json();
   } catch (const scenario::ScenarioError& e) {
     throw SweepError(sweep_file, "/base", e.line(base_file));
   }

@@ -108,3 +108,25 @@ TEST_CASE("the resolved scenario records every default applied", "[scenario]") {
   CHECK(doc.resolved()["display"]["scanout"] == "field");
   CHECK(doc.resolved()["pipeline"]["vsync"] == true);
 }
+
+TEST_CASE("a relative file name is relative to the file that names it, through includes", "[scenario]") {
+  // top.json includes lib/base.json, which names its trace "data/head.csv":
+  // the file is lib/data/head.csv, wherever the including file is. A name the
+  // top file gives itself stays relative to the top file; an absolute name
+  // is left alone.
+  const auto dir = temp_dir() / "rebase";
+  std::filesystem::create_directories(dir / "lib" / "data");
+  write(dir / "lib" / "base.json", R"({"motion": {"type": "trace", "file": "data/head.csv"},
+                                       "scene": {"type": "obj", "file": "/abs/room.obj"}})");
+  write(dir / "top.json", R"({"include": "lib/base.json"})");
+  write(dir / "own.json", R"({"include": "lib/base.json", "motion": {"file": "mine.csv"}})");
+  write(dir / "nested.json", R"({"include": "top.json"})");
+  const auto& schema = latsim::run::scenario_schema();
+  CHECK(ScenarioDocument::load(dir / "top.json", {}, &schema).json()["motion"]["file"] == "lib/data/head.csv");
+  CHECK(ScenarioDocument::load(dir / "nested.json", {}, &schema).json()["motion"]["file"] == "lib/data/head.csv");
+  CHECK(ScenarioDocument::load(dir / "own.json", {}, &schema).json()["motion"]["file"] == "mine.csv");
+  CHECK(ScenarioDocument::load(dir / "top.json", {}, &schema).json()["scene"]["file"] == "/abs/room.obj");
+  // And the run reads the file from there: a missing one is named by its full path.
+  const auto doc = latsim::run::load_scenario(dir / "top.json", {});
+  CHECK(doc.root().child("motion").path("file") == (dir / "lib" / "data" / "head.csv").lexically_normal());
+}
