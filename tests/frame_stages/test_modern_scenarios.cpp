@@ -156,3 +156,26 @@ TEST_CASE("modern scenarios: the staged vsync configuration agrees with the doub
       CHECK(staged.at(figure).at(stat).get<double>() == Approx(classic.at(figure).at(stat).get<double>()).epsilon(1e-12));
     }
 }
+
+TEST_CASE("pixel fidelity on a continuous time warp: per-pixel latency, residual errors as at line fidelity", "[modern]") {
+  // 62.5 Hz, 480 lines of 640 pixels, no blanking: a line lasts 16/480 ms and
+  // a pixel 1/640 of that. Every strip's pose is uniform along a line, so the
+  // mean over pixels is the line's latency plus the mean pixel offset,
+  // (640 - 1)/2 pixel periods; the residual errors are judged once per line
+  // at its first pixel, the instant line fidelity uses, so they are equal.
+  // The run ends (1 s: mid-field) at the first pixel of a line, which line
+  // fidelity counts whole and pixel fidelity as that one pixel: 639 pixels
+  // fewer, each at most 4 ms (the figure's maximum), which moves the mean by
+  // at most 639 * 4 / 18.6e6 = 1.4e-4 ms.
+  const auto line = run_shipped("modern/continuous_timewarp.json", {"/duration_s=1", "/display/scanout=\"line\""});
+  const auto pixel = run_shipped("modern/continuous_timewarp.json", {"/duration_s=1", "/display/scanout=\"pixel\""});
+  const double pixel_ms = 16.0 / 480.0 / 640.0;
+  const double offset_ms = (640 - 1) / 2.0 * pixel_ms;
+  CHECK(pixel["rotation_latency_ms"]["mean"].get<double>() - line["rotation_latency_ms"]["mean"].get<double>() ==
+        Approx(offset_ms).margin(1.4e-4));
+  CHECK(pixel["rotation_latency_ms"]["count"].get<double>() ==
+        640 * line["rotation_latency_ms"]["count"].get<double>() - 639);
+  CHECK(pixel["residual_orientation_error_deg"] == line["residual_orientation_error_deg"]);
+  CHECK(pixel["residual_position_error_mm"] == line["residual_position_error_mm"]);
+  CHECK(pixel["residual_by_rewarps"] == line["residual_by_rewarps"]);
+}
