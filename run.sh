@@ -26,7 +26,7 @@ if [ -d "$OUT.partial/side_by_side" ] && [ -d "$OUT.partial/double_buffered" ]; 
   /usr/bin/python3 analysis/side_by_side.py "$OUT.partial/side_by_side" "$OUT.partial/double_buffered" \
     "$OUT.partial/frameless_vs_double_buffering" >/dev/null
 fi
-build/latsim report "$OUT.partial"
+build/latsim report "$OUT.partial" --title "$(basename "$OUT")"
 # Replace the previous results only once everything succeeded.
 rm -rf "$OUT"
 mv "$OUT.partial" "$OUT"

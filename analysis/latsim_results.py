@@ -22,7 +22,27 @@ HEADLINE = [
     ("frame_rate_hz", "frame_rate_hz", "frame rate (Hz)"),
     ("registration_error_mean_arcmin", "registration_error_arcmin.mean", "registration error mean (arcmin)"),
     ("registration_error_p99_arcmin", "registration_error_arcmin.p99", "registration error p99 (arcmin)"),
+    ("rotation_latency_mean_ms", "rotation_latency_ms.mean", "rotation latency mean (ms)"),
+    ("rotation_latency_p99_ms", "rotation_latency_ms.p99", "rotation latency p99 (ms)"),
 ]
+
+# Headline figures (a pipeline's first declared one) that have table columns:
+# figure name -> the (mean, p99) columns that stand for it.
+HEADLINE_COLUMNS = {
+    "motion_to_photon_ms": ("mtp_mean_ms", "mtp_p99_ms"),
+    "rotation_latency_ms": ("rotation_latency_mean_ms", "rotation_latency_p99_ms"),
+}
+
+
+def headline_figure(rows):
+    """The figure the rows' pipelines declare first (summary.json "headline"), when
+    they all agree and it has table columns; else motion-to-photon latency."""
+    firsts = {(r.first_summary().get("headline") or ["motion_to_photon_ms"])[0] for r in rows if r.run_dirs}
+    if len(firsts) == 1:
+        (only,) = firsts
+        if only in HEADLINE_COLUMNS:
+            return only
+    return "motion_to_photon_ms"
 
 # results.csv columns by figure path (the tables write the same headline figures).
 COLUMN_OF = {path: column for column, path, _ in HEADLINE}

@@ -36,12 +36,42 @@ from progress import Progress  # noqa: E402
 
 # More curves than this on one CDF or histogram plot cannot be told apart.
 MAX_CURVES = 12
-# Figures plotted against each sweep axis: (figure path, axis label).
+# Figures plotted against each sweep axis: (figure path, axis label); the
+# rows' headline figure, when it is another, is drawn first (sweep_figures).
 SWEEP_FIGURES = [
     ("motion_to_photon_ms.mean", "mean motion-to-photon (ms)"),
     ("motion_to_photon_ms.p99", "p99 motion-to-photon (ms)"),
     ("registration_error_arcmin.mean", "mean registration error (arcmin)"),
 ]
+HEADLINE_SWEEP_FIGURES = {
+    "rotation_latency_ms": [("rotation_latency_ms.mean", "mean rotation latency (ms)"),
+                            ("rotation_latency_ms.p99", "p99 rotation latency (ms)")],
+}
+# Distributions drawn as CDF and histogram when rows have them: (figure, file
+# prefix, axis label, title).
+DISTRIBUTIONS = [
+    ("motion_to_photon_ms", "mtp", "motion-to-photon latency (ms)", "Motion-to-photon latency"),
+    ("rotation_latency_ms", "rotation", "rotation latency (ms)", "Rotation latency"),
+    ("registration_error_arcmin", "registration", "registration error (arcmin)", "Registration error"),
+]
+
+
+def sweep_figures(coll):
+    """What plot_sweep_axis draws: the headline figure first."""
+    return HEADLINE_SWEEP_FIGURES.get(lr.headline_figure(coll.rows), []) + SWEEP_FIGURES
+
+
+def table_columns(coll):
+    """The latency table's columns: the headline's first, and a column only when a row has it."""
+    lead = lr.HEADLINE_COLUMNS[lr.headline_figure(coll.rows)]
+    ordered = [h for h in lr.HEADLINE if h[0] in lead] + [h for h in lr.HEADLINE if h[0] not in lead]
+    optional = {"rotation_latency_mean_ms", "rotation_latency_p99_ms"}
+    return [h for h in ordered if h[0] not in optional or any(r.values(h[1]) for r in coll.rows)]
+
+
+def default_figure(coll):
+    """The column a table is sorted by when --figure is not given: the headline's mean."""
+    return table_figure(lr.HEADLINE_COLUMNS[lr.headline_figure(coll.rows)][0])
 # Gantt charts a sweep's report draws by default: one per point, evenly spaced.
 GANTT_SAMPLE = 6
 # Points a sweep's table in report.md shows from each end by default.
@@ -52,9 +82,10 @@ def fmt(value, digits=6):
     return "" if value is None else f"{value:.{digits}g}"
 
 
-def curve_rows(coll):
-    """Rows whose distributions are drawn; evenly spaced when there are too many."""
-    rows = [r for r in coll.rows if r.run_dirs and "motion_to_photon_ms" in r.first_summary().get("figures", {})]
+def curve_rows(coll, figure="motion_to_photon_ms"):
+    """Rows whose distributions of `figure` are drawn; evenly spaced when there are too many."""
+    rows = [r for r in coll.rows
+            if r.run_dirs and (r.first_summary().get("figures", {}).get(figure) or {}).get("histogram")]
     if len(rows) <= MAX_CURVES:
         return rows
     step = (len(rows) - 1) / (MAX_CURVES - 1)
@@ -77,40 +108,44 @@ def _csv(text):
 
 
 def plot_distributions(coll):
-    """mtp_cdf and mtp_histogram from the histogram buckets of replication 0 of each row."""
-    rows = curve_rows(coll)
-    if not rows:
-        return []
-    palette = plotting.colours(len(rows))
-    fig_cdf, ax_cdf = plt.subplots(figsize=(8, 5))
-    fig_hist, ax_hist = plt.subplots(figsize=(8, 5))
-    for row, colour in zip(rows, palette):
-        dist = row.first_summary()["figures"]["motion_to_photon_ms"]
-        edges, counts = lr.histogram_edges(dist)
-        total = sum(counts)
-        if total <= 0:
+    """A CDF and a histogram (e.g. mtp_cdf, mtp_histogram) of each distribution in DISTRIBUTIONS that
+    a row has, from the histogram buckets of replication 0 of each row."""
+    drawn = []
+    for figure, prefix, xlabel, title in DISTRIBUTIONS:
+        rows = curve_rows(coll, figure)
+        if not rows:
             continue
-        cumulative, xs, ys = 0.0, [edges[0]], [0.0]
-        for upper, count in zip(edges[1:], counts):
-            cumulative += count
-            xs.append(upper)
-            ys.append(cumulative / total)
-        ax_cdf.plot(xs, ys, color=colour, label=row.name, drawstyle="default")
-        density = [c / total / max(hi - lo, 1e-12) for lo, hi, c in zip(edges, edges[1:], counts)]
-        ax_hist.stairs(density, edges, color=colour, label=row.name, linewidth=1.2)
-    ax_cdf.set_xlabel("motion-to-photon latency (ms)")
-    ax_cdf.set_ylabel("fraction of samples at or below")
-    ax_cdf.set_ylim(0, 1.02)
-    ax_cdf.set_title("Motion-to-photon latency, cumulative distribution")
-    ax_hist.set_xlabel("motion-to-photon latency (ms)")
-    ax_hist.set_ylabel("probability density (1/ms)")
-    ax_hist.set_title("Motion-to-photon latency, histogram")
-    for ax in (ax_cdf, ax_hist):
-        ax.legend(fontsize=7, loc="best")
-    base = coll.directory
-    plotting.save(fig_cdf, os.path.join(base, "mtp_cdf"))
-    plotting.save(fig_hist, os.path.join(base, "mtp_histogram"))
-    return ["mtp_cdf", "mtp_histogram"]
+        palette = plotting.colours(len(rows))
+        fig_cdf, ax_cdf = plt.subplots(figsize=(8, 5))
+        fig_hist, ax_hist = plt.subplots(figsize=(8, 5))
+        for row, colour in zip(rows, palette):
+            dist = row.first_summary()["figures"][figure]
+            edges, counts = lr.histogram_edges(dist)
+            total = sum(counts)
+            if total <= 0:
+                continue
+            cumulative, xs, ys = 0.0, [edges[0]], [0.0]
+            for upper, count in zip(edges[1:], counts):
+                cumulative += count
+                xs.append(upper)
+                ys.append(cumulative / total)
+            ax_cdf.plot(xs, ys, color=colour, label=row.name, drawstyle="default")
+            density = [c / total / max(hi - lo, 1e-12) for lo, hi, c in zip(edges, edges[1:], counts)]
+            ax_hist.stairs(density, edges, color=colour, label=row.name, linewidth=1.2)
+        ax_cdf.set_xlabel(xlabel)
+        ax_cdf.set_ylabel("fraction of samples at or below")
+        ax_cdf.set_ylim(0, 1.02)
+        ax_cdf.set_title(f"{title}, cumulative distribution")
+        ax_hist.set_xlabel(xlabel)
+        ax_hist.set_ylabel(f"probability density (1/{xlabel.rsplit('(', 1)[-1].rstrip(')')})")
+        ax_hist.set_title(f"{title}, histogram")
+        for ax in (ax_cdf, ax_hist):
+            ax.legend(fontsize=7, loc="best")
+        base = coll.directory
+        plotting.save(fig_cdf, os.path.join(base, f"{prefix}_cdf"))
+        plotting.save(fig_hist, os.path.join(base, f"{prefix}_histogram"))
+        drawn += [f"{prefix}_cdf", f"{prefix}_histogram"]
+    return drawn
 
 
 def plot_sweep_axis(coll, axis):
@@ -127,7 +162,7 @@ def plot_sweep_axis(coll, axis):
             axis_values.append(row.axis_values[axis])
     numeric = all(lr.as_number(v) is not None for v in axis_values)
     x_of = (lambda v: lr.as_number(v)) if numeric else (lambda v: float(axis_values.index(v)))
-    figures = [(p, label) for p, label in SWEEP_FIGURES if any(r.values(p) for r in coll.rows)]
+    figures = [(p, label) for p, label in sweep_figures(coll) if any(r.values(p) for r in coll.rows)]
     if not figures:
         return None
     fig, axes = plt.subplots(len(figures), 1, figsize=(8, 3.6 * len(figures)), squeeze=False)
@@ -182,11 +217,12 @@ def cut_rows(coll, top, figure):
 
 def markdown_table(coll, rows=None):
     rows = coll.rows if rows is None else rows
-    header = ["name", "pipeline"] + (["replications"] if coll.kind == "sweep" else []) + [u for _, _, u in lr.HEADLINE]
+    columns = table_columns(coll)
+    header = ["name", "pipeline"] + (["replications"] if coll.kind == "sweep" else []) + [u for _, _, u in columns]
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     for row in rows:
         cells = [row.name, row.pipeline()] + ([str(row.replications())] if coll.kind == "sweep" else [])
-        cells += [fmt(row.mean(p), 4) for _, p, _ in lr.HEADLINE]
+        cells += [fmt(row.mean(p), 4) for _, p, _ in columns]
         lines.append("| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |")
     return lines
 
@@ -238,14 +274,16 @@ def sweep_sections(coll):
     return md
 
 
-def write_markdown(coll, drawn, top, figure):
+def write_markdown(coll, drawn, top, figure, title=None):
     first = coll.rows[0].first_summary()
     version = first.get("latsim", {})
-    md = [f"# latsim report: {os.path.basename(os.path.normpath(coll.directory))}", ""]
+    md = [f"# latsim report: {title or os.path.basename(os.path.normpath(coll.directory))}", ""]
     kinds = {"run": "a single run", "runs": f"{len(coll.rows)} runs", "sweep": f"a sweep of {len(coll.rows)} points"}
     md.append(f"Results of {kinds[coll.kind]}, latsim {version.get('version', '?')} "
               f"(revision {version.get('git_revision', '?')}). Motion-to-photon (MTP) latency is photon time "
-              "minus the time the pose used was measured; figures are means over replications.")
+              "minus the time the pose used was measured; rotation latency, where a pipeline reports it, is "
+              "photon time minus the time the orientation shown was measured (behind a time warp, the warp's "
+              "sample); figures are means over replications.")
     md.append("")
     if coll.kind == "sweep":
         md.append("Swept axes: " + ", ".join(f"`{a}`" for a in coll.axes) + f"; {len(coll.runs)} runs in all.")
@@ -255,7 +293,7 @@ def write_markdown(coll, drawn, top, figure):
     plots = drawn["distributions"]
     if plots:
         shown = len(curve_rows(coll))
-        md += ["## Motion-to-photon distributions", ""]
+        md += ["## Distributions", ""]
         if shown < len(coll.rows):
             md += [f"{shown} of {len(coll.rows)} rows drawn, evenly spaced, replication 0 of each.", ""]
         md += [f"![{p}]({p}.png)" for p in plots] + [""]
@@ -323,11 +361,15 @@ def main(argv):
     parser.add_argument("--top", type=int, default=TOP_DEFAULT,
                         help=f"a sweep's table in report.md: this many lowest and highest points by --figure "
                              f"(default {TOP_DEFAULT}; 0: every point)")
-    parser.add_argument("--figure", default="mtp_mean_ms",
+    parser.add_argument("--figure", default=None,
                         help="the column the table is sorted by and the heat map shows: "
-                             + ", ".join(c for c, _, _ in lr.HEADLINE) + " (default mtp_mean_ms)")
+                             + ", ".join(c for c, _, _ in lr.HEADLINE) +
+                             " (default: the mean of the figure the runs' pipelines declare first, e.g. "
+                             "rotation_latency_mean_ms behind a time warp; else mtp_mean_ms)")
+    parser.add_argument("--title", default=None,
+                        help="the report's title (default: the directory's name)")
     args = parser.parse_args(argv[1:])
-    figure = table_figure(args.figure)
+    figure = table_figure(args.figure) if args.figure is not None else ()
     if figure is None:
         print(f"report: --figure {args.figure}: expected one of " + ", ".join(c for c, _, _ in lr.HEADLINE),
               file=sys.stderr)
@@ -344,8 +386,11 @@ def main(argv):
         print(f"report: {e}", file=sys.stderr)
         return 2
     try:
+        if not figure:
+            read_point_summaries(coll)
+            figure = default_figure(coll)
         drawn = draw_everything(coll, args, figure)
-        write_markdown(coll, drawn, args.top, figure)
+        write_markdown(coll, drawn, args.top, figure, args.title)
     except OSError as e:
         # A full disk or a read-only directory: one line, no traceback.
         where = f"{e.filename}: " if e.filename else ""

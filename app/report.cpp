@@ -30,8 +30,11 @@ int command_report(int argc, char** argv) {
                  "latency_table.csv always has every point")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--figure", figure,
-                 "the column a sweep's table is sorted by and its heat map shows (default mtp_mean_ms; e.g. "
-                 "mtp_p99_ms, registration_error_mean_arcmin)");
+                 "the column a sweep's table is sorted by and its heat map shows (default: the mean of the figure "
+                 "the runs' pipelines declare first, rotation_latency_mean_ms behind a time warp, else mtp_mean_ms; "
+                 "e.g. mtp_p99_ms, registration_error_mean_arcmin)");
+  std::string title;
+  app.add_option("--title", title, "the report's title (default: the directory's name)");
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
   if (!std::filesystem::is_directory(dir)) {
     std::cerr << dir << ": not a directory\n";
@@ -42,6 +45,7 @@ int command_report(int argc, char** argv) {
     if (gantt_limit >= 0) command.insert(command.end(), {"--gantt-limit", std::to_string(gantt_limit)});
     if (top >= 0) command.insert(command.end(), {"--top", std::to_string(top)});
     if (!figure.empty()) command.insert(command.end(), {"--figure", figure});
+    if (!title.empty()) command.insert(command.end(), {"--title", title});
     const ChildResult child = run_child(command);
     // The script's own codes already follow the program's (0 ok, 1 cannot
     // write, 2 bad input, 130 interrupted) and it has said why in one line.

@@ -67,6 +67,8 @@ std::vector<HeadlineColumn> headline_columns() {
       {"missed_refreshes", "missed_refreshes"},
       {"registration_error_mean_arcmin", "registration_error_arcmin.mean"},
       {"registration_error_p99_arcmin", "registration_error_arcmin.p99"},
+      {"rotation_latency_mean_ms", "rotation_latency_ms.mean"},
+      {"rotation_latency_p99_ms", "rotation_latency_ms.p99"},
       {"events", "events"},
       {"wall_s", "wall_s"},
   };

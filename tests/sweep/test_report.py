@@ -98,7 +98,8 @@ def make_big_sweep(root):
                 values = {"mtp_mean_ms": mean, "mtp_p50_ms": mean, "mtp_p99_ms": mean + 7, "mtp_max_ms": mean + 8,
                           "render_latency_ms": 16.7, "render_latency_fields": 1, "frame_rate_hz": 60,
                           "registration_error_mean_arcmin": mean / 10, "registration_error_p99_arcmin": mean / 5}
-                rows.append([run_id, point, a, b, 1, rep] + [values[c] for c in headline])
+                # Rotation latency is not a double buffer's figure: its cells stay empty.
+                rows.append([run_id, point, a, b, 1, rep] + [values.get(c, "") for c in headline])
             point += 1
     with open(os.path.join(root, "results.csv"), "w", newline="") as f:
         w = csv.writer(f, lineterminator="\n")
@@ -188,6 +189,40 @@ check(all(abs(grid[i][j] - (10 * (i + 1) + (j + 1) + 1)) < 1e-9 for i in range(5
       f"heat map cells {grid}")
 proc = subprocess.run([sys.executable, REPORT, big_dir, "--figure", "nonsense"], capture_output=True, text=True)
 check(proc.returncode == 2 and len(proc.stderr.strip().splitlines()) == 1, f"bad --figure: {proc.stderr}")
+
+# Behind a time warp the headline is rotation latency: the table leads with it,
+# the default sort column is its mean, and its CDF is drawn. Two warped runs
+# (rotation latency 9 and 7 ms; their application poses' MTP 30 and 31 ms)
+# beside nothing else: sorted by the headline the 7 ms one comes first.
+warp_dir = os.path.join(SCRATCH, "warped")
+for name, mtp, rot in [("warp_a", 30.0, 9.0), ("warp_b", 31.0, 7.0)]:
+    s = summary("frame_stages", mtp)
+    s["headline"] = ["rotation_latency_ms", "application_frame_rate_hz", "frames_missed", "motion_to_photon_ms"]
+    s["figures"]["rotation_latency_ms"] = {"count": 100, "mean": rot, "p50": rot, "p99": rot + 3, "max": rot + 4,
+                                           "histogram": [[rot - 2 + i, 10] for i in range(4)]}
+    write_run(os.path.join(warp_dir, name), s, timeline=False)
+run_report(warp_dir, "--title", "warped designs")
+with open(os.path.join(warp_dir, "report.md")) as f:
+    md = f.read()
+check(md.startswith("# latsim report: warped designs"), "--title names the report")
+check("| name | pipeline | rotation latency mean (ms) | rotation latency p99 (ms) |" in md,
+      "a warped set's table should lead with rotation latency")
+check("| warp_b | frame_stages | 7 | 10 |" in md, "rotation latency mean and p99 of warp_b")
+check(os.path.isfile(os.path.join(warp_dir, "rotation_cdf.png")) and "rotation_cdf.png" in md, "rotation CDF missing")
+with open(os.path.join(warp_dir, "latency_table.csv")) as f:
+    table = list(csv.DictReader(f))
+check(table[0]["rotation_latency_mean_ms"] == "9" and table[1]["rotation_latency_p99_ms"] == "10",
+      "latency_table.csv rotation columns")
+import report  # noqa: E402
+coll = latsim_results.load(warp_dir)
+check(report.default_figure(coll)[0] == "rotation_latency_mean_ms", "default --figure behind a warp")
+check(report.sweep_figures(coll)[0][0] == "rotation_latency_ms.mean", "sweep plots lead with rotation latency")
+# A double buffer's set keeps motion-to-photon first and shows no rotation column.
+coll = latsim_results.load(runs_dir)
+check(report.default_figure(coll)[0] == "mtp_mean_ms", "default --figure without a warp")
+with open(os.path.join(runs_dir, "report.md")) as f:
+    header = [line for line in f.read().splitlines() if line.startswith("| name | pipeline |")][0]
+    check("MTP mean (ms)" in header and "rotation latency" not in header, "no rotation column without the figure")
 
 # Progress lines: none for work that ends within 2 s, then one every 2 s.
 import io  # noqa: E402
