@@ -152,6 +152,8 @@ def row_name(values, axes):
     """A sweep point's name from its axis values; values that are whole JSON
     objects or arrays (a pipeline swapped for another) are left out when some
     axis has a plain value, such as a label swept along with them."""
+    if not axes:
+        return "base scenario"
     plain = [a for a in axes if not str(values[a]).lstrip().startswith(("{", "["))]
     shown = plain or axes
     if len(shown) == 1 and len(axes) > 1:

@@ -61,12 +61,24 @@ def sweep_figures(coll):
     return HEADLINE_SWEEP_FIGURES.get(lr.headline_figure(coll.rows), []) + SWEEP_FIGURES
 
 
+def leads_with_rotation(rows):
+    """Whether some row's pipeline declares rotation latency as its headline (a time warp)."""
+    return any((r.first_summary().get("headline") or [None])[0] == "rotation_latency_ms" for r in rows if r.run_dirs)
+
+
 def table_columns(coll):
-    """The latency table's columns: the headline's first, and a column only when a row has it."""
-    lead = lr.HEADLINE_COLUMNS[lr.headline_figure(coll.rows)]
-    ordered = [h for h in lr.HEADLINE if h[0] in lead] + [h for h in lr.HEADLINE if h[0] not in lead]
+    """The latency table's columns: the headline's first. Rotation latency (which equals
+    motion-to-photon where nothing re-projects the orientation) only when a row's
+    pipeline leads with it."""
+    headline = lr.headline_figure(coll.rows)
+    if headline == "motion_to_photon_ms":
+        ordered = list(lr.HEADLINE)
+    else:
+        lead = lr.HEADLINE_COLUMNS[headline]
+        ordered = [h for h in lr.HEADLINE if h[0] in lead] + [h for h in lr.HEADLINE if h[0] not in lead]
     optional = {"rotation_latency_mean_ms", "rotation_latency_p99_ms"}
-    return [h for h in ordered if h[0] not in optional or any(r.values(h[1]) for r in coll.rows)]
+    rotation = leads_with_rotation(coll.rows)
+    return [h for h in ordered if h[0] not in optional or rotation]
 
 
 def default_figure(coll):
@@ -112,6 +124,8 @@ def plot_distributions(coll):
     a row has, from the histogram buckets of replication 0 of each row."""
     drawn = []
     for figure, prefix, xlabel, title in DISTRIBUTIONS:
+        if figure == "rotation_latency_ms" and not leads_with_rotation(coll.rows):
+            continue
         rows = curve_rows(coll, figure)
         if not rows:
             continue
@@ -286,7 +300,8 @@ def write_markdown(coll, drawn, top, figure, title=None):
               "sample); figures are means over replications.")
     md.append("")
     if coll.kind == "sweep":
-        md.append("Swept axes: " + ", ".join(f"`{a}`" for a in coll.axes) + f"; {len(coll.runs)} runs in all.")
+        md.append(("Swept axes: " + ", ".join(f"`{a}`" for a in coll.axes) if coll.axes else
+                   "No axis: replications of the base scenario") + f"; {len(coll.runs)} runs in all.")
         md.append("")
     md += table_section(coll, top, figure)
     md += sweep_sections(coll)

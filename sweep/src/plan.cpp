@@ -156,7 +156,8 @@ std::vector<Json> expand_range(const Json& range, const fs::path& file, const st
 
 std::vector<std::vector<size_t>> expand_points(const std::vector<size_t>& axis_sizes, bool zip) {
   std::vector<std::vector<size_t>> points;
-  if (axis_sizes.empty()) return points;
+  // No axis: one point, the base scenario itself (its replications).
+  if (axis_sizes.empty()) return {std::vector<size_t>{}};
   if (zip) {
     for (size_t i = 0; i < axis_sizes.front(); ++i) points.emplace_back(axis_sizes.size(), i);
     return points;
@@ -241,8 +242,9 @@ SweepPlan SweepPlan::from_json(const Json& sweep, const fs::path& sweep_file, co
   if (sweep.contains("mode") && sweep["mode"].is_string()) mode = sweep["mode"].get<std::string>();
   else if (sweep.contains("mode")) mode.clear();
   if (mode != "cartesian" && mode != "zip") throw SweepError(file, "/mode", "expected \"cartesian\" or \"zip\"");
-  if (!sweep.contains("axes") || !sweep["axes"].is_array() || sweep["axes"].empty())
-    throw SweepError(file, "/axes", "expected a non-empty array of axes");
+  // An empty array is one point: the base scenario, replicated.
+  if (!sweep.contains("axes") || !sweep["axes"].is_array())
+    throw SweepError(file, "/axes", "expected an array of axes ([] for replications of the base scenario alone)");
 
   std::optional<Json> resolved;
   std::set<std::string> pointers;
@@ -278,7 +280,7 @@ SweepPlan SweepPlan::from_json(const Json& sweep, const fs::path& sweep_file, co
     sizes.push_back(axis.values.size());
     if (mode == "cartesian") total *= static_cast<double>(axis.values.size());
   }
-  if (mode == "zip") total *= static_cast<double>(sizes.front());
+  if (mode == "zip" && !sizes.empty()) total *= static_cast<double>(sizes.front());
   if (total > static_cast<double>(kMaxRuns))
     throw SweepError(file, "/axes", "the sweep expands to more than " + std::to_string(kMaxRuns) + " runs");
 

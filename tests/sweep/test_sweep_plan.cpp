@@ -125,6 +125,22 @@ TEST_CASE("expand_points enumerates like an odometer", "[sweep]") {
   CHECK(zip[2] == std::vector<size_t>{2, 2});
 }
 
+TEST_CASE("a sweep without axes is the base scenario's replications", "[sweep]") {
+  // One point with no axis value; replications 0 .. 3 of the same seed.
+  CHECK(expand_points({}, false) == std::vector<std::vector<size_t>>{{}});
+  CHECK(expand_points({}, true) == std::vector<std::vector<size_t>>{{}});
+  Scratch s;
+  for (const char* mode : {"cartesian", "zip"}) {
+    const auto plan = plan_of(s, {{"base", "base.json"}, {"axes", Json::array()}, {"replications", 4}, {"mode", mode}});
+    REQUIRE(plan.runs().size() == 4);
+    for (size_t r = 0; r < 4; ++r) {
+      CHECK(plan.runs()[r].point == 0);
+      CHECK(plan.runs()[r].replication == r);
+      CHECK(plan.runs()[r].scenario == plan.runs()[0].scenario);
+    }
+  }
+}
+
 TEST_CASE("an axis pointer missing from the base scenario is reported with its pointer", "[sweep]") {
   Scratch s;
   Json sweep = {{"base", "base.json"},
@@ -143,7 +159,8 @@ TEST_CASE("sweep file errors name the JSON pointer", "[sweep]") {
   const Json axis = {{"pointer", "/display/refresh_hz"}, {"values", {60}}};
   CHECK_THAT(error_of(s, {{"base", "missing.json"}, {"axes", {axis}}}), Catch::Contains("missing.json: cannot read the scenario file: No such file"));
   CHECK_THAT(error_of(s, {{"base", "missing.json"}, {"axes", {axis}}}), Catch::Contains("sweep.json: /base: "));
-  CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", Json::array()}}), Catch::Contains("/axes: expected a non-empty"));
+  CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", "none"}}), Catch::Contains("/axes: expected an array"));
+  CHECK_THAT(error_of(s, {{"base", "base.json"}}), Catch::Contains("/axes: expected an array"));
   CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {axis}}, {"mode", "diagonal"}}), Catch::Contains("/mode:"));
   CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {axis}}, {"replications", 0}}), Catch::Contains("/replications:"));
   CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {axis}}, {"colour", 1}}), Catch::Contains("/colour: unknown key"));
