@@ -142,10 +142,21 @@ def as_number(text):
 
 
 def short_axis_name(pointer, pointers):
-    """The last component of a pointer, or the whole pointer when that would be ambiguous."""
+    """The last component of a pointer, or the whole pointer when that would be ambiguous
+    (file names: sweep_<name>.png)."""
     last = pointer.rsplit("/", 1)[-1]
     clashes = [p for p in pointers if p.rsplit("/", 1)[-1] == last]
     return last if len(clashes) == 1 else pointer.strip("/").replace("/", ".")
+
+
+# Labels a sweep file declares for its axes ("label"), by pointer; set by load().
+AXIS_LABELS = {}
+
+
+def axis_label(pointer, pointers=None):
+    """What tables and plots call an axis: its declared label, else its pointer (the
+    last key alone, such as fixed_ms, does not say which stage's)."""
+    return AXIS_LABELS.get(pointer, pointer)
 
 
 def row_name(values, axes):
@@ -158,7 +169,7 @@ def row_name(values, axes):
     shown = plain or axes
     if len(shown) == 1 and len(axes) > 1:
         return str(values[shown[0]])
-    return ", ".join(f"{short_axis_name(a, axes)}={values[a]}" for a in shown)
+    return ", ".join(f"{axis_label(a, axes)}={values[a]}" for a in shown)
 
 
 def load(directory):
@@ -186,6 +197,11 @@ def _load_sweep(directory):
     if not runs:
         raise ValueError(f"{directory}/results.csv: no finished runs")
     axes = [c for c in runs[0].keys() if c.startswith("/")]
+    plan_file = os.path.join(directory, "plan.json")
+    if os.path.isfile(plan_file):
+        for axis in read_json(plan_file).get("axes", []):
+            if isinstance(axis, dict) and axis.get("label") and axis.get("pointer"):
+                AXIS_LABELS[axis["pointer"]] = str(axis["label"])
     by_point = {}
     for run in runs:
         by_point.setdefault(int(run["point"]), []).append(run)

@@ -39,18 +39,24 @@ def _fmt(value, digits=4):
     return "" if value is None else f"{value:.{digits}g}"
 
 
+def _cell(text):
+    """Text in a Markdown table cell."""
+    return str(text).replace("|", "\\|")
+
+
 def markdown(coll):
-    """Two tables: the headline per (pipeline, predictor), and registration error by motion phase."""
-    head = ["pipeline", "predictor", "MTP mean (ms)", "horizon mean (ms)", "registration mean (arcmin)",
+    """Two tables: the headline per row (a run, or a sweep point, named in its first column; several
+    points can share a pipeline and predictor), and registration error by motion phase."""
+    head = ["point", "pipeline", "predictor", "MTP mean (ms)", "horizon mean (ms)", "registration mean (arcmin)",
             "registration p99 (arcmin)", "prediction error mean (deg)", "prediction error p99 (deg)"]
     paths = ["motion_to_photon_ms.mean", "prediction_horizon_ms.mean", "registration_error_arcmin.mean",
              "registration_error_arcmin.p99", "prediction_error_deg.mean", "prediction_error_deg.p99"]
     rows = predicting_rows(coll)
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for row in rows:
-        cells = [row.pipeline(), predictor_of(row)] + [_fmt(row.mean(p)) for p in paths]
+        cells = [_cell(row.name), row.pipeline(), predictor_of(row)] + [_fmt(row.mean(p)) for p in paths]
         lines.append("| " + " | ".join(cells) + " |")
-    phase_head = ["pipeline", "predictor"] + [f"{p} (arcmin)" for p in PHASES] + ["onset / steady"]
+    phase_head = ["point", "pipeline", "predictor"] + [f"{p} (arcmin)" for p in PHASES] + ["onset / steady"]
     phase_lines = ["| " + " | ".join(phase_head) + " |", "|" + "---|" * len(phase_head)]
     any_phase = False
     for row in rows:
@@ -58,7 +64,7 @@ def markdown(coll):
         any_phase = any_phase or any(m is not None for m in means)
         onset, steady = means[1], means[2]
         ratio = onset / steady if onset is not None and steady else None
-        phase_lines.append("| " + " | ".join([row.pipeline(), predictor_of(row)] + [_fmt(m) for m in means] +
+        phase_lines.append("| " + " | ".join([_cell(row.name), row.pipeline(), predictor_of(row)] + [_fmt(m) for m in means] +
                                              [_fmt(ratio, 3)]) + " |")
     md = ["## Pose prediction", "",
           "Registration error is measured against the true pose at each probe's photon time; the prediction "

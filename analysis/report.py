@@ -191,19 +191,19 @@ def plot_sweep_axis(coll, axis):
             xs = [p[0] for p in points]
             means = [p[1][0] for p in points]
             half = [p[1][1] for p in points]
-            legend = ", ".join(f"{lr.short_axis_name(a, coll.axes)}={v}" for a, v in zip(others, key)) or "mean"
+            legend = ", ".join(f"{lr.axis_label(a, coll.axes)}={v}" for a, v in zip(others, key)) or "mean"
             ax.plot(xs, means, marker="o", color=colour, label=legend)
             ax.fill_between(xs, [m - h for m, h in zip(means, half)], [m + h for m, h in zip(means, half)],
                             color=colour, alpha=0.2, linewidth=0)
         ax.set_ylabel(label)
-        ax.set_xlabel(f"{name} ({axis})")
+        ax.set_xlabel(f"{lr.axis_label(axis)} ({axis})" if lr.axis_label(axis) != axis else axis)
         if not numeric:
             ax.set_xticks(range(len(axis_values)))
             ax.set_xticklabels(axis_values)
         # Outside the axes: with many series an inside legend hides the lines.
         ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     reps = max(r.replications() for r in coll.rows)
-    axes[0, 0].set_title(f"Against {name}: mean over {reps} replication(s), band = 95 % t-interval")
+    axes[0, 0].set_title(f"Against {lr.axis_label(axis)}: mean over {reps} replication(s), band = 95 % t-interval")
     base = "sweep_" + name.replace("/", "_").replace(".", "_")
     plotting.save(fig, os.path.join(coll.directory, base))
     return base

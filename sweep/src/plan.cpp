@@ -87,7 +87,7 @@ void apply_overrides(Json& doc, const Json& sweep, const fs::path& file) {
 
 SweepAxis read_axis(const Json& axis, const std::string& where, const fs::path& file, bool allow_repeats) {
   if (!axis.is_object()) throw SweepError(file, where, "an axis must be an object with \"pointer\" and \"values\" or \"range\"");
-  check_keys(axis, {"pointer", "values", "range"}, file, where);
+  check_keys(axis, {"pointer", "values", "range", "label"}, file, where);
   if (!axis.contains("pointer") || !axis["pointer"].is_string())
     throw SweepError(file, where + "/pointer", "expected a JSON pointer string such as \"/display/refresh_hz\"");
   SweepAxis result;
@@ -98,6 +98,12 @@ SweepAxis read_axis(const Json& axis, const std::string& where, const fs::path& 
     (void)Json::json_pointer(result.pointer);
   } catch (const Json::exception& e) {
     throw SweepError(file, where + "/pointer", "\"" + result.pointer + "\" is not a valid JSON pointer");
+  }
+  if (axis.contains("label")) {
+    if (!axis["label"].is_string() || axis["label"].get<std::string>().empty() ||
+        axis["label"].get<std::string>().size() > 200)
+      throw SweepError(file, where + "/label", "expected a name of 1 to 200 characters for tables and plots");
+    result.label = axis["label"].get<std::string>();
   }
   const bool has_values = axis.contains("values"), has_range = axis.contains("range");
   if (has_values == has_range) throw SweepError(file, where, "give exactly one of \"values\" and \"range\"");
@@ -326,7 +332,10 @@ std::string SweepPlan::value_pointer(size_t axis, size_t value_index) const {
 
 Json SweepPlan::to_json() const {
   Json axes = Json::array();
-  for (const auto& axis : axes_) axes.push_back({{"pointer", axis.pointer}, {"values", axis.values}});
+  for (const auto& axis : axes_) {
+    axes.push_back({{"pointer", axis.pointer}, {"values", axis.values}});
+    if (!axis.label.empty()) axes.back()["label"] = axis.label;
+  }
   Json runs = Json::array();
   for (const auto& run : runs_) {
     Json values = Json::array();

@@ -168,10 +168,10 @@ with open(os.path.join(big_dir, "report.md")) as f:
     md = f.read()
 lowest = md[md.index("### Lowest"):md.index("### Highest")]
 highest = md[md.index("### Highest"):md.index("## ", md.index("### Highest") + 4)]
-names = lambda text: [line.split(" | ")[0].lstrip("| ") for line in text.splitlines() if line.startswith("| a=")]
-check(names(lowest) == ["a=1, b=10", "a=1, b=20", "a=1, b=30", "a=1, b=40"], f"lowest 4: {names(lowest)}")
-check(names(highest) == ["a=5, b=30", "a=5, b=40", "a=5, b=50", "a=5, b=60"], f"highest 4: {names(highest)}")
-check("| a=5, b=60 | double_buffer | 3 | 57 |" in highest, "highest point's mean over replications should be 57")
+names = lambda text: [line.split(" | ")[0].lstrip("| ") for line in text.splitlines() if line.startswith("| /a=")]
+check(names(lowest) == ["/a=1, /b=10", "/a=1, /b=20", "/a=1, /b=30", "/a=1, /b=40"], f"lowest 4: {names(lowest)}")
+check(names(highest) == ["/a=5, /b=30", "/a=5, /b=40", "/a=5, /b=50", "/a=5, /b=60"], f"highest 4: {names(highest)}")
+check("| /a=5, /b=60 | double_buffer | 3 | 57 |" in highest, "highest point's mean over replications should be 57")
 with open(os.path.join(big_dir, "latency_table.csv")) as f:
     check(len(list(csv.DictReader(f))) == 30, "the full table should keep all 30 points")
 check(os.path.isfile(os.path.join(big_dir, "heatmap.png")) and "heatmap.png" in md, "heat map missing")
@@ -224,6 +224,19 @@ with open(os.path.join(runs_dir, "report.md")) as f:
     header = [line for line in f.read().splitlines() if line.startswith("| name | pipeline |")][0]
     check("MTP mean (ms)" in header and "rotation latency" not in header, "no rotation column without the figure")
 
+# The prediction table names each row: two points of one pipeline and predictor
+# (a multi-axis sweep gives many) are told apart by their point's name.
+import prediction  # noqa: E402
+pred_dir = os.path.join(SCRATCH, "predicting")
+for name, mtp in [("refresh=60, horizon=10", 30.0), ("refresh=90, horizon=10", 20.0)]:
+    s = summary("double_buffer", mtp)
+    s["scenario"]["host"] = {"prediction": {"type": "constant_velocity"}}
+    write_run(os.path.join(pred_dir, name), s, timeline=False)
+table = prediction.markdown(latsim_results.load(pred_dir))
+check("| point | pipeline | predictor | MTP mean (ms) |" in "\n".join(table), "prediction table has a point column")
+check(any(line.startswith("| refresh=90, horizon=10 | double_buffer | constant_velocity | 20 |") for line in table),
+      f"prediction table rows {table}")
+
 # Progress lines: none for work that ends within 2 s, then one every 2 s.
 import io  # noqa: E402
 from progress import Progress  # noqa: E402
@@ -261,7 +274,13 @@ check(latsim_results.as_number("60000/1001") == 60000 / 1001 and latsim_results.
 axes = ["/description", "/pipeline"]
 check(latsim_results.row_name({"/description": "Slats", "/pipeline": '{"type": "pxpl5_slats"}'}, axes) == "Slats",
       "row name from a label beside object values")
-check(latsim_results.row_name({"/a": "1", "/b": "2"}, ["/a", "/b"]) == "a=1, b=2", "row name from plain values")
+# Axes are named by their pointer (a last key such as fixed_ms does not say
+# which stage's), or by the label the sweep file declares.
+check(latsim_results.row_name({"/a": "1", "/b": "2"}, ["/a", "/b"]) == "/a=1, /b=2", "row name from plain values")
+latsim_results.AXIS_LABELS["/pipeline/stages/2/cost/fixed_ms"] = "G cost"
+check(latsim_results.row_name({"/pipeline/stages/2/cost/fixed_ms": "5", "/b": "2"},
+                              ["/pipeline/stages/2/cost/fixed_ms", "/b"]) == "G cost=5, /b=2", "row name from a label")
+latsim_results.AXIS_LABELS.clear()
 
 # A directory with nothing in it is bad input.
 empty = os.path.join(SCRATCH, "empty")

@@ -125,6 +125,18 @@ TEST_CASE("expand_points enumerates like an odometer", "[sweep]") {
   CHECK(zip[2] == std::vector<size_t>{2, 2});
 }
 
+TEST_CASE("an axis label names the axis in plan.json; a bad one is refused at its pointer", "[sweep]") {
+  Scratch s;
+  const Json axis = {{"pointer", "/display/refresh_hz"}, {"values", {60, 90}}, {"label", "refresh"}};
+  const auto plan = plan_of(s, {{"base", "base.json"}, {"axes", {axis}}});
+  CHECK(plan.to_json()["axes"][0]["label"] == "refresh");
+  Json bad = axis;
+  bad["label"] = "";
+  CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {bad}}}), Catch::Contains("/axes/0/label:"));
+  bad["label"] = 3;
+  CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {bad}}}), Catch::Contains("/axes/0/label:"));
+}
+
 TEST_CASE("a sweep without axes is the base scenario's replications", "[sweep]") {
   // One point with no axis value; replications 0 .. 3 of the same seed.
   CHECK(expand_points({}, false) == std::vector<std::vector<size_t>>{{}});

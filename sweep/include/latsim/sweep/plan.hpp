@@ -22,6 +22,7 @@ struct SweepAxis {
   std::string pointer;               ///< where in the scenario the value goes
   std::vector<nlohmann::json> values;
   bool from_range = false;           ///< values came from {"from", "to", "step"}
+  std::string label;                 ///< what tables and plots call it (empty: the pointer)
 };
 
 /// One run of a sweep: a scenario with one value per axis, at one replication.
