@@ -279,7 +279,7 @@ TEST_CASE("gallery at the published position: Table 1 and Table 2 against the pu
   // Memory 0 holds the user's own region: any movement outdates it, every tick.
   CHECK(seg[0]["update_rate_hz"].get<double>() == 60.0);
   // Memory 1 (ring 2) begins at x = 4, z = -8 and z = -2; the grid ends at x = 10.
-  // Its distance d(t) = min(x - 4, z + 8, -2 - z) runs 2.71 -> 3.16 -> 2.40 m over
+  // Its distance d(t) = min(x - 4, z + 8, -2 - z) runs 2.71 -> 3.00 -> 2.40 m over
   // the window: redrawn at 60 Hz while d is under one tick's distance (2.716 m),
   // at 30 Hz while above. Integrated over the window, 60 f + 30 (1 - f):
   const double one_tick = one_tick_distance_m();
