@@ -55,6 +55,7 @@ class RegionPriorityPipeline final : public Pipeline {
     arp::MemoryRenderCost cost{.per_pixel_ns = 2.0};
     int renderers = 1;
     std::vector<std::string> compare;
+    std::vector<double> position_window_s;  ///< empty, or [start, end]
     des::ClockSettings loop;  ///< the tick loop's own clock
     FrameOptions frames;
   };
@@ -103,6 +104,7 @@ class RegionPriorityPipeline final : public Pipeline {
     ticks_.emplace(ctx.sim, loop.schedule(), ctx.sim.kind("arp.region_tick"), [this](int64_t k) { tick(k); });
     ticks_->start(0, ctx.duration);
     ctx.display.on_retrace([this](int64_t field, des::Time) { retrace(field); });
+    schedule_window(ctx);
     if ((ctx.frames != nullptr || !p_.frames.times_s.empty()) && ctx.files.enabled())
       schedule_frames(ctx, p_.frames, [this] { write_frames(); });
   }
@@ -115,6 +117,10 @@ class RegionPriorityPipeline final : public Pipeline {
                         "motion_to_photon_ms"});
     const RegionRun& primary = *runs_[0];
     primary.report(r, "", ctx.duration);
+    if (window_end_ > window_start_ && window_end_ >= ctx.duration) {
+      for (auto& run : runs_) run->mark_window();
+    }
+    primary.report_window(r, "", window_end_ - window_start_);
     r.set("region_swaps", primary.system().model().swaps());
     r.set("segments_in_scene", static_cast<int64_t>(primary.system().model().scene().segments.size()));
     r.set("shared_vertices", static_cast<int64_t>(primary.system().model().scene().shared_vertices.size()));
@@ -125,16 +131,37 @@ class RegionPriorityPipeline final : public Pipeline {
       r.set(at + "segmentation", runs_[i]->segmented());
       r.set(at + "warping", runs_[i]->warping());
       runs_[i]->report(r, at, ctx.duration);
+      runs_[i]->report_window(r, at, window_end_ - window_start_);
     }
     if (ctx.files.enabled()) {
       std::vector<const RegionRun*> runs;
       for (const auto& run : runs_) runs.push_back(run.get());
-      ctx.files.write_text("arp_memories.md", memories_markdown(runs, ctx.duration));
+      ctx.files.write_text("arp_memories.md", memories_markdown(runs, ctx.duration, window_end_ - window_start_));
       ctx.files.write_text("arp_memories.csv", memories_csv(runs, ctx.duration));
     }
   }
 
  private:
+  // The counts at the window's start and end, after everything else that
+  // happens at those instants (the end of the run marks itself in finish()).
+  void schedule_window(RunContext& ctx) {
+    if (p_.position_window_s.empty()) return;
+    window_start_ = des::Time::from_seconds(p_.position_window_s[0]);
+    window_end_ = des::Time::from_seconds(p_.position_window_s[1]);
+    if (window_end_ > ctx.duration) {
+      // A shortened run (a --set /duration_s) has no figures for that position rather than others.
+      ctx.recorder.warn("/pipeline/position_window_s ends after the run: no window figures");
+      window_start_ = window_end_ = des::Time::zero();
+      return;
+    }
+    const des::KindId kind = ctx.sim.kind("arp.window");
+    const auto mark = [this] {
+      for (auto& run : runs_) run->mark_window();
+    };
+    ctx.sim.at(window_start_, kind, mark, 20);
+    if (window_end_ < ctx.duration) ctx.sim.at(window_end_, kind, mark, 20);
+  }
+
   std::unique_ptr<RegionRun> make_run(bool segmented, bool warped, des::KindId kind) {
     std::unique_ptr<arp::SegmentedScene>& cut = segmented ? segmented_ : whole_;
     if (!cut)
@@ -219,6 +246,8 @@ class RegionPriorityPipeline final : public Pipeline {
   SampleBook samples_;
   des::Time last_render_time_;
   std::optional<arp::ScreenProjection> screen_;
+  des::Time window_start_;
+  des::Time window_end_;
 };
 
 void bind(scenario::Section& s, RegionPriorityPipeline::Params& p, const params::SharedParams& shared) {
@@ -250,6 +279,14 @@ void bind(scenario::Section& s, RegionPriorityPipeline::Params& p, const params:
   s.choices("compare", p.compare, {"segmented", "unsegmented", "warped", "unwarped"},
             {.doc = "configurations run beside this one on the same walk, each with this one's settings but the "
                     "one named (variants in the figures, columns in arp_memories.md)"});
+  s.numbers("position_window_s", p.position_window_s,
+            {.unit = "s", .min = 0.0, .max = 1e6,
+             .doc = "[start, end]: also report each memory's update rate and segments per update over this stretch "
+                    "of the walk (figures window.*), for tables taken at one position; [] (default): none"});
+  s.check("position_window_s",
+          p.position_window_s.empty() ||
+              (p.position_window_s.size() == 2 && p.position_window_s[0] < p.position_window_s[1]),
+          "is [] or [start, end] with start < end");
   s.check_pointer("/scene", shared.scene.has_value(), "region priority rendering needs a scene");
 }
 

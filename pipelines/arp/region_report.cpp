@@ -41,7 +41,7 @@ int64_t skipped(const RegionRun& run) {
 
 }  // namespace
 
-std::string memories_markdown(const std::vector<const RegionRun*>& runs, des::Time duration) {
+std::string memories_markdown(const std::vector<const RegionRun*>& runs, des::Time duration, des::Time window) {
   std::ostringstream md;
   md << "| memory |";
   for (const RegionRun* run : runs) md << " update rate, " << run->label() << " (Hz) |";
@@ -66,6 +66,23 @@ std::string memories_markdown(const std::vector<const RegionRun*>& runs, des::Ti
        << fixed(tears.summary().max, 3) << " | " << fixed(tears.quantile(0.99), 3) << " | "
        << (run->warping() ? fixed(stretch.summary().max, 3) : "—") << " | "
        << (run->warping() ? fixed(stretch.quantile(0.99), 3) : "—") << " |\n";
+  }
+  if (!runs[0]->has_window()) return md.str();
+  md << "\nOver the position window (" << fixed(window.to_seconds(), 3)
+     << " s): per update, object segments and, in brackets, segments or whole objects drawn (each once).\n\n| memory |";
+  for (const RegionRun* run : runs) md << " update rate, " << run->label() << " (Hz) |";
+  for (const RegionRun* run : runs) md << " segments per update, " << run->label() << " |";
+  md << "\n|---|";
+  for (size_t i = 0; i < 2 * runs.size(); ++i) md << "---|";
+  md << "\n";
+  for (int m = 0; m < runs[0]->system().model().memory_count(); ++m) {
+    md << "| " << m << " |";
+    for (const RegionRun* run : runs) md << " " << fixed(run->window_row(m, window).rate_hz, 2) << " |";
+    for (const RegionRun* run : runs) {
+      const RegionRun::WindowRow row = run->window_row(m, window);
+      md << " " << fixed(row.segments, 1) << " (" << fixed(row.drawn, 1) << ") |";
+    }
+    md << "\n";
   }
   return md.str();
 }

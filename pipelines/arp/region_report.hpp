@@ -20,8 +20,9 @@ class RunFiles;
 namespace latsim::pipelines {
 
 /// Per memory and run: average update rate and object segments per update;
-/// per run: render load, renderer use and what the seams look like.
-std::string memories_markdown(const std::vector<const RegionRun*>& runs, des::Time duration);
+/// per run: render load, renderer use and what the seams look like; with a
+/// position window (of `window` length), the same per memory over it.
+std::string memories_markdown(const std::vector<const RegionRun*>& runs, des::Time duration, des::Time window);
 /// The same figures as comma-separated values.
 std::string memories_csv(const std::vector<const RegionRun*>& runs, des::Time duration);
 

@@ -75,4 +75,41 @@ void RegionRun::report(results::LatencyRecorder& r, const std::string& prefix, d
   }
 }
 
+void RegionRun::mark_window() {
+  std::vector<arp::MemoryRenderCounts> now;
+  for (int m = 0; m < system_.model().memory_count(); ++m) now.push_back(system_.memories().counts(m));
+  window_marks_.push_back(std::move(now));
+}
+
+RegionRun::WindowRow RegionRun::window_row(int memory, des::Time length) const {
+  const arp::MemoryRenderCounts& a = window_marks_.at(0).at(static_cast<size_t>(memory));
+  const arp::MemoryRenderCounts& b = window_marks_.at(1).at(static_cast<size_t>(memory));
+  WindowRow row;
+  row.renders = b.renders - a.renders;
+  const double renders = static_cast<double>(row.renders);
+  row.rate_hz = renders / length.to_seconds();
+  if (row.renders == 0) return row;
+  row.segments = static_cast<double>(b.object_segments - a.object_segments) / renders;
+  row.drawn = static_cast<double>(b.drawn - a.drawn) / renders;
+  row.pixels = (b.texels - a.texels) / renders;
+  return row;
+}
+
+void RegionRun::report_window(results::LatencyRecorder& r, const std::string& prefix, des::Time length) const {
+  if (!has_window()) return;
+  double segments = 0.0;
+  for (int m = 0; m < system_.model().memory_count(); ++m) {
+    const WindowRow row = window_row(m, length);
+    const std::string at = prefix + "window.memories." + std::to_string(m) + ".";
+    r.set(at + "memory", int64_t{m});
+    r.set(at + "update_rate_hz", row.rate_hz);
+    r.set(at + "segments", row.segments);
+    r.set(at + "drawn", row.drawn);
+    r.set(at + "pixels", row.pixels);
+    r.set(at + "renders", row.renders);
+    segments += row.segments * static_cast<double>(row.renders);
+  }
+  r.set(prefix + "window.render_load", segments / length.to_seconds());
+}
+
 }  // namespace latsim::pipelines

@@ -43,6 +43,24 @@ class RegionRun {
   /// warnings when the renderers could not keep up.
   void report(results::LatencyRecorder& r, const std::string& prefix, des::Time duration) const;
 
+  /// The render counts now, opening (then closing) the window that
+  /// report_window() describes.
+  void mark_window();
+  /// Both marks are in.
+  bool has_window() const { return window_marks_.size() == 2; }
+  /// What memory m's renders that finished between the two marks drew, per
+  /// render, and their rate over the window's `length`.
+  struct WindowRow {
+    int64_t renders = 0;
+    double rate_hz = 0.0;
+    double segments = 0.0;  ///< object segments
+    double drawn = 0.0;     ///< segments or whole objects, each counting once
+    double pixels = 0.0;
+  };
+  WindowRow window_row(int memory, des::Time length) const;
+  /// Per memory, what finished between the two marks, under `prefix` + "window."
+  void report_window(results::LatencyRecorder& r, const std::string& prefix, des::Time length) const;
+
  private:
   arp::RegionPrioritySystem system_;
   arp::SeamMeter meter_;
@@ -51,6 +69,7 @@ class RegionRun {
   arp::DisplayMemories::PresentFn present_fn_;
   des::Distribution tear_gap_px_{0.005, false};
   des::Distribution stretch_px_{0.005, false};
+  std::vector<std::vector<arp::MemoryRenderCounts>> window_marks_;  // counts at the window's start and end
 };
 
 }  // namespace latsim::pipelines

@@ -17,6 +17,7 @@ DisplayMemories::DisplayMemories(des::Simulator& sim, des::KindId kind, int rend
                        MemoryRenderCounts& c = counts_[static_cast<size_t>(memory)];
                        ++c.renders;
                        c.object_segments += img.object_segments;
+                       c.drawn += static_cast<int64_t>(img.contents.size());
                        c.texels += img.texels;
                      },
                  .presented = [this](const std::vector<std::pair<int, int64_t>>& batch) { presented(batch); },

@@ -34,6 +34,7 @@ struct MemoryImage {
 struct MemoryRenderCounts {
   int64_t renders = 0;
   int64_t object_segments = 0;
+  int64_t drawn = 0;  ///< segments or whole objects drawn, each counting once
   double texels = 0.0;
 };
 
