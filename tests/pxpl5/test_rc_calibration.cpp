@@ -105,3 +105,67 @@ TEST_CASE("per-eye latency has no spread for a still head and a spread for a wal
   CHECK(s.dist("triangles_on_screen").summary().max == 0.0);
   CHECK(w.dist("triangles_on_screen").summary().max > 4000.0);
 }
+
+// Typical triangles (SPEC.md section 4: about 1.3 regions per eye) on the
+// calibrated costs. A triangle costs its SGP 37.5 us to transform and set up
+// (the Slats GP's 75 us for both eyes, halved: SPEC.md section 5) and 5 us per
+// bin it goes into, 1.3 bins on average: 44 us per eye, against 137.5 us for
+// a full-screen triangle (20 bins); each bin entry is one 4.6 us command for a
+// renderer (the 7700-triangle point fixes that cost), 6 us per typical
+// triangle and 92 us per full-screen one. A frame's TRANSFORMs run back to
+// back on every slave after EDIT (0.2 ms), so RC stays COPY-bound (a frame
+// every 2 fields) while 0.2 + 2 x (0.1 + N / 12 x 0.044) <= 33.33 ms, that is
+// up to N = 4491 typical triangles; beyond, the GP sets the frame time.
+TEST_CASE("RC on typical triangles is COPY-bound up to about 4500 and GP-bound beyond", "[pxpl5][rc][calibration]") {
+  const double field_ms = 1000.0 / 60;
+  const auto hand_transform_ms = [](double triangles_per_slave) {
+    return 0.1 + triangles_per_slave * (37.5e-3 + 1.3 * 5e-3);
+  };
+  const double knee = (2 * field_ms - 0.2 - 2 * 0.1) / 2 / (37.5e-3 + 1.3 * 5e-3) * 12;
+  CHECK(knee == Approx(4491).margin(1));
+
+  // 4300 (359 on the busiest slave): 15.9 ms per eye, 32.0 ms a frame: a frame every 2 fields.
+  const RunRecord below = run_rc(RcParams{}, Workload{4300, 1.3}, des::Time::s(4));
+  CHECK(0.2 + 2 * hand_transform_ms(359) < 2 * field_ms);
+  CHECK(below.dist("frame_time_ms").summary().max == Approx(2 * field_ms).margin(1e-6));
+  CHECK(below.dist("transform_to_copy_end_fields").summary().p50 == Approx(3.0).margin(0.1));
+
+  // 4700 (392 on the busiest slave): 17.35 ms per eye, 34.9 ms a frame. Frames
+  // swap on retraces (33.3 or 50 ms), so the mean is the GP's period within
+  // the 3% the random bins (about +-1% on the busiest slave) and the retrace
+  // rounding of the run's few frames leave.
+  const RunRecord above = run_rc(RcParams{}, Workload{4700, 1.3}, des::Time::s(4));
+  const double gp_period = 0.2 + 2 * hand_transform_ms(392);
+  CHECK(gp_period == Approx(34.9).margin(0.05));
+  const auto frame = above.dist("frame_time_ms").summary();
+  CAPTURE(gp_period, frame.mean);
+  CHECK(frame.mean == Approx(gp_period).epsilon(0.03));
+  CHECK(frame.max > 2 * field_ms + 1.0);
+}
+
+// 24000 typical triangles: 2000 per slave, 2600 bin entries. TRANSFORM per eye
+// = 0.1 + 2000 x 37.5e-3 + 2600 x 5e-3 = 88.1 ms, a frame 0.2 + 2 x 88.1 =
+// 176.4 ms. An eye's RENDER: 1560 commands per region, 130 from each slave;
+// the renderer rasterises each slave's 130 (598 us) while the next arrives
+// (156 us), so a region takes the first bin (5 + 156 us), 12 x 598 us, the
+// shading (300 us): 7.64 ms, and 20 regions on 5 renderers 4 rounds, 30.6 ms.
+// COPY keeps up (5 copies, 3.9 ms, per 7.64 ms round) and ends 3.9 ms after the
+// last round: TRANSFORM start to the end of COPY = 88.1 + 30.6 + 3.9 = 122.6 ms,
+// 7.36 fields. Tolerance 3%: the random bins move the busiest slave and region
+// by about 1%, and regions go out busiest first.
+TEST_CASE("RC on 24000 typical triangles: latency is TRANSFORM, four rounds of RENDER and five copies", "[pxpl5][rc][calibration]") {
+  const double field_ms = 1000.0 / 60;
+  const double transform = 0.1 + 2000 * 37.5e-3 + 2600 * 5e-3;
+  const double region = 5e-3 + 130 * 24 / 20.0e3 + 12 * 130 * 4.6e-3 + 0.3;
+  const double hand_latency_ms = transform + 4 * region + 5 * 0.78;
+  CHECK(transform == Approx(88.1).margin(1e-9));
+  CHECK(region == Approx(7.64).margin(0.01));
+  CHECK(hand_latency_ms / field_ms == Approx(7.36).margin(0.01));
+  const RunRecord r = run_rc(RcParams{}, Workload{24000, 1.3}, des::Time::s(4));
+  const auto latency = r.dist("transform_to_copy_end_fields").summary();
+  const auto frame = r.dist("frame_time_ms").summary();
+  CAPTURE(latency.mean, frame.mean);
+  CHECK(latency.mean * field_ms == Approx(hand_latency_ms).epsilon(0.03));
+  CHECK(frame.mean == Approx(0.2 + 2 * transform).epsilon(0.03));
+  CHECK(r.dist("stage_ms.TRANSFORM").summary().mean == Approx(transform).epsilon(0.02));
+}

@@ -1,6 +1,8 @@
 // Slats: one field of rendering latency while the work fits, missed fields beyond.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include "harness.hpp"
 
 using namespace latsim;
@@ -73,6 +75,66 @@ TEST_CASE("Slats capacity with the COPY optimisation lies between 140 and 150 tr
   CAPTURE(capacity);
   CHECK(capacity >= 140);
   CHECK(capacity < 150);
+}
+
+// Without the COPY optimisation every region is due at the retrace, so the
+// whole 11-slot copy (both ports at once, the right eye one slot behind: 20
+// regions) must follow the GP's work inside the field. By hand, from the field
+// start (a retrace), with N triangles in 21-triangle messages (1024 words /
+// 48 words per triangle for both eyes) and m = N - 21 x floor((N - 1) / 21)
+// in the last one:
+//   GP:        0.3 ms + N x 75 us
+//   tail (R0, the first slot's renderer): the last message crosses the ring
+//              (m x 48 words at 20 Mwords/s), is rendered into R0's 4 regions
+//              (m x 4 x 4.6 us) and the 4 regions are finished (4 x 50 us);
+//              R0 has rendered the previous full message by then (it arrived
+//              m x 75 us earlier and took 21 x 4 x 4.6 = 386 us) when m >= 6
+//   copies:    11 x 780 us = 8.58 ms, the last ending before the next retrace.
+// N = 97 (m = 13): 0.3 + 7.275 + (0.0312 + 0.2392 + 0.2) + 8.58 = 16.6254 ms < 16.6667 ms.
+// N = 98 (m = 14): 0.3 + 7.35 + (0.0336 + 0.2576 + 0.2) + 8.58 = 16.7212 ms: late by 0.0545 ms.
+// The published capacity without the optimisation is 110 (SPEC.md section 5
+// gives only 140 with it). At N = 110 (m = 5) R0 is still rendering message 5
+// (arrived at 0.3 + 105 x 0.075 + 0.0504 = 8.2254 ms, done 0.3864 ms later)
+// when the last arrives, so the tail ends 8.6118 + 5 x 4 x 4.6e-3 + 0.2 =
+// 8.9038 ms and the last copy 17.4838 ms: 0.817 ms late. Under the published
+// copy facts no GP cost gives both 110 without and 140 with the optimisation
+// (docs/pxpl5.md, "Capacity without the COPY optimisation").
+TEST_CASE("Slats capacity without the COPY optimisation is 97 triangles, derived by hand", "[pxpl5][slats]") {
+  SlatsParams plain;
+  plain.copy_optimisation = false;
+  const double field_ms = 1000.0 / 60.0;
+  const auto hand_last_copy_end_ms = [](int64_t n) {
+    const int64_t m = n - 21 * ((n - 1) / 21);
+    const double gp = 0.3 + 0.075 * static_cast<double>(n);
+    const double previous_rendered = 0.3 + 0.075 * static_cast<double>(n - m) + 21 * 48 / 20.0e3 + 21 * 4 * 4.6e-3;
+    const double last_arrived = gp + static_cast<double>(m) * 48 / 20.0e3;
+    const double tail_end = std::max(previous_rendered, last_arrived) + static_cast<double>(m) * 4 * 4.6e-3 + 4 * 0.05;
+    return tail_end + 11 * 0.78;
+  };
+  CHECK(hand_last_copy_end_ms(97) == Approx(16.6254).margin(1e-4));
+  CHECK(hand_last_copy_end_ms(98) == Approx(16.7212).margin(1e-4));
+  CHECK(hand_last_copy_end_ms(110) == Approx(17.4838).margin(1e-4));
+  int64_t hand_capacity = 0;
+  for (int64_t n = 22; n <= 200; ++n)
+    if (hand_last_copy_end_ms(n) < field_ms) hand_capacity = n;
+  CHECK(hand_capacity == 97);
+
+  int64_t capacity = 0;
+  for (int64_t n = 85; n <= 115; ++n)
+    if (run_slats(plain, n, des::Time::ms(200)).counts.missed == 0) capacity = n;
+  CHECK(capacity == hand_capacity);
+  // How early or late the last copy is: the field's smallest slack, every field alike.
+  for (int64_t n : {97, 98}) {
+    CAPTURE(n);
+    const auto slack = run_slats(plain, n, des::Time::ms(200)).dist("deadline_slack_ms").summary();
+    CHECK(slack.min == Approx(field_ms - hand_last_copy_end_ms(n)).margin(1e-4));
+    CHECK(slack.max == Approx(slack.min).margin(1e-9));
+  }
+  // At the published 110 every field misses: late regions are not sent, so
+  // the slots after the first late one move up and only that one shows as slack.
+  const RunRecord published = run_slats(plain, 110, des::Time::ms(200));
+  CHECK(published.counts.complete == 0);
+  CHECK(published.counts.missed > 0);
 }
 
 TEST_CASE("Slats uses the newest transforms the GP holds at each retrace", "[pxpl5][slats]") {
