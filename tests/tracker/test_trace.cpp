@@ -64,6 +64,22 @@ TEST_CASE("latsim CSV traces load with positions and normalised quaternions", "[
   CHECK(yaw_of(t.samples[2].pose.orientation) == Approx(std::acos(-1.0) / 4.0).epsilon(1e-12));
 }
 
+TEST_CASE("quaternions whose squares overflow still normalise to unit length", "[trace]") {
+  // (w, x, y, z) = (1, 0, 1e300, 0): the squared norm overflows a double, but
+  // the direction is y to within 1e-300, so the unit quaternion is (0, 0, 1, 0);
+  // 3e300 and 4e300 on w and z give (0.6, 0, 0, 0.8).
+  const TempFile f("huge.csv",
+                   "t_s,px,py,pz,qw,qx,qy,qz\n"
+                   "0.0, 0, 0, 0, 1, 0, 1e300, 0\n"
+                   "0.5, 0, 0, 0, 3e300, 0, 0, 4e300\n");
+  const Trace t = load_trace(f.path());
+  REQUIRE(t.samples.size() == 2);
+  CHECK(t.samples[0].pose.orientation.y == 1.0);
+  CHECK(t.samples[0].pose.orientation.w == Approx(0.0).margin(1e-12));
+  CHECK(t.samples[1].pose.orientation.w == Approx(0.6).epsilon(1e-15));
+  CHECK(t.samples[1].pose.orientation.z == Approx(0.8).epsilon(1e-15));
+}
+
 TEST_CASE("repeated timestamps keep the later row and sign flips are removed", "[trace]") {
   const TempFile f("repeat.csv",
                    "t_s,px,py,pz,qw,qx,qy,qz\n"

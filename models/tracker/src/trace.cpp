@@ -1,5 +1,6 @@
 #include "latsim/tracker/trace.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <optional>
@@ -131,9 +132,12 @@ TraceSample parse_row(TraceFormat format, std::string_view line, const RowParser
     s.t = timestamp(v[0], parser);
     q = from_unity(v[2], v[3], v[4], v[5]);
   }
-  const double norm = std::sqrt(glm::dot(q, q));
-  if (!(norm > 1e-12)) parser.fail("zero quaternion (it describes no orientation)");
-  s.pose.orientation = q / norm;
+  // Normalised through its largest component, so that components near the
+  // largest double (whose squares overflow) still give a unit quaternion.
+  const double largest = std::max(std::max(std::fabs(q.w), std::fabs(q.x)), std::max(std::fabs(q.y), std::fabs(q.z)));
+  if (!(largest > 1e-12)) parser.fail("zero quaternion (it describes no orientation)");
+  const glm::dquat scaled = q / largest;
+  s.pose.orientation = scaled / std::sqrt(glm::dot(scaled, scaled));
   return s;
 }
 
