@@ -13,6 +13,7 @@
 #include "child_process.hpp"
 #include "commands.hpp"
 #include "latsim/results/run_files.hpp"
+#include "latsim/run/event_budget.hpp"
 #include "latsim/run/runner.hpp"
 #include "latsim/scenario/config.hpp"
 #include "latsim/sweep/fidelity_table.hpp"
@@ -36,6 +37,7 @@ struct FidelityRequest {
   std::vector<std::string> sets;
   std::optional<uint64_t> seed;
   double max_events = run::kDefaultMaxEvents;  ///< --max-events, for every level
+  bool progress = false;                        ///< --progress: each level's runs show theirs, terminal or not
 };
 
 Json read_summary(const fs::path& file) {
@@ -73,6 +75,7 @@ FidelityLevel run_level(const FidelityRequest& request, const std::string& assig
   char max_events[32];
   std::snprintf(max_events, sizeof max_events, "%.17g", request.max_events);
   argv.insert(argv.end(), {"--max-events", max_events});
+  if (request.progress) argv.push_back("--progress");
   const ChildResult child = run_child(argv);
   if (child.exit_code != 0)
     throw std::runtime_error("the run at " + assignment + " failed with exit status " + std::to_string(child.exit_code));
@@ -110,6 +113,9 @@ int command_fidelity(int argc, char** argv) {
   app.add_option("--set", request.sets, "override a value for every level: /json/pointer=value (repeatable)");
   auto* seed_option = app.add_option("--seed", seed, "run seed (overrides the scenario's /seed)");
   add_max_events_option(app, request.max_events);
+  app.add_flag("--progress", request.progress,
+               "each level's run reports its progress, also when stderr is not a terminal (on a terminal a level "
+               "longer than a few seconds always does)");
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
   if (*seed_option) request.seed = seed;
 
@@ -120,12 +126,15 @@ int command_fidelity(int argc, char** argv) {
     std::cerr << "fidelity: " << e.what() << "\n";
     return kExitBadInput;
   }
-  // Every level must be a valid scenario before anything runs or is written.
+  // Every level must be a valid scenario before anything runs or is written;
+  // each one's expected events (declared rates x duration) price it.
+  std::vector<double> expected_events;
   for (const auto& value : axis.values) {
     std::vector<std::string> overrides = request.sets;
     overrides.push_back(axis.pointer + "=" + value);
     try {
-      run::validate_scenario(run::load_scenario(request.scenario_file, overrides), request.max_events);
+      expected_events.push_back(
+          run::estimate_scenario_events(run::load_scenario(request.scenario_file, overrides), request.max_events));
     } catch (const scenario::ScenarioError& e) {
       std::cerr << request.scenario_file << ": " << e.pointer() << ": " << e.message() << " (at " << axis.pointer
                 << "=" << value << ")\n";
@@ -147,6 +156,17 @@ int command_fidelity(int argc, char** argv) {
                 << " (it has " << some_figure_names(summary) << ", ...; every one is in a run's figures.json)\n";
       return kExitBadInput;
     }
+    // The cost before it is paid: each level's expected events at the pace the
+    // coarsest level just ran.
+    const double pace_s = expected_events.front() > 0 ? summary.value("wall_s", 0.0) / expected_events.front() : 0.0;
+    double total_s = 0;
+    std::string levels_text;
+    for (size_t i = 0; i < axis.values.size(); ++i) {
+      total_s += pace_s * expected_events[i];
+      levels_text += (i ? ", " : "") + axis.values[i] + " " + run::count_text(expected_events[i], 1);
+    }
+    std::fprintf(stderr, "fidelity: %zu levels, expected events %s; at the first level's pace about %.3g s in all\n",
+                 axis.values.size(), levels_text.c_str(), total_s);
   } catch (const std::exception& e) {
     std::cerr << "fidelity: " << e.what() << "\n";
     return kExitFailure;

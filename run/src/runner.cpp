@@ -99,6 +99,14 @@ std::vector<std::string> validate_scenario(const scenario::ScenarioDocument& doc
   return run.recorder->warnings();
 }
 
+double estimate_scenario_events(const scenario::ScenarioDocument& doc, double max_events) {
+  Run run;
+  RunOptions options;
+  options.max_events = max_events;
+  build(run, doc, options);
+  return run.estimate.events;
+}
+
 Json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& options) {
   const auto command_start = options.command_start.value_or(std::chrono::steady_clock::now());
   Run run;

@@ -122,6 +122,15 @@ fid = os.path.join(SCRATCH, "fidelity")
 proc = latsim("fidelity", BASE, "--vary", "/display/scanout=field,line", "--set", "/duration_s=1",
               "--metric", "motion_to_photon_ms.p99", "--out", fid)
 check(proc.returncode == 0, f"fidelity: exit {proc.returncode} {proc.stderr}")
+# The cost is said before it is paid: line scanout adds 480 - 1 events per
+# field to field scanout's one, 479 x 60 = 28,740 in 1 s (printed to 2 digits).
+import re  # noqa: E402
+priced = re.search(r"fidelity: 2 levels, expected events field ([0-9.e+]+), line ([0-9.e+]+); .* about [0-9.e+-]+ s",
+                   proc.stderr)
+check(priced is not None, f"fidelity should print its expected cost first: {proc.stderr}")
+if priced:
+    field_events, line_events = float(priced.group(1)), float(priced.group(2))
+    check(abs(line_events - field_events - 28740) <= 0.05 * line_events, f"expected events {priced.group(0)}")
 with open(os.path.join(fid, "fidelity.csv"), newline="") as f:
     levels = list(csv.DictReader(f))
 check(len(levels) == 2 and levels[-1]["/display/scanout"] == "line", f"fidelity levels {levels}")

@@ -126,6 +126,11 @@ nlohmann::json run_scenario(const scenario::ScenarioDocument& doc, const RunOpti
 /// returns the warnings about legal but doubtful input.
 std::vector<std::string> validate_scenario(const scenario::ScenarioDocument& doc, double max_events = kDefaultMaxEvents);
 
+/// Validates as validate_scenario does and returns the run's event estimate
+/// (the declared rates times the duration; docs/event-budget.md): events and
+/// steps of work together.
+double estimate_scenario_events(const scenario::ScenarioDocument& doc, double max_events = kDefaultMaxEvents);
+
 /// Every key a scenario may hold, from the parameter declarations of the
 /// shared sections and of every registered pipeline. Built once per process:
 /// it depends on nothing but the code.
