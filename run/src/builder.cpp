@@ -1,6 +1,9 @@
 #include "latsim/run/builder.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <optional>
+#include <string>
 #include <numbers>
 #include <stdexcept>
 
@@ -57,6 +60,50 @@ PipelineFactory bind_scenario(scenario::Section& root, params::SharedParams& sha
 // drawn for this replication. The parameters keep the nominal periods; the
 // display's raster is built with the display clock's actual period (the
 // tracker and the link apply their rate errors themselves).
+// Phase luck. A tracker and a display on exact, commensurate clocks whose
+// periods are in the ratio a/b (lowest terms) meet in only b relative
+// phases, T_tracker / b apart, for the whole run: the age of the sample a
+// refresh finds (and every latency built on it) is one draw of where those b
+// phases sit. Another replication draws other phases and can move the run's
+// mean latency by up to T_tracker / b. Said when both phases were drawn (a
+// fixed phase is the user's choice), neither clock drifts (rate error,
+// display clock noise) nor jitters, and the spread is at least 0.5 ms.
+std::optional<std::string> phase_luck(const Run& run) {
+  const params::SharedParams& p = run.shared;
+  const des::Clock* tracker = run.clocks->find("tracker");
+  const des::Clock* display = run.clocks->find("display");
+  if (!tracker || !display || !tracker->drawn || !display->drawn) return std::nullopt;
+  if (tracker->rate_error_ppm != 0.0 || display->rate_error_ppm != 0.0 || p.display.clock_noise ||
+      p.tracker.jitter > des::Time::zero())
+    return std::nullopt;
+  // T_display / T_tracker = (dn / dd) / (tn / td) = dn td / (dd tn), reduced.
+  const auto gcd = [](unsigned __int128 x, unsigned __int128 y) {
+    while (y != 0) {
+      const unsigned __int128 r = x % y;
+      x = y;
+      y = r;
+    }
+    return x;
+  };
+  const auto dn = static_cast<unsigned __int128>(display->period.num), dd = static_cast<unsigned __int128>(display->period.den);
+  const auto tn = static_cast<unsigned __int128>(tracker->period.num), td = static_cast<unsigned __int128>(tracker->period.den);
+  const unsigned __int128 num = dn * td, den = dd * tn;
+  const unsigned __int128 b = den / gcd(num, den);
+  const double tracker_ms = tracker->period.to_seconds() * 1e3;
+  const double spread_ms = tracker_ms / static_cast<double>(b);
+  if (!(spread_ms >= 0.5)) return std::nullopt;
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "phase luck: the tracker (%.6g Hz) and the display (%.6g Hz) run on exact, commensurate clocks with "
+                "phases drawn for this replication, so every refresh finds the tracker at one of %llu phase%s for the "
+                "whole run: its latency figures can move by up to %.3g ms with the phases drawn; replications (a "
+                "sweep with \"axes\": [] and \"replications\") give their mean and spread, or fix "
+                "/tracker/phase_ms and /display/phase_ms",
+                1e3 / tracker_ms, 1.0 / display->period.to_seconds(), static_cast<unsigned long long>(b),
+                b == 1 ? "" : "s", spread_ms);
+  return std::string(text);
+}
+
 void resolve_clocks(Run& run, uint64_t replication) {
   params::SharedParams& p = run.shared;
   run.clocks = std::make_unique<des::RunClocks>(run.seed, replication);
@@ -178,6 +225,7 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
                                                      probes_of(run), p.host.ipd_m, stereo, p.output.keep_samples);
   });
   for (const auto& w : run.input_warnings) run.recorder->warn(w);
+  if (auto luck = phase_luck(run)) run.recorder->warn(*luck);
   run.recorder->enable_prediction(p.host.prediction.has_value());
   if (p.motion_phases) run.recorder->split_by_phase(*p.motion_phases);
   if (p.apparent_latency)

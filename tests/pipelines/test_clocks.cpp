@@ -122,3 +122,44 @@ TEST_CASE("a 30 ms poll adds half a poll interval of mean latency and a whole on
   CHECK(poll_max <= pa["max"].get<double>() + 1e-6);
   CHECK(spread == Approx(analytic_spread).margin(3.0));
 }
+
+TEST_CASE("phase luck: commensurate clocks with drawn phases are warned of, with the spread replications show", "[clocks]") {
+  // hmd_60hz_direct: a 60 Hz tracker and a 60 Hz display. T_display /
+  // T_tracker = 1: every refresh finds the tracker at the same phase, drawn per
+  // replication uniformly over 16.667 ms, so a run's mean latency is one draw
+  // from a 16.667 ms range. 16 replications: their means lie within that
+  // range, and (16 uniform draws) spread over more than half of it unless all
+  // 16 fall in one half, which has probability 2 x 2^-16.
+  const auto warned = [](const Json& s) {
+    for (const auto& w : s["warnings"])
+      if (w.get<std::string>().rfind("phase luck:", 0) == 0) return true;
+    return false;
+  };
+  double lo = 1e9, hi = -1e9;
+  for (uint64_t r = 0; r < 16; ++r) {
+    const Json s = run_file("hmd_60hz_direct.json", {"/duration_s=1"}, r);
+    CHECK(warned(s));
+    const double mean = s["figures"]["motion_to_photon_ms"]["mean"].get<double>();
+    lo = std::min(lo, mean);
+    hi = std::max(hi, mean);
+  }
+  CHECK(hi - lo <= 1000.0 / 60.0 + 1e-6);
+  CHECK(hi - lo > 1000.0 / 60.0 / 2);
+  const Json first = run_file("hmd_60hz_direct.json", {"/duration_s=1"}, 0);
+  CHECK_THAT(first["warnings"][0].get<std::string>(), Catch::Contains("one of 1 phase for the whole run"));
+  CHECK_THAT(first["warnings"][0].get<std::string>(), Catch::Contains("up to 16.7 ms"));
+  // Fixed phases are the user's choice; 59.94 Hz against 60 Hz meets the
+  // tracker in 1000 phases 16.7 us apart (1001/1000 in lowest terms); a
+  // 100 ppm tracker drifts through every phase: no luck to speak of.
+  CHECK_FALSE(warned(run_file("hmd_60hz_direct.json", {"/duration_s=1", "/tracker/phase_ms=3", "/display/phase_ms=0"}, 0)));
+  CHECK_FALSE(warned(run_file("hmd_60hz_direct.json", {"/duration_s=1", "/display/refresh_hz=\"60000/1001\""}, 0)));
+  CHECK_FALSE(warned(run_file("hmd_60hz_direct.json", {"/duration_s=1", "/tracker/rate_error_ppm=100"}, 0)));
+  // 90 Hz display, 60 Hz tracker: 2/3 in lowest terms, 3 phases 5.56 ms apart.
+  const Json ninety = run_file("hmd_60hz_direct.json", {"/duration_s=1", "/display/refresh_hz=90"}, 0);
+  REQUIRE(warned(ninety));
+  std::string text;
+  for (const auto& w : ninety["warnings"])
+    if (w.get<std::string>().rfind("phase luck:", 0) == 0) text = w.get<std::string>();
+  CHECK_THAT(text, Catch::Contains("one of 3 phases"));
+  CHECK_THAT(text, Catch::Contains("up to 5.56 ms"));
+}
