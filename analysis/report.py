@@ -27,6 +27,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import gantt_sample  # noqa: E402
 import heatmap  # noqa: E402
+import latency_over_time  # noqa: E402
 import latsim_results as lr  # noqa: E402
 import pacing_plot  # noqa: E402
 import plotting  # noqa: E402
@@ -322,6 +323,7 @@ def write_markdown(coll, drawn, top, figure, title=None):
                "Each cell is the mean over replications (`--figure` chooses another column); one panel per "
                "combination of the other axes" + (f", the first {panels} of {total}" if panels < total else "") +
                ".", "", f"![{base}]({base}.png)", ""]
+    md += latency_over_time.markdown(coll, drawn["over_time"])
     md += list(pacing_plot.markdown(coll, drawn["pacing"]))
     if drawn["prediction"] or prediction.has_prediction(coll):
         md += prediction.markdown(coll)
@@ -364,6 +366,7 @@ def draw_everything(coll, args, figure):
     drawn["gantt"], drawn["gantt_skipped"] = gantt_sample.draw(coll, limit)
     drawn["prediction"] = prediction.plot_registration_vs_latency(coll) if prediction.has_prediction(coll) else None
     drawn["pacing"] = pacing_plot.plot(coll)
+    drawn["over_time"] = latency_over_time.plot(coll)
     return drawn
 
 
@@ -415,7 +418,8 @@ def main(argv):
         print("report: interrupted; files written so far are whole", file=sys.stderr)
         return 130
     plots_drawn = (len(drawn["distributions"]) + len(drawn["sweep"]) + len(drawn["gantt"]) +
-                   (1 if drawn["heatmap"] else 0) + (1 if drawn["prediction"] else 0) + (1 if drawn["pacing"] else 0))
+                   (1 if drawn["heatmap"] else 0) + (1 if drawn["prediction"] else 0) + (1 if drawn["pacing"] else 0) +
+                   (1 if drawn["over_time"] else 0))
     print(f"report: {len(coll.rows)} row(s), {plots_drawn} plot(s) -> "
           f"{os.path.join(coll.directory, 'report.md')}")
     return 0

@@ -237,6 +237,25 @@ check("| point | pipeline | predictor | MTP mean (ms) |" in "\n".join(table), "p
 check(any(line.startswith("| refresh=90, horizon=10 | double_buffer | constant_velocity | 20 |") for line in table),
       f"prediction table rows {table}")
 
+# Latency over time from fields.csv: field 2 starts scanout at 32 ms with a
+# pose measured at 30 ms and its orientation re-measured at 31 ms: 2 ms
+# motion-to-photon, 1 ms rotation latency; eye 1 and imageless fields are not drawn.
+import latency_over_time  # noqa: E402
+lot_dir = os.path.join(SCRATCH, "over_time")
+write_run(os.path.join(lot_dir, "warped"), summary("frame_stages", 20.0), timeline=False)
+with open(os.path.join(lot_dir, "warped", "fields.csv"), "w") as f:
+    f.write("field,eye,image,frame,sample,measured_ps,orientation_at_scanout,orientation_measured_ps,first_line,"
+            "first_x,last_line,last_x,retrace_ps,scanout_start_ps\n")
+    f.write("2,0,0,0,30,30000000000,0,31000000000,0,0,479,0,32000000000,32000000000\n")
+    f.write("2,1,1,0,30,30000000000,0,31000000000,0,0,479,0,32000000000,32000000000\n")
+    f.write("3,0,-1,-1,,,0,,0,0,479,0,48000000000,48000000000\n")
+points = latency_over_time.read_fields(os.path.join(lot_dir, "warped"))
+check(points == [(0.032, 2.0, 1.0)], f"latency over time points {points}")
+run_report(lot_dir)
+with open(os.path.join(lot_dir, "report.md")) as f:
+    check("## Latency over time" in f.read() and os.path.isfile(os.path.join(lot_dir, "latency_over_time.png")),
+          "latency over time plot missing")
+
 # Progress lines: none for work that ends within 2 s, then one every 2 s.
 import io  # noqa: E402
 from progress import Progress  # noqa: E402
