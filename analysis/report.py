@@ -230,14 +230,46 @@ def cut_rows(coll, top, figure):
     return ordered[:top], ordered[-top:]
 
 
+ANALYTIC_MTP = "analytic.motion_to_photon_ms.mean"
+
+
+def interval_text(row, path):
+    """'± h' of the 95 % t-interval of a figure's mean over a row's replications ('' for fewer than two)."""
+    values = row.values(path)
+    if len(values) < 2:
+        return ""
+    return "± " + fmt(lr.mean_ci95(values)[1], 3)
+
+
+def analytic_mtp(row):
+    """The phase-averaged motion-to-photon a pipeline computes without events (it does not depend on the
+    drawn phases, so replication 0's stands for the point), or None."""
+    return lr.find_figure(row.first_summary(), ANALYTIC_MTP) if row.run_dirs else None
+
+
 def markdown_table(coll, rows=None):
+    """The table of report.md: the headline columns; for a sweep with replications, the 95 % interval of
+    the headline mean; where a pipeline computes it, motion-to-photon averaged over the clock phases
+    (phase luck: one run's mean is one draw of the phases)."""
     rows = coll.rows if rows is None else rows
     columns = table_columns(coll)
+    lead = columns[0]
+    interval = coll.kind == "sweep" and any(r.replications() > 1 for r in coll.rows)
+    analytic = any(analytic_mtp(r) is not None for r in coll.rows)
     header = ["name", "pipeline"] + (["replications"] if coll.kind == "sweep" else []) + [u for _, _, u in columns]
+    if interval:
+        header.insert(header.index(lead[2]) + 1, "95 % interval (ms)")
+    if analytic:
+        header.append("MTP mean over phases, analytic (ms)")
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     for row in rows:
         cells = [row.name, row.pipeline()] + ([str(row.replications())] if coll.kind == "sweep" else [])
-        cells += [fmt(row.mean(p), 4) for _, p, _ in columns]
+        values = [fmt(row.mean(p), 4) for _, p, _ in columns]
+        if interval:
+            values.insert(1, interval_text(row, lead[1]))
+        cells += values
+        if analytic:
+            cells.append(fmt(analytic_mtp(row), 4))
         lines.append("| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |")
     return lines
 

@@ -256,6 +256,22 @@ with open(os.path.join(lot_dir, "report.md")) as f:
     check("## Latency over time" in f.read() and os.path.isfile(os.path.join(lot_dir, "latency_over_time.png")),
           "latency over time plot missing")
 
+# Phase luck in the table: a sweep's headline mean with its 95 % interval over
+# replications; point (60, 10) has means 35.1, 35.6, 36.1 (sd 0.5), so
+# 4.303 x 0.5 / sqrt(3) = 1.242. And a pipeline's analytic phase average.
+with open(os.path.join(sweep_dir, "report.md")) as f:
+    md = f.read()
+check("| MTP mean (ms) | 95 % interval (ms) |" in md, "sweep table: interval column")
+check("| 35.6 | ± 1.24 |" in md, "sweep table: interval of point 1")
+an_dir = os.path.join(SCRATCH, "analytic")
+s = summary("double_buffer", 31.95)
+s["figures"]["analytic"] = {"motion_to_photon_ms": {"mean": 35.68, "min": 19.4, "max": 51.97}}
+write_run(os.path.join(an_dir, "hmd"), s, timeline=False)
+run_report(an_dir)
+with open(os.path.join(an_dir, "report.md")) as f:
+    md = f.read()
+check("MTP mean over phases, analytic (ms) |" in md and "| 35.68 |" in md, "analytic phase average column")
+
 # Progress lines: none for work that ends within 2 s, then one every 2 s.
 import io  # noqa: E402
 from progress import Progress  # noqa: E402
