@@ -20,6 +20,7 @@ HEADLINE = [
     ("render_latency_ms", "render_latency_ms", "rendering latency (ms)"),
     ("render_latency_fields", "render_latency_fields", "rendering latency (fields)"),
     ("frame_rate_hz", "frame_rate_hz", "frame rate (Hz)"),
+    ("missed_refreshes", "missed_refreshes", "missed refreshes"),
     ("registration_error_mean_arcmin", "registration_error_arcmin.mean", "registration error mean (arcmin)"),
     ("registration_error_p99_arcmin", "registration_error_arcmin.p99", "registration error p99 (arcmin)"),
     ("rotation_latency_mean_ms", "rotation_latency_ms.mean", "rotation latency mean (ms)"),
@@ -106,6 +107,7 @@ class Collection:
         self.directory = directory
         self.rows = rows
         self.axes = axes or []
+        self.figures = []  # the report's columns a sweep file chose ("figures")
         self.runs = runs or []  # sweep only: one dict per results.csv line
 
 
@@ -198,10 +200,13 @@ def _load_sweep(directory):
         raise ValueError(f"{directory}/results.csv: no finished runs")
     axes = [c for c in runs[0].keys() if c.startswith("/")]
     plan_file = os.path.join(directory, "plan.json")
+    figures = []
     if os.path.isfile(plan_file):
-        for axis in read_json(plan_file).get("axes", []):
+        plan = read_json(plan_file)
+        for axis in plan.get("axes", []):
             if isinstance(axis, dict) and axis.get("label") and axis.get("pointer"):
                 AXIS_LABELS[axis["pointer"]] = str(axis["label"])
+        figures = [str(f) for f in plan.get("figures", [])]
     by_point = {}
     for run in runs:
         by_point.setdefault(int(run["point"]), []).append(run)
@@ -212,7 +217,9 @@ def _load_sweep(directory):
         values = {a: members[0][a] for a in axes}
         name = row_name(values, axes)
         rows.append(Row(name, dirs, None, values, members))
-    return Collection("sweep", directory, rows, axes, runs)
+    coll = Collection("sweep", directory, rows, axes, runs)
+    coll.figures = figures
+    return coll
 
 
 def histogram_edges(distribution):

@@ -57,8 +57,18 @@ DISTRIBUTIONS = [
 ]
 
 
+# Columns the user chose (--figures, or the sweep file's "figures"): HEADLINE column names.
+CHOSEN = []
+
+
+def chosen_columns():
+    return [h for name in CHOSEN for h in lr.HEADLINE if h[0] == name]
+
+
 def sweep_figures(coll):
-    """What plot_sweep_axis draws: the headline figure first."""
+    """What plot_sweep_axis draws: the chosen columns, else the headline figure first."""
+    if CHOSEN:
+        return [(path, label) for _, path, label in chosen_columns()]
     return HEADLINE_SWEEP_FIGURES.get(lr.headline_figure(coll.rows), []) + SWEEP_FIGURES
 
 
@@ -71,6 +81,8 @@ def table_columns(coll):
     """The latency table's columns: the headline's first. Rotation latency (which equals
     motion-to-photon where nothing re-projects the orientation) only when a row's
     pipeline leads with it."""
+    if CHOSEN:
+        return chosen_columns()
     headline = lr.headline_figure(coll.rows)
     if headline == "motion_to_photon_ms":
         ordered = list(lr.HEADLINE)
@@ -258,7 +270,7 @@ def markdown_table(coll, rows=None):
     analytic = any(analytic_mtp(r) is not None for r in coll.rows)
     header = ["name", "pipeline"] + (["replications"] if coll.kind == "sweep" else []) + [u for _, _, u in columns]
     if interval:
-        header.insert(header.index(lead[2]) + 1, "95 % interval (ms)")
+        header.insert(header.index(lead[2]) + 1, "95 % interval")
     if analytic:
         header.append("MTP mean over phases, analytic (ms)")
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
@@ -416,6 +428,10 @@ def main(argv):
                              + ", ".join(c for c, _, _ in lr.HEADLINE) +
                              " (default: the mean of the figure the runs' pipelines declare first, e.g. "
                              "rotation_latency_mean_ms behind a time warp; else mtp_mean_ms)")
+    parser.add_argument("--figures", default=None,
+                        help="the columns of report.md's tables and the figures of the sweep plots, comma-separated: "
+                             + ", ".join(c for c, _, _ in lr.HEADLINE) +
+                             " (default: the sweep file's \"figures\", else the pipelines' headline first)")
     parser.add_argument("--title", default=None,
                         help="the report's title (default: the directory's name)")
     args = parser.parse_args(argv[1:])
@@ -435,10 +451,18 @@ def main(argv):
     except (ValueError, OSError, KeyError) as e:
         print(f"report: {e}", file=sys.stderr)
         return 2
+    chosen = args.figures.split(",") if args.figures else coll.figures
+    unknown = [c for c in chosen if table_figure(c) is None]
+    if unknown:
+        where = "--figures" if args.figures else f"{args.directory}/plan.json: figures"
+        print(f"report: {where}: {', '.join(unknown)} is not a column; expected some of " +
+              ", ".join(c for c, _, _ in lr.HEADLINE), file=sys.stderr)
+        return 2
+    CHOSEN[:] = [table_figure(c)[0] for c in chosen]
     try:
         if not figure:
             read_point_summaries(coll)
-            figure = default_figure(coll)
+            figure = table_figure(CHOSEN[0]) if CHOSEN else default_figure(coll)
         drawn = draw_everything(coll, args, figure)
         write_markdown(coll, drawn, args.top, figure, args.title)
     except OSError as e:

@@ -33,6 +33,11 @@ int command_report(int argc, char** argv) {
                  "the column a sweep's table is sorted by and its heat map shows (default: the mean of the figure "
                  "the runs' pipelines declare first, rotation_latency_mean_ms behind a time warp, else mtp_mean_ms; "
                  "e.g. mtp_p99_ms, registration_error_mean_arcmin)");
+  std::string figures;
+  app.add_option("--figures", figures,
+                 "the columns of report.md's tables and the figures of the sweep plots, comma-separated (e.g. "
+                 "rotation_latency_mean_ms,mtp_p99_ms,missed_refreshes; default: the sweep file's \"figures\", else "
+                 "the pipelines' headline first)");
   std::string title;
   app.add_option("--title", title, "the report's title (default: the directory's name)");
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
@@ -46,6 +51,7 @@ int command_report(int argc, char** argv) {
     if (top >= 0) command.insert(command.end(), {"--top", std::to_string(top)});
     if (!figure.empty()) command.insert(command.end(), {"--figure", figure});
     if (!title.empty()) command.insert(command.end(), {"--title", title});
+    if (!figures.empty()) command.insert(command.end(), {"--figures", figures});
     const ChildResult child = run_child(command);
     // The script's own codes already follow the program's (0 ok, 1 cannot
     // write, 2 bad input, 130 interrupted) and it has said why in one line.

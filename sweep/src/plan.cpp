@@ -1,5 +1,6 @@
 #include "latsim/sweep/plan.hpp"
 
+#include "latsim/sweep/run_table.hpp"
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -14,6 +15,7 @@
 #include "latsim/scenario/config.hpp"
 #include "latsim/scenario/json_text.hpp"
 #include "latsim/scenario/readable.hpp"
+#include "latsim/sweep/run_table.hpp"
 
 namespace latsim::sweep {
 
@@ -230,7 +232,8 @@ std::optional<KeepPolicy> read_keep(const Json& sweep, size_t run_count, const f
 SweepPlan SweepPlan::from_json(const Json& sweep, const fs::path& sweep_file, const ResolveDefaults& resolve) {
   const fs::path& file = sweep_file;
   if (!sweep.is_object()) throw SweepError(file, "", "a sweep must be a JSON object");
-  check_keys(sweep, {"description", "base", "axes", "mode", "replications", "seed", "overrides", "keep"}, file, "");
+  check_keys(sweep, {"description", "base", "axes", "mode", "replications", "seed", "overrides", "keep", "figures"},
+             file, "");
   SweepPlan plan;
   plan.sweep_file_ = sweep_file;
   if (!sweep.contains("base") || !sweep["base"].is_string())
@@ -243,6 +246,23 @@ SweepPlan SweepPlan::from_json(const Json& sweep, const fs::path& sweep_file, co
   const uint64_t base_seed = doc.contains("seed") && doc["seed"].is_number_unsigned() ? doc["seed"].get<uint64_t>() : 1;
   doc["seed"] = non_negative_integer(sweep, "seed", base_seed, 0, max_seed, file);
   plan.replications_ = non_negative_integer(sweep, "replications", 1, 1, kMaxRuns, file);
+  // The report's columns, by their results.csv names (docs/sweeps.md).
+  if (sweep.contains("figures")) {
+    const Json& figures = sweep["figures"];
+    if (!figures.is_array() || figures.empty())
+      throw SweepError(file, "/figures", "expected a non-empty array of results.csv column names");
+    std::set<std::string> known;
+    for (const auto& column : headline_columns())
+      if (column.name != "events" && column.name != "wall_s") known.insert(column.name);
+    for (size_t i = 0; i < figures.size(); ++i) {
+      if (!figures[i].is_string() || !known.count(figures[i].get<std::string>())) {
+        std::string names;
+        for (const auto& n : known) names += (names.empty() ? "" : ", ") + n;
+        throw SweepError(file, "/figures/" + std::to_string(i), "expected one of " + names);
+      }
+      plan.figures_.push_back(figures[i].get<std::string>());
+    }
+  }
 
   std::string mode = "cartesian";
   if (sweep.contains("mode") && sweep["mode"].is_string()) mode = sweep["mode"].get<std::string>();
@@ -343,8 +363,10 @@ Json SweepPlan::to_json() const {
     runs.push_back({{"run_id", run.run_id}, {"point", run.point}, {"replication", run.replication},
                     {"seed", run.seed}, {"values", values}});
   }
-  return {{"sweep_file", sweep_file_.string()}, {"base", base_file_.string()}, {"axes", axes},
-          {"replications", replications_}, {"points", point_count_}, {"runs", runs}};
+  Json plan = {{"sweep_file", sweep_file_.string()}, {"base", base_file_.string()}, {"axes", axes},
+               {"replications", replications_}, {"points", point_count_}, {"runs", runs}};
+  if (!figures_.empty()) plan["figures"] = figures_;
+  return plan;
 }
 
 }  // namespace latsim::sweep

@@ -261,7 +261,7 @@ with open(os.path.join(lot_dir, "report.md")) as f:
 # 4.303 x 0.5 / sqrt(3) = 1.242. And a pipeline's analytic phase average.
 with open(os.path.join(sweep_dir, "report.md")) as f:
     md = f.read()
-check("| MTP mean (ms) | 95 % interval (ms) |" in md, "sweep table: interval column")
+check("| MTP mean (ms) | 95 % interval |" in md, "sweep table: interval column")
 check("| 35.6 | ± 1.24 |" in md, "sweep table: interval of point 1")
 an_dir = os.path.join(SCRATCH, "analytic")
 s = summary("double_buffer", 31.95)
@@ -271,6 +271,26 @@ run_report(an_dir)
 with open(os.path.join(an_dir, "report.md")) as f:
     md = f.read()
 check("MTP mean over phases, analytic (ms) |" in md and "| 35.68 |" in md, "analytic phase average column")
+
+# The user chooses the columns: --figures, or the sweep file's "figures" (plan.json); on a copy, so that
+# the reproducibility check below compares untouched renderings.
+chosen_dir = os.path.join(SCRATCH, "chosen")
+shutil.copytree(sweep_dir, chosen_dir)
+run_report(chosen_dir, "--figures", "mtp_p99_ms,registration_error_mean_arcmin")
+with open(os.path.join(chosen_dir, "report.md")) as f:
+    header = [line for line in f.read().splitlines() if line.startswith("| name |")][0]
+check(header.endswith("| MTP p99 (ms) | 95 % interval | registration error mean (arcmin) |") and "MTP mean" not in header,
+      f"--figures columns: {header}")
+proc = subprocess.run([sys.executable, REPORT, chosen_dir, "--figures", "mtp_p99_ms,nonsense"],
+                      capture_output=True, text=True)
+check(proc.returncode == 2 and "nonsense" in proc.stderr and len(proc.stderr.strip().splitlines()) == 1,
+      f"bad --figures: {proc.stderr}")
+with open(os.path.join(chosen_dir, "plan.json"), "w") as f:
+    json.dump({"axes": [], "figures": ["frame_rate_hz"]}, f)
+run_report(chosen_dir)
+with open(os.path.join(chosen_dir, "report.md")) as f:
+    header = [line for line in f.read().splitlines() if line.startswith("| name |")][0]
+check("| frame rate (Hz) |" in header and "MTP" not in header, f"plan.json figures columns: {header}")
 
 # Progress lines: none for work that ends within 2 s, then one every 2 s.
 import io  # noqa: E402

@@ -137,6 +137,21 @@ TEST_CASE("an axis label names the axis in plan.json; a bad one is refused at it
   CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {bad}}}), Catch::Contains("/axes/0/label:"));
 }
 
+TEST_CASE("a sweep file chooses the report's columns by their results.csv names", "[sweep]") {
+  Scratch s;
+  const Json axis = {{"pointer", "/display/refresh_hz"}, {"values", {60, 90}}};
+  const auto plan = plan_of(s, {{"base", "base.json"}, {"axes", {axis}},
+                                {"figures", {"rotation_latency_mean_ms", "missed_refreshes"}}});
+  CHECK(plan.figures() == std::vector<std::string>{"rotation_latency_mean_ms", "missed_refreshes"});
+  CHECK(plan.to_json()["figures"][1] == "missed_refreshes");
+  CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {axis}}, {"figures", {"mtp_mean_ms", "latency"}}}),
+             Catch::Contains("/figures/1: expected one of"));
+  CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {axis}}, {"figures", Json::array()}}),
+             Catch::Contains("/figures: expected a non-empty array"));
+  CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {axis}}, {"figures", {"wall_s"}}}),
+             Catch::Contains("/figures/0:"));
+}
+
 TEST_CASE("a sweep without axes is the base scenario's replications", "[sweep]") {
   // One point with no axis value; replications 0 .. 3 of the same seed.
   CHECK(expand_points({}, false) == std::vector<std::vector<size_t>>{{}});

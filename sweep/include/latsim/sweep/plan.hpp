@@ -57,6 +57,8 @@ class SweepPlan {
   std::filesystem::path base_dir() const;
   size_t point_count() const { return point_count_; }
   uint64_t replications() const { return replications_; }
+  /// The report's columns the sweep file chose ("figures"; empty: the default).
+  const std::vector<std::string>& figures() const { return figures_; }
   /// The sweep file's "keep" key (which runs keep their traces), when it has one.
   const std::optional<KeepPolicy>& keep() const { return keep_; }
   /// "pointer=value, ..." for a run, as error messages show it.
@@ -73,6 +75,7 @@ class SweepPlan {
   std::vector<SweepRun> runs_;
   size_t point_count_ = 0;
   uint64_t replications_ = 1;
+  std::vector<std::string> figures_;
   std::optional<KeepPolicy> keep_;
 };
 
