@@ -20,6 +20,8 @@
 #include "stop_signals.hpp"
 #include "latsim/sweep/claims.hpp"
 #include "latsim/sweep/common.hpp"
+#include "latsim/sweep/optimise.hpp"
+#include "latsim/sweep/run_table.hpp"
 #include "latsim/sweep/store.hpp"
 
 namespace latsim::app {
@@ -195,6 +197,11 @@ int command_validate(int argc, char** argv) {
   return rc;
 }
 
+// A --metric the runs do not report: a bad command line, named with the figures they do report.
+struct MissingMetric {
+  std::string text;
+};
+
 int command_capacity(int argc, char** argv) {
   CLI::App app{"Bisect for the largest triangle count whose missed-field fraction stays at or below a threshold",
                "latsim capacity"};
@@ -248,26 +255,20 @@ int command_capacity(int argc, char** argv) {
         tried.push_back({{"count", n}, {"fields_ended", 0}});
         return false;
       }
-      if (!f.contains(metric) || !f[metric].is_number())
-        throw scenario::ScenarioError(pointer, "this pipeline reports no number \"" + metric + "\"");
-      const double value = f[metric].get<double>();
+      const std::optional<double> found = sweep::find_figure(summary, metric);
+      if (!found) throw MissingMetric{sweep::missing_figure_message(metric, summary)};
+      const double value = *found;
       tried.push_back({{"count", n}, {metric, value}});
       return value <= threshold;
     };
-    if (!fits(lo)) {
-      finish(-1, " (over the threshold even with none)");
-      return kExitOk;
-    }
-    if (fits(hi)) {
-      finish(hi, " (within the threshold up to --max: raise it)");
-      return kExitOk;
-    }
-    // Invariant: lo fits, hi does not.
-    while (hi - lo > 1) {
-      const int64_t mid = lo + (hi - lo) / 2;
-      (fits(mid) ? lo : hi) = mid;
-    }
-    finish(lo, "");
+    // The bisection latsim optimise's constraints use (sweep::largest_fitting).
+    const std::optional<int64_t> largest = sweep::largest_fitting(fits, lo, hi);
+    if (!largest) finish(-1, " (over the threshold even with none)");
+    else if (*largest == hi) finish(hi, " (within the threshold up to --max: raise it)");
+    else finish(*largest, "");
+  } catch (const MissingMetric& e) {
+    std::fprintf(stderr, "latsim capacity: --metric %s: %s\n", metric.c_str(), e.text.c_str());
+    return kExitBadInput;
   } catch (const scenario::ScenarioError& e) {
     return bad_input(file, e);
   } catch (const std::exception& e) {
