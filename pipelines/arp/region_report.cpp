@@ -39,16 +39,21 @@ int64_t skipped(const RegionRun& run) {
   return n;
 }
 
-}  // namespace
-
-std::string memories_markdown(const std::vector<const RegionRun*>& runs, des::Time duration, des::Time window) {
-  std::ostringstream md;
+// The head of a memories table: a rate and a segments column per run.
+void memories_header(std::ostringstream& md, const std::vector<const RegionRun*>& runs) {
   md << "| memory |";
   for (const RegionRun* run : runs) md << " update rate, " << run->label() << " (Hz) |";
   for (const RegionRun* run : runs) md << " segments per update, " << run->label() << " |";
   md << "\n|---|";
   for (size_t i = 0; i < 2 * runs.size(); ++i) md << "---|";
   md << "\n";
+}
+
+}  // namespace
+
+std::string memories_markdown(const std::vector<const RegionRun*>& runs, des::Time duration, des::Time window) {
+  std::ostringstream md;
+  memories_header(md, runs);
   for (int m = 0; m < runs[0]->system().model().memory_count(); ++m) {
     md << "| " << m << " |";
     for (const RegionRun* run : runs) md << " " << fixed(row_of(*run, m, duration).rate_hz, 2) << " |";
@@ -69,12 +74,8 @@ std::string memories_markdown(const std::vector<const RegionRun*>& runs, des::Ti
   }
   if (!runs[0]->has_window()) return md.str();
   md << "\nOver the position window (" << fixed(window.to_seconds(), 3)
-     << " s): per update, object segments and, in brackets, segments or whole objects drawn (each once).\n\n| memory |";
-  for (const RegionRun* run : runs) md << " update rate, " << run->label() << " (Hz) |";
-  for (const RegionRun* run : runs) md << " segments per update, " << run->label() << " |";
-  md << "\n|---|";
-  for (size_t i = 0; i < 2 * runs.size(); ++i) md << "---|";
-  md << "\n";
+     << " s): per update, object segments and, in brackets, segments or whole objects drawn (each once).\n\n";
+  memories_header(md, runs);
   for (int m = 0; m < runs[0]->system().model().memory_count(); ++m) {
     md << "| " << m << " |";
     for (const RegionRun* run : runs) md << " " << fixed(run->window_row(m, window).rate_hz, 2) << " |";
