@@ -32,7 +32,7 @@ def merge(base, over):
     """As the scenario reader merges includes: objects key by key, an object whose type changes replaces."""
     for key, value in over.items():
         if key in base and isinstance(base[key], dict) and isinstance(value, dict) and \
-                base[key].get("type") == value.get("type"):
+                value.get("type", base[key].get("type")) == base[key].get("type"):
             merge(base[key], value)
         else:
             base[key] = value
@@ -160,6 +160,31 @@ for i in range(n):
     matches = [f for f in FILES
                if all(load(os.path.join(DEVICES, f)).get(p[1:]) == point.get(p[1:]) for p in pointers if p != "/description")]
     check(len(matches) == 1, f"sweep point {i} ({point['description']}) is exactly one device file: {matches}")
+
+
+# The report's devices table (analysis/devices_table.py) on hand-made rows: mean and
+# sample standard deviation over replications, [1, 3] -> 2 +- sqrt(2).
+sys.path.insert(0, os.path.join(SOURCE_DIR, "analysis"))
+import latsim_results as lr  # noqa: E402
+import devices_table  # noqa: E402
+
+
+def summary(rate, mtp):
+    dist = lambda m: {"mean": m, "count": 4}  # noqa: E731
+    return {"scenario": {"display": {"refresh_hz": rate}},
+            "figures": {"motion_to_photon_ms": dist(mtp), "apparent_latency_ms_onset": dist(mtp / 10),
+                        "apparent_latency_ms_steady": dist(0.5), "measured_latency_ms": dist(mtp / 2)}}
+
+
+rows = [lr.Row("a", ["a0", "a1"], [summary(90, 1), summary(90, 3)], {"/description": "A 90 Hz"}),
+        lr.Row("b", ["b0"], [summary("60000/1001", 20)], {"/description": "B"})]
+coll = lr.Collection("sweep", SCRATCH, rows, axes=["/description"])
+table = "\n".join(devices_table.markdown(coll))
+check("| A 90 Hz | 90 | 2.00 ± 1.41 | 0.20 ± 0.14 | 0.50 ± 0.00 | 1.00 ± 0.71 |  | 2 |" in table,
+      f"row A: means and standard deviations over two replications:\n{table}")
+check("| B | 59.9401 | 20.00 | 2.00 | 0.50 | 10.00 |  | 1 |" in table, "row B: one replication, no spread; 60000/1001 Hz")
+check(devices_table.markdown(lr.Collection("sweep", SCRATCH, rows[:1], axes=["/description"])) == [],
+      "one row is no comparison: no section")
 
 if failures:
     print(f"{len(failures)} failures")
