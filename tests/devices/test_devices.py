@@ -186,6 +186,21 @@ check("| B | 59.9401 | 20.00 | 2.00 | 0.50 | 10.00 |  | 1 |" in table, "row B: o
 check(devices_table.markdown(lr.Collection("sweep", SCRATCH, rows[:1], axes=["/description"])) == [],
       "one row is no comparison: no section")
 
+
+# The report of a directory of two device runs has the devices section, one row each.
+runs = os.path.join(SCRATCH, "devices_report")
+shutil.rmtree(runs, ignore_errors=True)
+os.makedirs(runs)
+for name in ["index_90hz", "quest2_90hz"]:
+    if os.path.isdir(os.path.join(OUT, name)):
+        shutil.copytree(os.path.join(OUT, name), os.path.join(runs, name))
+rep = subprocess.run([sys.executable, os.path.join(SOURCE_DIR, "analysis", "report.py"), runs, "--gantt-limit", "0"],
+                     capture_output=True, text=True)
+check(rep.returncode == 0, f"report of two device runs: {rep.stderr.strip()}")
+md = open(os.path.join(runs, "report.md"), encoding="utf-8").read() if rep.returncode == 0 else ""
+check("## Devices: what a headset measurement sees" in md, "the report has the devices section")
+check("| index_90hz | 90 |" in md and "| quest2_90hz | 90 |" in md, "one row per device run, with its refresh rate")
+
 if failures:
     print(f"{len(failures)} failures")
     sys.exit(1)
