@@ -17,7 +17,7 @@ from fractions import Fraction
 
 LATSIM, SOURCE_DIR, SCRATCH = sys.argv[1], sys.argv[2], sys.argv[3]
 DEVICES = os.path.join(SOURCE_DIR, "scenarios", "devices")
-OUT = os.path.join(SCRATCH, "devices")
+OUT = os.path.join(SCRATCH, "device_profiles")  # not tests/devices: that is this directory's build directory
 
 failures = []
 
