@@ -16,7 +16,9 @@ report.md holds the --top lowest and highest points by the chosen figure once
 it has more than twice as many. A sweep reads its headline figures from
 results.csv and one summary.json per point: the cost grows with the points
 drawn, not with the runs. Long work prints progress lines on stderr. A pacing
-table and pacing_pareto.{png,svg} when some row is paced (analysis/pacing_plot.py).
+table and pacing_pareto.{png,svg} when some row is paced (analysis/pacing_plot.py); a
+devices table when rows report apparent latency and a camera measurement
+(analysis/devices_table.py).
 """
 
 import argparse
@@ -30,6 +32,7 @@ import heatmap  # noqa: E402
 import latency_over_time  # noqa: E402
 import latsim_results as lr  # noqa: E402
 import pacing_plot  # noqa: E402
+import devices_table  # noqa: E402
 import plotting  # noqa: E402
 import prediction  # noqa: E402
 from plotting import plt  # noqa: E402
@@ -369,6 +372,7 @@ def write_markdown(coll, drawn, top, figure, title=None):
                ".", "", f"![{base}]({base}.png)", ""]
     md += latency_over_time.markdown(coll, drawn["over_time"])
     md += list(pacing_plot.markdown(coll, drawn["pacing"]))
+    md += devices_table.markdown(coll)
     if drawn["prediction"] or prediction.has_prediction(coll):
         md += prediction.markdown(coll)
         if drawn["prediction"]:

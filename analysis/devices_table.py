@@ -1,0 +1,93 @@
+"""Device profiles in `latsim report`: one table of what each headset's rows
+report as a measurement would (docs/devices.md): motion-to-photon, apparent
+latency at the onset of a movement and in steady motion, and the simulated
+camera's frame-counting estimate, each as the mean over replications with its
+standard deviation over them.
+"""
+
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+import latsim_results as lr  # noqa: E402
+
+# Table columns: (header, figure path).
+COLUMNS = [
+    ("MTP (ms)", "motion_to_photon_ms.mean"),
+    ("apparent, onset (ms)", "apparent_latency_ms_onset.mean"),
+    ("apparent, steady (ms)", "apparent_latency_ms_steady.mean"),
+    ("camera, frame counting (ms)", "measured_latency_ms.mean"),
+    ("camera, shift (ms)", "measured_latency_shift_ms.mean"),
+]
+
+
+def is_devices_collection(coll):
+    """Two rows or more that report both apparent latency and a camera measurement."""
+    def measured(row):
+        s = row.first_summary()
+        return lr.find_figure(s, "apparent_latency_ms_steady") is not None and \
+            lr.find_figure(s, "measured_latency_ms") is not None
+    return len(coll.rows) >= 2 and sum(1 for r in coll.rows if measured(r)) >= 2
+
+
+def mean_sd(values):
+    """(mean, sample standard deviation) of the values; sd None for fewer than two."""
+    if not values:
+        return None, None
+    m = sum(values) / len(values)
+    if len(values) < 2:
+        return m, None
+    return m, math.sqrt(sum((v - m) ** 2 for v in values) / (len(values) - 1))
+
+
+def cell(values):
+    m, sd = mean_sd(values)
+    if m is None:
+        return ""
+    return f"{m:.2f}" if sd is None else f"{m:.2f} ± {sd:.2f}"
+
+
+def refresh_hz(row):
+    """The display's refresh rate as the scenario gave it (a number or an exact rational)."""
+    value = row.first_summary().get("scenario", {}).get("display", {}).get("refresh_hz")
+    if isinstance(value, str) and "/" in value:
+        num, den = value.split("/", 1)
+        value = float(num) / float(den)
+    return value
+
+
+def label_of(row, coll):
+    if "/description" in coll.axes:
+        return str(row.axis_values["/description"])
+    if coll.axes:
+        return ", ".join(f"{lr.axis_label(a, coll.axes)}={row.axis_values[a]}" for a in coll.axes)
+    return row.name
+
+
+def rows_of(coll):
+    """(label, rate, [cells]) per row, cells as 'mean ± sd' over replications."""
+    out = []
+    for r in coll.rows:
+        rate = refresh_hz(r)
+        out.append((label_of(r, coll), "" if rate is None else f"{float(rate):g}",
+                    [cell(r.values(path)) for _, path in COLUMNS], r.replications()))
+    return out
+
+
+def markdown(coll):
+    """The report section (nothing unless the rows are device profiles)."""
+    if not is_devices_collection(coll):
+        return []
+    header = ["device", "refresh (Hz)"] + [h for h, _ in COLUMNS] + ["replications"]
+    lines = ["## Devices: what a headset measurement sees", "",
+             "Each cell is the mean over replications ± their standard deviation. Apparent latency is the "
+             "time shift between the shown and the true head motion at the centre pixel, at the onset of a "
+             "movement and in steady motion; the camera columns are the simulated rig's estimates per movement "
+             "(docs/figures.md, docs/devices.md).", "",
+             "| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    for label, rate, cells, reps in rows_of(coll):
+        lines.append("| " + " | ".join(c.replace("|", "\\|") for c in [label, rate] + cells + [str(reps)]) + " |")
+    lines.append("")
+    return lines
