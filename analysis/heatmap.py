@@ -69,11 +69,11 @@ def draw(coll, path, label):
         ax.set_xticklabels(xs, rotation=90 if len(xs) > 8 else 0, fontsize=7)
         ax.set_yticks(range(len(ys)))
         ax.set_yticklabels(ys, fontsize=7)
-        ax.set_xlabel(lr.axis_label(x_axis, coll.axes))
-        ax.set_ylabel(lr.axis_label(y_axis, coll.axes))
+        ax.set_xlabel(lr.axis_label(x_axis))
+        ax.set_ylabel(lr.axis_label(y_axis))
         ax.grid(False)
         if others:
-            ax.set_title(", ".join(f"{lr.axis_label(a, coll.axes)}={v}" for a, v in zip(others, key)), fontsize=8)
+            ax.set_title(", ".join(f"{lr.axis_label(a)}={v}" for a, v in zip(others, key)), fontsize=8)
     for ax in list(axes.flat)[len(keys):]:
         ax.axis("off")
     fig.colorbar(image, ax=axes.ravel().tolist(), label=label)

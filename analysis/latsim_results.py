@@ -155,7 +155,7 @@ def short_axis_name(pointer, pointers):
 AXIS_LABELS = {}
 
 
-def axis_label(pointer, pointers=None):
+def axis_label(pointer):
     """What tables and plots call an axis: its declared label, else its pointer (the
     last key alone, such as fixed_ms, does not say which stage's)."""
     return AXIS_LABELS.get(pointer, pointer)
@@ -171,7 +171,7 @@ def row_name(values, axes):
     shown = plain or axes
     if len(shown) == 1 and len(axes) > 1:
         return str(values[shown[0]])
-    return ", ".join(f"{axis_label(a, axes)}={values[a]}" for a in shown)
+    return ", ".join(f"{axis_label(a)}={values[a]}" for a in shown)
 
 
 def load(directory):

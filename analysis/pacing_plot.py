@@ -59,7 +59,7 @@ def label_of(row, coll):
     if "/description" in coll.axes:
         return str(row.axis_values["/description"])
     if coll.axes:
-        return ", ".join(f"{lr.axis_label(a, coll.axes)}={row.axis_values[a]}" for a in coll.axes)
+        return ", ".join(f"{lr.axis_label(a)}={row.axis_values[a]}" for a in coll.axes)
     return row.name
 
 

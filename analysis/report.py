@@ -207,7 +207,7 @@ def plot_sweep_axis(coll, axis):
             xs = [p[0] for p in points]
             means = [p[1][0] for p in points]
             half = [p[1][1] for p in points]
-            legend = ", ".join(f"{lr.axis_label(a, coll.axes)}={v}" for a, v in zip(others, key)) or "mean"
+            legend = ", ".join(f"{lr.axis_label(a)}={v}" for a, v in zip(others, key)) or "mean"
             ax.plot(xs, means, marker="o", color=colour, label=legend)
             ax.fill_between(xs, [m - h for m, h in zip(means, half)], [m + h for m, h in zip(means, half)],
                             color=colour, alpha=0.2, linewidth=0)
@@ -465,7 +465,6 @@ def main(argv):
     CHOSEN[:] = [table_figure(c)[0] for c in chosen]
     try:
         if not figure:
-            read_point_summaries(coll)
             figure = table_figure(CHOSEN[0]) if CHOSEN else default_figure(coll)
         drawn = draw_everything(coll, args, figure)
         write_markdown(coll, drawn, args.top, figure, args.title)
