@@ -26,12 +26,18 @@ void bind(Section& s, measurement::ApparentLatencyParams& p) {
             .doc = "prediction has caught up once a window's shift is at most the steady value plus this"});
 }
 
-void bind(Section& s, measurement::CameraRigParams& p) {
+void bind(Section& s, measurement::CameraRigParams& p, bool controller) {
   s.doc(
       "A simulated latency-measurement rig: a high-speed camera films the real head (or object) and one point of "
       "eye 0's display, and latency is estimated per movement by frame counting (`measured_latency_ms`) and by the "
       "least-squares shift of the two filmed trajectories (`measured_latency_shift_ms`); "
       "`measurement_resolution_ms` is half a camera frame (docs/figures.md).");
+  using Object = measurement::CameraRigParams::Object;
+  s.choice("object", p.object, {{"head", Object::head}, {"controller", Object::controller}},
+           {.doc = "what the camera films beside the display: the head, or the controller of /controller (drawn at "
+                   "the display point)"});
+  s.check("object", controller || p.object == Object::head,
+          "the controller is filmed only in a scenario with /controller");
   s.rate("fps", p.frame_period, {.unit = "Hz", .doc = "camera frame rate (120, 240, 1000 …)"});
   clock(s, "", p.clock, "camera");
   s.duration("exposure_ms", p.exposure,

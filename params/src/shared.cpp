@@ -106,6 +106,21 @@ void bind(Section& s, SharedParams& p) {
   s.integer("seed", p.seed, {.min = 0.0, .doc = "run seed; every model draws from its own named stream derived from it"});
   s.object("motion", p.motion, [](Section& m, tracker::MotionParams& v) { bind(m, v); },
            {.required = true, .doc = "the true head motion"});
+  s.optional_object("controller", p.controller,
+                    [](Section& c, ControllerParams& v) {
+                      c.doc("A handheld controller: the tracker measures it at every head sample's instant (with the "
+                            "tracker's noise, drawn from a stream of its own), the record carries it to the host, "
+                            "which predicts it with a predictor of its own of /host/prediction's settings, and every "
+                            "image draws it at the pose predicted for that image's render. Re-projection (time warp) "
+                            "moves the view, not the controller: it stays where the render drew it. Its figures are "
+                            "`controller_latency_ms` and, with /apparent_latency, `controller_apparent_latency_ms` "
+                            "(docs/figures.md); /measurement/object can film it.");
+                      c.object("motion", v.motion, [](Section& m, tracker::MotionParams& mp) { bind(m, mp); },
+                               {.required = true,
+                                .doc = "the controller's true motion: the types of /motion (whose texts speak of the "
+                                       "head)"});
+                    },
+                    {.doc = "a tracked handheld controller drawn by the pipeline (none when absent)"});
   s.object("tracker", p.tracker, [](Section& t, tracker::TrackerParams& v) { bind(t, v); },
            {.required = true, .doc = "sampling the head pose"});
   s.object("transport", p.transport, [](Section& t, tracker::TransportParams& v) { bind(t, v); },
@@ -128,8 +143,9 @@ void bind(Section& s, SharedParams& p) {
   s.optional_object("apparent_latency", p.apparent_latency,
                     [](Section& a, measurement::ApparentLatencyParams& v) { bind(a, v); },
                     {.doc = "apparent latency (not computed when absent)"});
+  const bool controller = p.controller.has_value();
   s.optional_object("measurement", p.measurement,
-                    [](Section& m, measurement::CameraRigParams& v) { bind(m, v); },
+                    [controller](Section& m, measurement::CameraRigParams& v) { bind(m, v, controller); },
                     {.doc = "a simulated camera measurement rig (none when absent)"});
 }
 

@@ -91,6 +91,7 @@ results::ImageRecord Compositor::warped_record(const JobRecord& warp, int64_t fr
     results::ImageRecord rec = ctx_.image_record(frame, eye, now_pose, warp.last_sample_at, now);
     rec.warp = results::ImageRecord::Warp::positional;
     rec.source_pose = src->eye_poses[static_cast<size_t>(eye)];
+    ctx_.draw_controller(rec, src->pose);
     return rec;
   }
   // Rotation only: the position (and the latency origin of the whole pose)

@@ -33,7 +33,15 @@ results::ImageRecord RunContext::image_record(int64_t frame, int eye, const trac
   rec.predicted_for = p.target;
   rec.head_pose = p.pose;
   rec.eye_pose = eye_pose(p.pose, eye);
+  draw_controller(rec, p);
   return rec;
+}
+
+void RunContext::draw_controller(results::ImageRecord& rec, const tracker::PosePrediction& rendered) const {
+  if (const std::optional<tracker::PosePrediction> c = host.controller_for(rendered)) {
+    rec.controller_pose = c->pose;
+    rec.controller_measured_at = c->sample.measured_at;
+  }
 }
 
 void RunContext::present_display_memory(int64_t frame, const tracker::PosePrediction& p, des::Time start,

@@ -132,8 +132,10 @@ void LatencyRecorder::on_scanout(const display::ScanoutSpan& span) {
       const ImageRecord& img = images_.held(span.image_id)->record;  // prune() drops a pruned image's hot span
       record_probes(span, img.eye_pose.orientation, img.eye_pose.position_m, img.sample.index, span.image_id, true);
     }
-    if (shown_traces_ != 0) [[unlikely]]
-      offer_shown(span, images_.held(span.image_id)->record.eye_pose.orientation);
+    if (shown_traces_ != 0) [[unlikely]] {
+      const ImageRecord& img = images_.held(span.image_id)->record;
+      offer_shown(span, img.eye_pose.orientation, img);
+    }
     return;
   }
   ImageBook::Held* shown = images_.held(span.image_id);
@@ -249,7 +251,7 @@ void LatencyRecorder::record_uniform(const ImageRecord& img, const display::Scan
     add_prediction_error(*newest, true, false);
   const des::Time orientation_measured = newest->sample.measured_at;
   const des::Time position_measured = img.sample.measured_at;
-  offer_shown(span, orientation);
+  offer_shown(span, orientation, img);
   record_spans(span, orientation_measured, position_measured);
   // The age of the shown image's pose as the field starts to light up.
   if (span.line == 0 && span.x_begin == 0)
@@ -265,7 +267,7 @@ void LatencyRecorder::record_image_pose(const ImageRecord& img, const display::S
       !img.orientation_at_scanout && img.warp == ImageRecord::Warp::rotation ? img.orientation_measured_at
                                                                             : img.sample.measured_at;
   const des::Time position_measured = img.sample.measured_at;
-  offer_shown(span, img.eye_pose.orientation);
+  offer_shown(span, img.eye_pose.orientation, img);
   record_spans(span, orientation_measured, position_measured);
   if (span.line == 0 && span.x_begin == 0) [[unlikely]]
     record(image_age_, "image_age_ms", span.photon_time - std::min(orientation_measured, position_measured));

@@ -1,7 +1,8 @@
-// What a viewer or a camera sees: the recorder's apparent latency and the
-// simulated camera rig, computed at the end of the run from the orientation
-// shown at one pixel per refresh.
+// What a viewer or a camera sees: the recorder's apparent latency, the
+// simulated camera rig and the tracked controller, computed at the end of the
+// run from the orientations shown at one pixel per refresh.
 #include <cmath>
+#include <vector>
 
 #include "latsim/results/latency_recorder.hpp"
 
@@ -11,8 +12,10 @@ void LatencyRecorder::measure_apparent_latency(const measurement::ApparentLatenc
                                                const tracker::MotionPhaseParams& phases) {
   apparent_ = params;
   apparent_phases_ = phases;
-  centre_trace_.emplace(measurement::ScreenPoint{0.5, 0.5}, timing_.params().width_px, timing_.lines_per_field());
-  ++shown_traces_;
+  if (!centre_trace_) {
+    centre_trace_.emplace(measurement::ScreenPoint{0.5, 0.5}, timing_.params().width_px, timing_.lines_per_field());
+    ++shown_traces_;
+  }
 }
 
 void LatencyRecorder::film(const measurement::CameraRigParams& params, const des::PeriodicSchedule& camera) {
@@ -22,7 +25,16 @@ void LatencyRecorder::film(const measurement::CameraRigParams& params, const des
   ++shown_traces_;
 }
 
-void LatencyRecorder::offer_shown_slow(const display::ScanoutSpan& span, const glm::dquat& orientation) {
+void LatencyRecorder::track_controller(const tracker::MotionSource& motion) {
+  controller_ = &motion;
+  if (!centre_trace_) {
+    centre_trace_.emplace(measurement::ScreenPoint{0.5, 0.5}, timing_.params().width_px, timing_.lines_per_field());
+    ++shown_traces_;
+  }
+}
+
+void LatencyRecorder::offer_shown_slow(const display::ScanoutSpan& span, const glm::dquat& orientation,
+                                       const ImageRecord& img) {
   for (std::optional<measurement::ShownTrace>* trace : {&centre_trace_, &rig_trace_}) {
     if (!trace->has_value()) continue;
     measurement::ShownTrace& t = **trace;
@@ -39,45 +51,84 @@ void LatencyRecorder::offer_shown_slow(const display::ScanoutSpan& span, const g
       continue;
     }
     if (i >= span.photons.count) continue;
-    t.add(des::Time::ps(span.photons.at(i)), span.lit_duration, orientation);
+    measurement::ShownSample s{des::Time::ps(span.photons.at(i)), span.lit_duration, orientation};
+    if (controller_ != nullptr && img.controller_pose) {
+      s.controller_drawn = true;
+      s.controller = measurement::controller_seen(motion_.pose_at(s.photon).orientation, orientation,
+                                                  img.controller_pose->orientation);
+      s.controller_measured = img.controller_measured_at;
+    }
+    t.add(s);
+  }
+}
+
+namespace {
+
+// The controller's samples of a trace, as the shown orientation.
+std::vector<measurement::ShownSample> controller_samples(const std::vector<measurement::ShownSample>& shown) {
+  std::vector<measurement::ShownSample> out;
+  out.reserve(shown.size());
+  for (const measurement::ShownSample& s : shown)
+    if (s.controller_drawn) out.push_back(measurement::ShownSample{s.photon, s.lit, s.controller});
+  return out;
+}
+
+}  // namespace
+
+void LatencyRecorder::apparent_figures(const std::string& prefix, std::span<const measurement::ShownSample> shown,
+                                       const tracker::MotionSource& truth) {
+  tracker::MotionPhaseClassifier phases(truth, apparent_phases_);
+  const measurement::ApparentLatencyResult r = measurement::apparent_latency(shown, truth, phases, *apparent_);
+  for (const measurement::WindowShift& w : r.windows) {
+    add(prefix + "apparent_latency_ms", w.shift_ms);
+    add(prefix + "apparent_latency_ms_" + std::string(tracker::phase_name(w.phase)), w.shift_ms);
+  }
+  table_.set(prefix + "apparent_latency_windows_unresolved", r.unresolved);
+  if (r.steady_ms) {
+    for (double c : r.catch_up_ms) add(prefix + "prediction_catch_up_ms", c);
+    table_.set(prefix + "prediction_never_caught_up", r.never_caught_up);
+  }
+}
+
+void LatencyRecorder::rig_figures(std::span<const measurement::ShownSample> shown, const tracker::MotionSource& truth,
+                                  des::Time duration) {
+  const glm::dquat reference = truth.pose_at(des::Time::zero()).orientation;
+  const glm::dvec3 axis = rig_.axis;
+  const measurement::ObjectSignal object(
+      [&truth, reference, axis](des::Time t) { return measurement::twist_deg(reference, truth.pose_at(t).orientation, axis); });
+  const measurement::DisplaySignal display(measurement::lit_angles(shown, reference, axis));
+  const des::Time exposure = rig_.exposure ? *rig_.exposure : camera_.nominal_period();
+  const measurement::RigResult r = measurement::film(object, display, camera_, exposure, duration, rig_);
+  for (double v : r.frame_counting_ms) add("measured_latency_ms", v);
+  for (double v : r.shift_ms) add("measured_latency_shift_ms", v);
+  table_.set("measurement_resolution_ms", r.resolution_ms);
+  table_.set("measurement_movements", static_cast<int64_t>(r.frame_counting_ms.size()));
+  table_.set("measurement_frames", r.frames);
+  if (r.frame_counting_ms.empty()) {
+    const bool head = rig_.object == measurement::CameraRigParams::Object::head;
+    warn(std::string("the camera rig saw no movement from rest to rest (measurement_movements is 0): the ") +
+         (head ? "head" : "controller") +
+         " must rest for /measurement/rest_ms between movements larger than /measurement/threshold_deg");
   }
 }
 
 void LatencyRecorder::measurement_figures(des::Time duration) {
   if ((centre_trace_ && centre_trace_->sorted().empty()) || (rig_trace_ && rig_trace_->sorted().empty()))
-    warn("apparent latency and the camera rig need whole images at the display point; this run lit none there "
-         "(frameless rendering shows no images), so their figures are absent");
+    warn("apparent latency, the camera rig and the controller's figures need whole images at the display point; "
+         "this run lit none there (frameless rendering shows no images), so their figures are absent");
   if (centre_trace_ && !centre_trace_->sorted().empty()) {
-    tracker::MotionPhaseClassifier phases(motion_, apparent_phases_);
-    const measurement::ApparentLatencyResult r =
-        measurement::apparent_latency(centre_trace_->sorted(), motion_, phases, apparent_);
-    for (const measurement::WindowShift& w : r.windows) {
-      add("apparent_latency_ms", w.shift_ms);
-      add("apparent_latency_ms_" + std::string(tracker::phase_name(w.phase)), w.shift_ms);
-    }
-    table_.set("apparent_latency_windows_unresolved", r.unresolved);
-    if (r.steady_ms) {
-      for (double c : r.catch_up_ms) add("prediction_catch_up_ms", c);
-      table_.set("prediction_never_caught_up", r.never_caught_up);
+    if (apparent_) apparent_figures("", centre_trace_->sorted(), motion_);
+    if (controller_ != nullptr) {
+      for (const measurement::ShownSample& s : centre_trace_->sorted())
+        if (s.controller_drawn) add("controller_latency_ms", (s.photon - s.controller_measured).to_ms());
+      if (apparent_) apparent_figures("controller_", controller_samples(centre_trace_->sorted()), *controller_);
     }
   }
   if (rig_trace_ && !rig_trace_->sorted().empty()) {
-    const glm::dquat reference = motion_.pose_at(des::Time::zero()).orientation;
-    const glm::dvec3 axis = rig_.axis;
-    const tracker::MotionSource& motion = motion_;
-    const measurement::ObjectSignal object(
-        [&motion, reference, axis](des::Time t) { return measurement::twist_deg(reference, motion.pose_at(t).orientation, axis); });
-    const measurement::DisplaySignal display(measurement::lit_angles(rig_trace_->sorted(), reference, axis));
-    const des::Time exposure = rig_.exposure ? *rig_.exposure : camera_.nominal_period();
-    const measurement::RigResult r = measurement::film(object, display, camera_, exposure, duration, rig_);
-    for (double v : r.frame_counting_ms) add("measured_latency_ms", v);
-    for (double v : r.shift_ms) add("measured_latency_shift_ms", v);
-    table_.set("measurement_resolution_ms", r.resolution_ms);
-    table_.set("measurement_movements", static_cast<int64_t>(r.frame_counting_ms.size()));
-    table_.set("measurement_frames", r.frames);
-    if (r.frame_counting_ms.empty())
-      warn("the camera rig saw no movement from rest to rest (measurement_movements is 0): the head must rest for "
-           "/measurement/rest_ms between movements larger than /measurement/threshold_deg");
+    if (rig_.object == measurement::CameraRigParams::Object::controller && controller_ != nullptr)
+      rig_figures(controller_samples(rig_trace_->sorted()), *controller_, duration);
+    else
+      rig_figures(rig_trace_->sorted(), motion_, duration);
   }
 }
 

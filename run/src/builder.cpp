@@ -211,6 +211,12 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
   Timeline* timeline = p.output.timeline && options.write_timeline ? &run.timeline : nullptr;
   run.timeline.set_max_entries(static_cast<size_t>(p.output.timeline_max_entries));
   run.host = std::make_unique<TrackerHost>(run.sim, *run.tracker, *run.transport, timeline, p.host.prediction);
+  if (p.controller) {
+    built_from("/controller/motion", "controller motion",
+               [&] { run.controller_motion = tracker::make_motion(p.controller->motion); });
+    run.host->track_controller(*run.controller_motion,
+                               des::RandomStream(run.seed, "controller", options.replication).substream("noise"));
+  }
   const bool stereo = p.host.stereo;
   built_from("/display", "display", [&] {
     display::RasterParams raster = p.display.raster;
@@ -231,6 +237,7 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
   if (p.apparent_latency)
     run.recorder->measure_apparent_latency(*p.apparent_latency, p.motion_phases.value_or(tracker::MotionPhaseParams{}));
   if (p.measurement) run.recorder->film(*p.measurement, run.clocks->find("camera")->schedule());
+  if (run.controller_motion) run.recorder->track_controller(*run.controller_motion);
   run.recorder->enable_ledger(options.write_ledger);
   run.recorder->enable_sample_log(options.write_samples);
   run.display->add_listener(run.recorder.get());

@@ -32,6 +32,31 @@ void TrackerHost::start(des::Time end) {
   }
 }
 
+void TrackerHost::track_controller(const tracker::MotionSource& motion, des::RandomStream noise) {
+  controller_.emplace(Controller{&motion, std::move(noise), tracker::HostPrediction(prediction_.params()), {}});
+}
+
+std::optional<tracker::PosePrediction> TrackerHost::controller_for(const tracker::PosePrediction& head) const {
+  if (!controller_) return std::nullopt;
+  const auto& sent = controller_->sent;
+  const auto it = std::lower_bound(sent.begin(), sent.end(), head.sample.index,
+                                   [](const tracker::TrackerSample& c, int64_t i) { return c.index < i; });
+  tracker::PredictionBasis basis;
+  if (it == sent.end() || it->index != head.sample.index) {
+    // Held longer than the host remembers (about a second): drawn where the
+    // controller was at the sample's instant, unpredicted.
+    tracker::TrackerSample old = head.sample;
+    old.pose = controller_->motion->pose_at(old.measured_at);
+    basis = tracker::hold_basis(old);
+  } else {
+    basis = controller_->prediction.basis_of(*it);
+  }
+  // The head's pose may be for a fixed horizon or a photon time; the
+  // controller's is for the same instant.
+  basis.fixed_horizon.reset();
+  return basis.for_photon_time(head.target);
+}
+
 void TrackerHost::on_carried(std::function<void(const tracker::TrackerSample&, const tracker::Carriage&)> fn) {
   carried_fns_.push_back(std::move(fn));
 }
@@ -95,6 +120,12 @@ void TrackerHost::send(const tracker::TrackerSample& s, des::Time start) {
   const tracker::Carriage c = transport_.carry(start);
   link_free_at_ = start + transport_.occupancy();
   prediction_.observe(s, stamp_of(s, c));
+  if (controller_) {
+    tracker::TrackerSample cs = s;
+    cs.pose = tracker_.measure_object(*controller_->motion, s.measured_at, controller_->noise);
+    controller_->prediction.observe(cs, stamp_of(s, c));
+    controller_->sent.push_back(cs);
+  }
   delivered_.push_back(Delivered{c.visible, s});
   for (auto& fn : carried_fns_) fn(s, c);
   if (timeline_ && transport_.occupancy() > des::Time::zero()) {
@@ -121,6 +152,11 @@ void TrackerHost::prune() {
   const des::Time horizon = sim_.now() - des::Time::s(1);
   while (delivered_.size() > 2 && delivered_[1].at <= horizon) delivered_.pop_front();
   prediction_.forget_before(delivered_.front().sample.index);
+  if (controller_) {
+    const int64_t keep = delivered_.front().sample.index;
+    while (!controller_->sent.empty() && controller_->sent.front().index < keep) controller_->sent.pop_front();
+    controller_->prediction.forget_before(keep);
+  }
 }
 
 std::optional<tracker::TrackerSample> TrackerHost::newest_at(des::Time t) const {

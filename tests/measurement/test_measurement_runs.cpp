@@ -104,3 +104,85 @@ TEST_CASE("the camera rig films a run", "[camera_rig]") {
   // The camera's phase is drawn per run and written back into the resolved scenario.
   CHECK(out.at("scenario").at("measurement").contains("phase_ms"));
 }
+
+TEST_CASE("a controller seen through a pure delay lags by that delay", "[controller]") {
+  // The head is still and the controller turns at 60 deg/s. Every image draws
+  // the controller measured with the head's sample, so at the centre pixel
+  // it is (1 + 262/502) fields old, as the head's pose would be: its latency
+  // and its apparent latency are that delay, refresh by refresh.
+  Json s = base_scenario();
+  s["motion"] = {{"type", "still"}};
+  s["controller"] = {{"motion", {{"type", "constant"}, {"axis", {0, 1, 0}}, {"rate_deg_s", 60}}}};
+  s["apparent_latency"] = Json::object();
+  const Json out = run(s);
+  const double d_ms = (1.0 + 262.0 / 502.0) * 1000.0 / 60.0;  // 25.365 ms
+  CHECK(figure(out, "controller_latency_ms", "min") == Approx(d_ms).margin(1e-6));
+  CHECK(figure(out, "controller_latency_ms", "max") == Approx(d_ms).margin(1e-6));
+  CHECK(figure(out, "controller_apparent_latency_ms", "min") == Approx(d_ms).margin(1e-3));
+  CHECK(figure(out, "controller_apparent_latency_ms", "max") == Approx(d_ms).margin(1e-3));
+  // One sample per refresh after the first image: 2 s at 60 Hz less the first field or two.
+  CHECK(figure(out, "controller_latency_ms", "count") >= 118);
+  // The head does not move: it has no window outside rest.
+  CHECK_FALSE(out.at("figures").contains("apparent_latency_ms"));
+  // Without /controller there are no controller figures.
+  s.erase("controller");
+  CHECK_FALSE(run(s).at("figures").contains("controller_latency_ms"));
+}
+
+TEST_CASE("a controller carried rigidly with the head is seen where it is", "[controller]") {
+  // Head and controller turn together. An image drawn from the poses of
+  // t − d shows the controller at H(t−d)⁻¹·C(t−d) = identity in the view,
+  // which the head, truly at H(t), carries to H(t) = C(t): seen without
+  // latency although its pose is d old (controller_latency_ms).
+  Json s = base_scenario();
+  s["motion"]["rate_deg_s"] = 60;
+  s["controller"] = {{"motion", s["motion"]}};
+  s["apparent_latency"] = Json::object();
+  const Json out = run(s);
+  const double d_ms = (1.0 + 262.0 / 502.0) * 1000.0 / 60.0;
+  CHECK(figure(out, "controller_latency_ms", "mean") == Approx(d_ms).margin(1e-6));
+  CHECK(std::abs(figure(out, "controller_apparent_latency_ms", "min")) < 1e-3);
+  CHECK(std::abs(figure(out, "controller_apparent_latency_ms", "max")) < 1e-3);
+  CHECK(figure(out, "apparent_latency_ms", "mean") == Approx(d_ms).margin(1e-3));
+}
+
+TEST_CASE("time warp re-projects the head and not the controller", "[controller]") {
+  // modern/timewarp.json with a rotation-only warp: every refresh shows the
+  // newest frame re-projected to a pose read 2 ms before the retrace. The
+  // head's rotation latency counts from that pose; the controller stays
+  // where the frame drew it, so its latency counts from the frame's sample,
+  // as translation latency does (the rendered position): measured at the
+  // centre line, it is translation latency's mean over all lines within a
+  // line's worth of the field.
+  const Json out = latsim::run::run_scenario(
+      latsim::run::load_scenario(LATSIM_SOURCE_DIR "/scenarios/modern/timewarp.json",
+                                 {"/duration_s=3", "/pipeline/timewarp/mode=\"rotation\"", "/motion={\"type\": \"still\"}",
+                                  "/controller={\"motion\": {\"type\": \"constant\", \"rate_deg_s\": 60}}",
+                                  "/apparent_latency={}"}),
+      latsim::run::RunOptions{});
+  const double translation = figure(out, "translation_latency_ms", "mean");
+  const double controller = figure(out, "controller_latency_ms", "mean");
+  CHECK(controller == Approx(translation).margin(0.5));
+  // The head's pose is younger by the frame's whole render (over 10 ms here).
+  CHECK(figure(out, "rotation_latency_ms", "mean") < controller - 10.0);
+  // Constant motion, no prediction: the controller is seen as old as it is.
+  CHECK(figure(out, "controller_apparent_latency_ms_steady", "mean") == Approx(controller).margin(1.0));
+}
+
+TEST_CASE("the camera rig films the controller", "[controller][camera_rig]") {
+  // The rig of "the camera rig films a run", filming the controller's
+  // movements while the head rests: the same pure delay is measured.
+  Json s = base_scenario();
+  s["duration_s"] = 6;
+  s["motion"] = {{"type", "still"}};
+  s["controller"] = {{"motion", {{"type", "minimum_jerk"}, {"amplitude_deg", 30}, {"duration_s", 0.5}, {"rest_s", 0.5}}}};
+  s["measurement"] = {{"fps", 240}, {"object", "controller"}};
+  const Json out = run(s);
+  const double d_ms = (1.0 + 262.0 / 502.0) * 1000.0 / 60.0;
+  CHECK(fig(out, "measurement_movements").get<int64_t>() >= 5);
+  CHECK(figure(out, "measured_latency_ms", "mean") == Approx(d_ms).margin(1000.0 / 60 + 1000.0 / 240));
+  CHECK(figure(out, "measured_latency_shift_ms", "mean") == Approx(d_ms).margin(1000.0 / 240 / 2));
+  // Filming the head instead: it never moves, so the rig sees no movement.
+  s["measurement"]["object"] = "head";
+  CHECK(fig(run(s), "measurement_movements").get<int64_t>() == 0);
+}

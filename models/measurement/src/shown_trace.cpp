@@ -18,6 +18,10 @@ const std::vector<ShownSample>& ShownTrace::sorted() {
   return samples_;
 }
 
+glm::dquat controller_seen(const glm::dquat& true_head, const glm::dquat& shown_head, const glm::dquat& drawn) {
+  return glm::normalize(true_head * glm::inverse(shown_head) * drawn);
+}
+
 double twist_deg(const glm::dquat& from, const glm::dquat& to, const glm::dvec3& axis) {
   glm::dquat r = to * glm::inverse(from);
   if (r.w < 0.0) r = -r;  // the short way round

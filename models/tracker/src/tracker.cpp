@@ -61,15 +61,19 @@ des::Time Tracker::jitter_offset() {
   return des::Time::from_seconds(jitter_stream_.normal(0.0, params_.jitter.to_seconds()));
 }
 
-Pose Tracker::add_noise(const Pose& truth) {
+Pose Tracker::add_noise(const Pose& truth, des::RandomStream& stream) const {
   if (!params_.noise_enabled) return truth;
   Eigen::Matrix<double, 6, 1> z;
-  for (int i = 0; i < 6; ++i) z(i) = noise_stream_.normal();
+  for (int i = 0; i < 6; ++i) z(i) = stream.normal();
   const Eigen::Matrix<double, 6, 1> n = noise_factor_ * z;
   Pose noisy;
   noisy.position_m = truth.position_m + glm::dvec3{n(0), n(1), n(2)};
   noisy.orientation = glm::normalize(quat_from_rotation_vector(glm::dvec3{n(3), n(4), n(5)}) * truth.orientation);
   return noisy;
+}
+
+Pose Tracker::measure_object(const MotionSource& object, des::Time at, des::RandomStream& noise) const {
+  return add_noise(object.pose_at(at), noise);
 }
 
 TrackerSample Tracker::sample(int64_t k) {
@@ -85,7 +89,7 @@ TrackerSample Tracker::sample(int64_t k) {
   s.index = k;
   s.measured_at = measured;
   s.ready_at = measured + params_.internal_delay;
-  s.pose = add_noise(motion_.pose_at(measured));
+  s.pose = add_noise(motion_.pose_at(measured), noise_stream_);
 
   any_sample_ = true;
   last_index_ = k;

@@ -63,12 +63,20 @@ struct FramesParams {
   double age_scale_ms = 100.0;
 };
 
+/// /controller: a handheld controller, tracked with the head and drawn by the
+/// pipeline.
+struct ControllerParams {
+  tracker::MotionParams motion;
+};
+
 /// Every section of a scenario that the run builds for any pipeline.
 struct SharedParams {
   std::string description;
   double duration_s = 10.0;
   int64_t seed = 1;
   tracker::MotionParams motion;
+  /// /controller: a tracked handheld controller (none when absent).
+  std::optional<ControllerParams> controller;
   tracker::TrackerParams tracker;
   tracker::TransportParams transport;
   HostParams host;
@@ -97,7 +105,8 @@ void bind(scenario::Section& s, SceneParams& p);
 void bind(scenario::Section& s, tracker::PredictionParams& p, const tracker::TrackerParams& tracker);
 void bind(scenario::Section& s, tracker::MotionPhaseParams& p);
 void bind(scenario::Section& s, measurement::ApparentLatencyParams& p);
-void bind(scenario::Section& s, measurement::CameraRigParams& p);
+/// /measurement; `controller`: the scenario tracks a controller (it may be filmed).
+void bind(scenario::Section& s, measurement::CameraRigParams& p, bool controller);
 
 /// A clock's `<prefix>phase_ms` (absent: drawn per replication, uniformly
 /// over one period, from the clock's own stream) and `<prefix>rate_error_ppm`.

@@ -74,9 +74,14 @@ struct RunContext {
   /// The eye pose of a head pose (mono: the head pose).
   tracker::Pose eye_pose(const tracker::Pose& head, int eye) const;
   /// An image of `eye` rendered from the predicted pose `p` between `start`
-  /// and `end`, with the host's receive time and the eye pose filled in.
+  /// and `end`, with the host's receive time and the eye pose filled in, and
+  /// the tracked controller (if any) drawn as predicted with `p`.
   results::ImageRecord image_record(int64_t frame, int eye, const tracker::PosePrediction& p, des::Time start,
                            des::Time end) const;
+  /// Draws the tracked controller (if any) into `rec` as the render from
+  /// `rendered` drew it: re-projecting an image moves the view, not the
+  /// objects in it.
+  void draw_controller(results::ImageRecord& rec, const tracker::PosePrediction& rendered) const;
   /// Display memories of the address recalculation pipelines: registers the
   /// cube rendered from `p` since `start` for every eye (orientation looked up
   /// at scanout), swaps it in at the next retrace, and logs a RENDER interval.

@@ -45,6 +45,11 @@ struct ImageRecord {
   /// `frame` numbers the application's frames (FrameRecorder's): false for
   /// images a compositor renders itself (beam racing), numbered by warp.
   bool shows_app_frame = true;
+  /// A tracked controller (/controller): the pose the image draws it at,
+  /// predicted like the head's for the image's render, and when that pose
+  /// was measured. Absent without a controller.
+  std::optional<tracker::Pose> controller_pose;
+  des::Time controller_measured_at;
 };
 
 /// Newest tracker data available to the host at any instant.
@@ -63,6 +68,13 @@ class HostFeed {
   virtual tracker::PredictionBasis basis_of(const tracker::TrackerSample& s) const = 0;
   /// Whether the scenario asks the host to predict (/host/prediction).
   virtual bool predicts() const = 0;
+  /// The tracked controller's pose for an image computed from the head pose
+  /// `head`: the controller measured with `head.sample`, predicted by the
+  /// host's predictor to the same instant. nullopt without a controller.
+  virtual std::optional<tracker::PosePrediction> controller_for(const tracker::PosePrediction& head) const {
+    (void)head;
+    return std::nullopt;
+  }
 
   /// The pose for an image computed at `now` that the pipeline expects to be
   /// lit at `photon_time`: the newest sample visible at `now`, predicted by

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <deque>
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -158,6 +159,13 @@ class LatencyRecorder : public display::ScanoutListener {
   /// Keeps the orientation shown at the rig's display point and at finish()
   /// films it and the true head with a camera whose frames open at `camera`.
   void film(const measurement::CameraRigParams& params, const des::PeriodicSchedule& camera);
+  /// A tracked controller moving as `motion` (which must outlive the
+  /// recorder): keeps, one sample per refresh at the centre of eye 0's
+  /// display (and at the rig's point), the controller orientation a viewer
+  /// sees, and at finish() reports controller_latency_ms and, with apparent
+  /// latency, controller_apparent_latency_ms; the rig films it when its
+  /// object is the controller.
+  void track_controller(const tracker::MotionSource& motion);
 
   void on_field_start(int eye, int64_t field, des::Time retrace) override;
   void on_scanout(const display::ScanoutSpan& span) override;
@@ -231,14 +239,21 @@ class LatencyRecorder : public display::ScanoutListener {
   /// per-sample events would.
   void log_run(const char* name, const display::ScanoutSpan& span, des::Time origin);
   void refuse(const std::string& name, const char* how) const;
-  /// Hands the orientation a span of eye 0 shows to the shown traces whose pixel it lights.
-  void offer_shown(const display::ScanoutSpan& span, const glm::dquat& orientation) {
+  /// Hands the orientation a span of eye 0 shows (and the controller of its
+  /// image) to the shown traces whose pixel it lights.
+  void offer_shown(const display::ScanoutSpan& span, const glm::dquat& orientation, const ImageRecord& img) {
     if (shown_traces_ != 0 && span.eye == 0) [[unlikely]]
-      offer_shown_slow(span, orientation);
+      offer_shown_slow(span, orientation, img);
   }
-  void offer_shown_slow(const display::ScanoutSpan& span, const glm::dquat& orientation);
-  /// The figures of measure_apparent_latency() and film().
+  void offer_shown_slow(const display::ScanoutSpan& span, const glm::dquat& orientation, const ImageRecord& img);
+  /// The figures of measure_apparent_latency(), film() and track_controller().
   void measurement_figures(des::Time duration);
+  /// Apparent latency of `shown` against `truth`, as figures named `prefix` + apparent_latency_ms ….
+  void apparent_figures(const std::string& prefix, std::span<const measurement::ShownSample> shown,
+                        const tracker::MotionSource& truth);
+  /// The camera rig filming `truth` and the angles `shown` at its display point.
+  void rig_figures(std::span<const measurement::ShownSample> shown, const tracker::MotionSource& truth,
+                   des::Time duration);
   void link_figures(const RunTotals& totals);
 
   const des::Simulator& sim_;
@@ -314,7 +329,8 @@ class LatencyRecorder : public display::ScanoutListener {
   // Apparent latency and the camera rig (absent unless the scenario asks).
   int shown_traces_ = 0;
   std::optional<measurement::ShownTrace> centre_trace_;
-  measurement::ApparentLatencyParams apparent_;
+  std::optional<measurement::ApparentLatencyParams> apparent_;
+  const tracker::MotionSource* controller_ = nullptr;
   tracker::MotionPhaseParams apparent_phases_;
   std::optional<measurement::ShownTrace> rig_trace_;
   measurement::CameraRigParams rig_;

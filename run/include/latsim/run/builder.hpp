@@ -38,6 +38,7 @@ struct Run {
   params::SharedParams shared;
   std::vector<std::string> input_warnings;
   std::unique_ptr<tracker::MotionSource> motion;
+  std::unique_ptr<tracker::MotionSource> controller_motion;  ///< /controller's (null without one)
   std::unique_ptr<tracker::Tracker> tracker;
   std::unique_ptr<tracker::Transport> transport;
   std::unique_ptr<TrackerHost> host;

@@ -35,6 +35,12 @@ class TrackerHost final : public results::HostFeed {
               results::Timeline* timeline = nullptr,
               const std::optional<tracker::PredictionParams>& prediction = std::nullopt);
 
+  /// Tracks a handheld controller too: every record carries its pose,
+  /// measured at the head sample's instant (noise from `noise`), and the
+  /// host predicts it with a predictor of its own of the head's settings.
+  void track_controller(const tracker::MotionSource& motion, des::RandomStream noise);
+  std::optional<tracker::PosePrediction> controller_for(const tracker::PosePrediction& head) const override;
+
   /// Schedules samples measured in [now, end).
   void start(des::Time end);
   /// Called with (sample, carriage) as each record is given to the link (in link order).
@@ -86,6 +92,15 @@ class TrackerHost final : public results::HostFeed {
   des::KindId kind_sample_ = 0, kind_deliver_ = 0, kind_line_ = 0;
   int64_t measured_ = 0;
   int64_t dropped_ = 0;
+  // The controller: its samples sent (increasing index, pruned with the
+  // head's) and the host's predictions of it.
+  struct Controller {
+    const tracker::MotionSource* motion;
+    des::RandomStream noise;
+    tracker::HostPrediction prediction;
+    std::deque<tracker::TrackerSample> sent;
+  };
+  std::optional<Controller> controller_;
 };
 
 }  // namespace latsim::run

@@ -19,6 +19,9 @@ namespace latsim::measurement {
 
 /// Settings of the rig (/measurement).
 struct CameraRigParams {
+  /// What is filmed beside the display: the head or the tracked controller.
+  enum class Object { head, controller };
+  Object object = Object::head;
   des::RationalSeconds frame_period = des::RationalSeconds::period_of_hz(240);  ///< the camera's frame rate
   des::ClockSettings clock;                    ///< camera phase (drawn per replication when absent) and rate error
   std::optional<des::Time> exposure;           ///< shutter open per frame; absent: the whole frame period

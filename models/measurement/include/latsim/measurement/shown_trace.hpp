@@ -23,7 +23,19 @@ struct ShownSample {
   des::Time photon;
   des::Time lit;
   glm::dquat orientation{1.0, 0.0, 0.0, 0.0};
+  /// A tracked controller drawn in the image: the orientation a viewer sees it
+  /// at (see controller_seen) and when the pose drawn was measured.
+  bool controller_drawn = false;
+  glm::dquat controller{1.0, 0.0, 0.0, 0.0};
+  des::Time controller_measured;
 };
+
+/// The world orientation at which a viewer whose head is truly at
+/// `true_head` sees a controller drawn at `drawn` in an image shown with
+/// head orientation `shown_head`: the image puts it at shown_head⁻¹·drawn in
+/// the view, which the viewer's head carries to true_head·shown_head⁻¹·drawn.
+/// A head error moves the controller with the rest of the world.
+glm::dquat controller_seen(const glm::dquat& true_head, const glm::dquat& shown_head, const glm::dquat& drawn);
 
 /// The shown orientation at one pixel of eye 0, one sample per refresh: what
 /// apparent latency and the camera rig compare with the true motion.
@@ -33,9 +45,7 @@ class ShownTrace {
   ShownTrace(ScreenPoint point, int width_px, int lines);
   int line() const { return line_; }
   int column() const { return column_; }
-  void add(des::Time photon, des::Time lit, const glm::dquat& orientation) {
-    samples_.push_back(ShownSample{photon, lit, orientation});
-  }
+  void add(const ShownSample& sample) { samples_.push_back(sample); }
   /// The samples in photon order (spans reach the recorder almost in order;
   /// address recalculation lines that waited for their sample come later).
   const std::vector<ShownSample>& sorted();

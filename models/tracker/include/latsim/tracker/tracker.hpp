@@ -69,6 +69,10 @@ class Tracker {
 
   /// Sample k; throws std::logic_error if k is not greater than the last k.
   TrackerSample sample(int64_t k);
+  /// Another tracked object (a handheld controller) measured at the instant
+  /// of a head sample, with the tracker's noise drawn from `noise` (a stream
+  /// of the object's own, so that tracking it changes no head sample).
+  Pose measure_object(const MotionSource& object, des::Time at, des::RandomStream& noise) const;
   /// Time of sample k without jitter.
   des::Time nominal_time(int64_t k) const { return schedule_.at(k); }
   /// Index of the first sample nominally at or after t.
@@ -78,7 +82,7 @@ class Tracker {
 
  private:
   des::Time jitter_offset();
-  Pose add_noise(const Pose& truth);
+  Pose add_noise(const Pose& truth, des::RandomStream& stream) const;
 
   TrackerParams params_;
   const MotionSource& motion_;
