@@ -27,7 +27,7 @@ import sys
 
 MARK = re.compile(r"<!--\s*fig\s+(\S+\.json)\s+(\S+)(?:\s+x(\S+))?\s*-->")
 NUMBER = re.compile(r"-?\d{1,3}(?:,\d{3})+(?:\.\d+)?|-?\d+(?:\.\d+)?")
-DEFAULT_DOCS = ["docs/arp.md", "docs/pxpl5.md", "docs/devices.md", "docs/validation.md"]
+DEFAULT_DOCS = ["docs/arp.md", "docs/pxpl5.md", "docs/devices.md", "docs/validation.md", "docs/figures.md"]
 
 
 def lookup(figures, path):
