@@ -137,3 +137,17 @@ TEST_CASE("a constant-velocity predictor at the onset of a minimum-jerk movement
   CHECK(std::abs(steady / n_steady) < 0.5);
   REQUIRE(r.catch_up_ms.size() + static_cast<size_t>(r.never_caught_up) == 1);
 }
+
+TEST_CASE("a controller is seen through the head's error", "[controller]") {
+  // Hand derivation with yaws about +y (rotations about one axis add): an
+  // image shown with the head at 0° draws the controller at 30°, i.e. 30° to
+  // the left in the view; the viewer's head is truly at 10°, so the view's
+  // 30° lies at 40° in the world.
+  using latsim::measurement::controller_seen;
+  const glm::dquat seen = controller_seen(yaw(10.0), yaw(0.0), yaw(30.0));
+  CHECK(latsim::measurement::twist_deg(yaw(0.0), seen, glm::dvec3(0.0, 1.0, 0.0)) == Approx(40.0).margin(1e-9));
+  // A shown head equal to the true one leaves the drawn pose as it is.
+  const glm::dquat drawn = glm::normalize(glm::dquat(0.9, 0.1, -0.3, 0.2));
+  const glm::dquat h = glm::normalize(glm::dquat(0.5, 0.5, 0.1, -0.2));
+  CHECK(latsim::tracker::angle_between(controller_seen(h, h, drawn), drawn) == Approx(0.0).margin(1e-12));
+}

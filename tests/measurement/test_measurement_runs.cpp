@@ -186,3 +186,40 @@ TEST_CASE("the camera rig films the controller", "[controller][camera_rig]") {
   s["measurement"]["object"] = "head";
   CHECK(fig(run(s), "measurement_movements").get<int64_t>() == 0);
 }
+
+TEST_CASE("the host predicts the controller as it predicts the head", "[controller]") {
+  // Constant velocity extrapolates the controller's constant turn exactly to
+  // the image's photon time (the middle line): at the centre pixel it is seen
+  // where it is, although the pose drawn is as old as without prediction.
+  Json s = base_scenario();
+  s["motion"] = {{"type", "still"}};
+  s["controller"] = {{"motion", {{"type", "constant"}, {"axis", {0, 1, 0}}, {"rate_deg_s", 60}}}};
+  s["host"] = {{"prediction", {{"type", "constant_velocity"}}}};
+  s["apparent_latency"] = Json::object();
+  const Json out = run(s);
+  const double d_ms = (1.0 + 262.0 / 502.0) * 1000.0 / 60.0;
+  CHECK(figure(out, "controller_latency_ms", "mean") == Approx(d_ms).margin(1e-6));
+  CHECK(figure(out, "controller_apparent_latency_ms", "p50") == Approx(0.0).margin(0.05));
+}
+
+TEST_CASE("tracking a controller changes nothing of the head", "[controller]") {
+  // The controller's noise comes from a stream of its own and it adds no
+  // event: the head's figures and the run's events are those of a run
+  // without it.
+  Json s = base_scenario();
+  s["tracker"]["noise"] = {{"orientation_stddev_deg", 0.2}};
+  s["host"] = {{"prediction", {{"type", "kalman"}}}};
+  const Json without = run(s);
+  s["controller"] = {{"motion", {{"type", "sinusoid"}}}};
+  const Json with = run(s);
+  CHECK(with.at("fingerprint") == without.at("fingerprint"));
+  for (const char* name : {"motion_to_photon_ms", "prediction_error_deg", "registration_error_arcmin"})
+    CHECK(fig(with, name) == fig(without, name));
+  CHECK(with.at("figures").contains("controller_latency_ms"));
+}
+
+TEST_CASE("the rig films the controller only in a scenario that has one", "[controller][camera_rig]") {
+  Json s = base_scenario();
+  s["measurement"] = {{"fps", 240}, {"object", "controller"}};
+  CHECK_THROWS_WITH(run(s), Catch::Contains("/measurement/object") && Catch::Contains("/controller"));
+}
