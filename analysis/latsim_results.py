@@ -25,7 +25,21 @@ HEADLINE = [
     ("registration_error_p99_arcmin", "registration_error_arcmin.p99", "registration error p99 (arcmin)"),
     ("rotation_latency_mean_ms", "rotation_latency_ms.mean", "rotation latency mean (ms)"),
     ("rotation_latency_p99_ms", "rotation_latency_ms.p99", "rotation latency p99 (ms)"),
+    ("apparent_latency_onset_mean_ms", "apparent_latency_ms_onset.mean", "apparent latency, onset (ms)"),
+    ("apparent_latency_steady_mean_ms", "apparent_latency_ms_steady.mean", "apparent latency, steady (ms)"),
+    ("measured_latency_mean_ms", "measured_latency_ms.mean", "camera measurement (ms)"),
+    ("controller_latency_mean_ms", "controller_latency_ms.mean", "controller latency mean (ms)"),
+    ("controller_apparent_latency_onset_mean_ms", "controller_apparent_latency_ms_onset.mean",
+     "controller apparent latency, onset (ms)"),
+    ("controller_apparent_latency_steady_mean_ms", "controller_apparent_latency_ms_steady.mean",
+     "controller apparent latency, steady (ms)"),
 ]
+
+# Columns of what a viewer or a camera sees (/apparent_latency, /measurement,
+# /controller): a default table shows them only when some row has them.
+SEEN_COLUMNS = {"apparent_latency_onset_mean_ms", "apparent_latency_steady_mean_ms", "measured_latency_mean_ms",
+                "controller_latency_mean_ms", "controller_apparent_latency_onset_mean_ms",
+                "controller_apparent_latency_steady_mean_ms"}
 
 # Headline figures (a pipeline's first declared one) that have table columns:
 # figure name -> the (mean, p99) columns that stand for it.

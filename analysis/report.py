@@ -83,7 +83,7 @@ def leads_with_rotation(rows):
 def table_columns(coll):
     """The latency table's columns: the headline's first. Rotation latency (which equals
     motion-to-photon where nothing re-projects the orientation) only when a row's
-    pipeline leads with it."""
+    pipeline leads with it; what a viewer or a camera sees only when a row has it."""
     if CHOSEN:
         return chosen_columns()
     headline = lr.headline_figure(coll.rows)
@@ -94,7 +94,15 @@ def table_columns(coll):
         ordered = [h for h in lr.HEADLINE if h[0] in lead] + [h for h in lr.HEADLINE if h[0] not in lead]
     optional = {"rotation_latency_mean_ms", "rotation_latency_p99_ms"}
     rotation = leads_with_rotation(coll.rows)
-    return [h for h in ordered if h[0] not in optional or rotation]
+
+    def shown(h):
+        if h[0] in optional:
+            return rotation
+        if h[0] in lr.SEEN_COLUMNS:
+            return any(r.mean(h[1]) is not None for r in coll.rows)
+        return True
+
+    return [h for h in ordered if shown(h)]
 
 
 def default_figure(coll):

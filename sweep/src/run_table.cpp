@@ -69,6 +69,12 @@ std::vector<HeadlineColumn> headline_columns() {
       {"registration_error_p99_arcmin", "registration_error_arcmin.p99"},
       {"rotation_latency_mean_ms", "rotation_latency_ms.mean"},
       {"rotation_latency_p99_ms", "rotation_latency_ms.p99"},
+      {"apparent_latency_onset_mean_ms", "apparent_latency_ms_onset.mean"},
+      {"apparent_latency_steady_mean_ms", "apparent_latency_ms_steady.mean"},
+      {"measured_latency_mean_ms", "measured_latency_ms.mean"},
+      {"controller_latency_mean_ms", "controller_latency_ms.mean"},
+      {"controller_apparent_latency_onset_mean_ms", "controller_apparent_latency_ms_onset.mean"},
+      {"controller_apparent_latency_steady_mean_ms", "controller_apparent_latency_ms_steady.mean"},
       {"events", "events"},
       {"wall_s", "wall_s"},
   };

@@ -223,6 +223,23 @@ check(report.default_figure(coll)[0] == "mtp_mean_ms", "default --figure without
 with open(os.path.join(runs_dir, "report.md")) as f:
     header = [line for line in f.read().splitlines() if line.startswith("| name | pipeline |")][0]
     check("MTP mean (ms)" in header and "rotation latency" not in header, "no rotation column without the figure")
+    check("controller" not in header and "apparent" not in header, "no controller or apparent column without them")
+
+# A run that tracks a controller shows its columns; one that does not leaves them empty.
+ctl_dir = os.path.join(SCRATCH, "controller")
+for name, age in [("with_controller", 18.5), ("without", None)]:
+    s = summary("double_buffer", 30.0)
+    if age is not None:
+        s["figures"]["controller_latency_ms"] = {"count": 10, "mean": age}
+        s["figures"]["controller_apparent_latency_ms_steady"] = {"count": 10, "mean": -0.5}
+    write_run(os.path.join(ctl_dir, name), s, timeline=False)
+run_report(ctl_dir)
+with open(os.path.join(ctl_dir, "report.md")) as f:
+    md = f.read()
+check("controller latency mean (ms) | controller apparent latency, steady (ms) |" in md
+      and "onset" not in md and "camera measurement" not in md, "controller columns shown only where a row has them")
+check(any(line.startswith("| with_controller |") and "| 18.5 | -0.5 |" in line for line in md.splitlines()),
+      "controller columns of the run that has them")
 
 # The prediction table names each row: two points of one pipeline and predictor
 # (a multi-axis sweep gives many) are told apart by their point's name.
