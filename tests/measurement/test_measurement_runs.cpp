@@ -167,6 +167,16 @@ TEST_CASE("time warp re-projects the head and not the controller", "[controller]
   CHECK(figure(out, "rotation_latency_ms", "mean") < controller - 10.0);
   // Constant motion, no prediction: the controller is seen as old as it is.
   CHECK(figure(out, "controller_apparent_latency_ms_steady", "mean") == Approx(controller).margin(1.0));
+  // The file's own positional warp re-projects the position too (translation
+  // latency counts from the warp's pose), but not the controller: its
+  // latency is the rotation warp's, whose frames run on the same schedule.
+  const Json positional = latsim::run::run_scenario(
+      latsim::run::load_scenario(LATSIM_SOURCE_DIR "/scenarios/modern/timewarp.json",
+                                 {"/duration_s=3", "/motion={\"type\": \"still\"}",
+                                  "/controller={\"motion\": {\"type\": \"constant\", \"rate_deg_s\": 60}}"}),
+      latsim::run::RunOptions{});
+  CHECK(figure(positional, "controller_latency_ms", "mean") == Approx(controller).margin(1e-6));
+  CHECK(figure(positional, "translation_latency_ms", "mean") < controller - 10.0);
 }
 
 TEST_CASE("the camera rig films the controller", "[controller][camera_rig]") {
