@@ -12,10 +12,13 @@ void LatencyRecorder::measure_apparent_latency(const measurement::ApparentLatenc
                                                const tracker::MotionPhaseParams& phases) {
   apparent_ = params;
   apparent_phases_ = phases;
-  if (!centre_trace_) {
-    centre_trace_.emplace(measurement::ScreenPoint{0.5, 0.5}, timing_.params().width_px, timing_.lines_per_field());
-    ++shown_traces_;
-  }
+  keep_centre_trace();
+}
+
+void LatencyRecorder::keep_centre_trace() {
+  if (centre_trace_) return;
+  centre_trace_.emplace(measurement::ScreenPoint{0.5, 0.5}, timing_.params().width_px, timing_.lines_per_field());
+  ++shown_traces_;
 }
 
 void LatencyRecorder::film(const measurement::CameraRigParams& params, const des::PeriodicSchedule& camera) {
@@ -27,10 +30,7 @@ void LatencyRecorder::film(const measurement::CameraRigParams& params, const des
 
 void LatencyRecorder::track_controller(const tracker::MotionSource& motion) {
   controller_ = &motion;
-  if (!centre_trace_) {
-    centre_trace_.emplace(measurement::ScreenPoint{0.5, 0.5}, timing_.params().width_px, timing_.lines_per_field());
-    ++shown_traces_;
-  }
+  keep_centre_trace();
 }
 
 void LatencyRecorder::offer_shown_slow(const display::ScanoutSpan& span, const glm::dquat& orientation,
@@ -65,7 +65,7 @@ void LatencyRecorder::offer_shown_slow(const display::ScanoutSpan& span, const g
 namespace {
 
 // The controller's samples of a trace, as the shown orientation.
-std::vector<measurement::ShownSample> controller_samples(const std::vector<measurement::ShownSample>& shown) {
+std::vector<measurement::ShownSample> controller_samples(std::span<const measurement::ShownSample> shown) {
   std::vector<measurement::ShownSample> out;
   out.reserve(shown.size());
   for (const measurement::ShownSample& s : shown)
@@ -94,8 +94,9 @@ void LatencyRecorder::rig_figures(std::span<const measurement::ShownSample> show
                                   des::Time duration) {
   const glm::dquat reference = truth.pose_at(des::Time::zero()).orientation;
   const glm::dvec3 axis = rig_.axis;
-  const measurement::ObjectSignal object(
-      [&truth, reference, axis](des::Time t) { return measurement::twist_deg(reference, truth.pose_at(t).orientation, axis); });
+  const measurement::ObjectSignal object([&truth, reference, axis](des::Time t) {
+    return measurement::twist_deg(reference, truth.pose_at(t).orientation, axis);
+  });
   const measurement::DisplaySignal display(measurement::lit_angles(shown, reference, axis));
   const des::Time exposure = rig_.exposure ? *rig_.exposure : camera_.nominal_period();
   const measurement::RigResult r = measurement::film(object, display, camera_, exposure, duration, rig_);
@@ -113,22 +114,26 @@ void LatencyRecorder::rig_figures(std::span<const measurement::ShownSample> show
 }
 
 void LatencyRecorder::measurement_figures(des::Time duration) {
-  if ((centre_trace_ && centre_trace_->sorted().empty()) || (rig_trace_ && rig_trace_->sorted().empty()))
+  // Each trace sorted once (an empty span: no trace kept).
+  using Samples = std::span<const measurement::ShownSample>;
+  const Samples centre = centre_trace_ ? Samples(centre_trace_->sorted()) : Samples();
+  const Samples rig = rig_trace_ ? Samples(rig_trace_->sorted()) : Samples();
+  if ((centre_trace_ && centre.empty()) || (rig_trace_ && rig.empty()))
     warn("apparent latency, the camera rig and the controller's figures need whole images at the display point; "
          "this run lit none there (frameless rendering shows no images), so their figures are absent");
-  if (centre_trace_ && !centre_trace_->sorted().empty()) {
-    if (apparent_) apparent_figures("", centre_trace_->sorted(), motion_);
+  if (!centre.empty()) {
+    if (apparent_) apparent_figures("", centre, motion_);
     if (controller_ != nullptr) {
-      for (const measurement::ShownSample& s : centre_trace_->sorted())
+      for (const measurement::ShownSample& s : centre)
         if (s.controller_drawn) add("controller_latency_ms", (s.photon - s.controller_measured).to_ms());
-      if (apparent_) apparent_figures("controller_", controller_samples(centre_trace_->sorted()), *controller_);
+      if (apparent_) apparent_figures("controller_", controller_samples(centre), *controller_);
     }
   }
-  if (rig_trace_ && !rig_trace_->sorted().empty()) {
+  if (!rig.empty()) {
     if (rig_.object == measurement::CameraRigParams::Object::controller && controller_ != nullptr)
-      rig_figures(controller_samples(rig_trace_->sorted()), *controller_, duration);
+      rig_figures(controller_samples(rig), *controller_, duration);
     else
-      rig_figures(rig_trace_->sorted(), motion_, duration);
+      rig_figures(rig, motion_, duration);
   }
 }
 

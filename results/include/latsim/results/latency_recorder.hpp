@@ -248,6 +248,9 @@ class LatencyRecorder : public display::ScanoutListener {
   void offer_shown_slow(const display::ScanoutSpan& span, const glm::dquat& orientation, const ImageRecord& img);
   /// The figures of measure_apparent_latency(), film() and track_controller().
   void measurement_figures(des::Time duration);
+  /// The shown trace at the centre of eye 0's display, kept once for apparent
+  /// latency and the controller alike.
+  void keep_centre_trace();
   /// Apparent latency of `shown` against `truth`, as figures named `prefix` + apparent_latency_ms ….
   void apparent_figures(const std::string& prefix, std::span<const measurement::ShownSample> shown,
                         const tracker::MotionSource& truth);
