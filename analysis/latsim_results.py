@@ -11,42 +11,43 @@ import math
 import os
 from fractions import Fraction
 
-# Headline columns of the latency table: (column name, figure path, unit label).
-HEADLINE = [
-    ("mtp_mean_ms", "motion_to_photon_ms.mean", "MTP mean (ms)"),
-    ("mtp_p50_ms", "motion_to_photon_ms.p50", "MTP p50 (ms)"),
-    ("mtp_p99_ms", "motion_to_photon_ms.p99", "MTP p99 (ms)"),
-    ("mtp_max_ms", "motion_to_photon_ms.max", "MTP max (ms)"),
-    ("render_latency_ms", "render_latency_ms", "rendering latency (ms)"),
-    ("render_latency_fields", "render_latency_fields", "rendering latency (fields)"),
-    ("frame_rate_hz", "frame_rate_hz", "frame rate (Hz)"),
-    ("missed_refreshes", "missed_refreshes", "missed refreshes"),
-    ("registration_error_mean_arcmin", "registration_error_arcmin.mean", "registration error mean (arcmin)"),
-    ("registration_error_p99_arcmin", "registration_error_arcmin.p99", "registration error p99 (arcmin)"),
-    ("rotation_latency_mean_ms", "rotation_latency_ms.mean", "rotation latency mean (ms)"),
-    ("rotation_latency_p99_ms", "rotation_latency_ms.p99", "rotation latency p99 (ms)"),
-    ("apparent_latency_onset_mean_ms", "apparent_latency_ms_onset.mean", "apparent latency, onset (ms)"),
-    ("apparent_latency_steady_mean_ms", "apparent_latency_ms_steady.mean", "apparent latency, steady (ms)"),
-    ("measured_latency_mean_ms", "measured_latency_ms.mean", "camera measurement (ms)"),
-    ("controller_latency_mean_ms", "controller_latency_ms.mean", "controller latency mean (ms)"),
-    ("controller_apparent_latency_onset_mean_ms", "controller_apparent_latency_ms_onset.mean",
-     "controller apparent latency, onset (ms)"),
-    ("controller_apparent_latency_steady_mean_ms", "controller_apparent_latency_ms_steady.mean",
-     "controller apparent latency, steady (ms)"),
-]
+# Every figure is declared once, in the figure registry of the simulator
+# (results/figure_registry.json): its table columns and plot labels come from
+# there.
+REGISTRY_FILE = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "results", "figure_registry.json")
+
+
+def read_registry(path=REGISTRY_FILE):
+    """The figure registry: its figures, headlines, families and placeholders."""
+    with open(path, encoding="utf-8") as f:
+        return json.load(f)
+
+
+REGISTRY = read_registry()
+_COLUMNS = sorted((c for f in REGISTRY["figures"] for c in f.get("columns", [])), key=lambda c: c["order"])
+
+# Headline columns of the latency table: (column name, figure path, unit label), in the registry's order
+# (results.csv has them too, and the run's events and wall time).
+HEADLINE = [(c["name"], c["figure"], c["label"]) for c in _COLUMNS if c.get("report", True)]
 
 # Columns of what a viewer or a camera sees (/apparent_latency, /measurement,
 # /controller): a default table shows them only when some row has them.
-SEEN_COLUMNS = {"apparent_latency_onset_mean_ms", "apparent_latency_steady_mean_ms", "measured_latency_mean_ms",
-                "controller_latency_mean_ms", "controller_apparent_latency_onset_mean_ms",
-                "controller_apparent_latency_steady_mean_ms"}
+SEEN_COLUMNS = {c["name"] for c in _COLUMNS if c.get("shown") == "where present"}
+
+# Columns a default table shows only when some row's pipeline leads with their figure.
+LEADING_COLUMNS = {c["name"] for c in _COLUMNS if c.get("shown") == "when leading"}
 
 # Headline figures (a pipeline's first declared one) that have table columns:
 # figure name -> the (mean, p99) columns that stand for it.
-HEADLINE_COLUMNS = {
-    "motion_to_photon_ms": ("mtp_mean_ms", "mtp_p99_ms"),
-    "rotation_latency_ms": ("rotation_latency_mean_ms", "rotation_latency_p99_ms"),
-}
+HEADLINE_COLUMNS = {}
+for _f in REGISTRY["figures"]:
+    _by_stat = {c["figure"]: c["name"] for c in _f.get("columns", [])}
+    if _f["name"] + ".mean" in _by_stat and _f["name"] + ".p99" in _by_stat:
+        HEADLINE_COLUMNS[_f["name"]] = (_by_stat[_f["name"] + ".mean"], _by_stat[_f["name"] + ".p99"])
+
+# Distributions drawn as CDFs, histograms and against sweep axes, in the registry's order:
+# (figure, its "plot" entry).
+PLOTS = [(f["name"], f["plot"]) for f in REGISTRY["figures"] if "plot" in f]
 
 
 def headline_figure(rows):

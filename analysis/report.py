@@ -41,23 +41,17 @@ from progress import Progress  # noqa: E402
 # More curves than this on one CDF or histogram plot cannot be told apart.
 MAX_CURVES = 12
 # Figures plotted against each sweep axis: (figure path, axis label); the
-# rows' headline figure, when it is another, is drawn first (sweep_figures).
-SWEEP_FIGURES = [
-    ("motion_to_photon_ms.mean", "mean motion-to-photon (ms)"),
-    ("motion_to_photon_ms.p99", "p99 motion-to-photon (ms)"),
-    ("registration_error_arcmin.mean", "mean registration error (arcmin)"),
-]
-HEADLINE_SWEEP_FIGURES = {
-    "rotation_latency_ms": [("rotation_latency_ms.mean", "mean rotation latency (ms)"),
-                            ("rotation_latency_ms.p99", "p99 rotation latency (ms)")],
-}
+# rows' headline figure, when it is one drawn only when leading, is drawn
+# first (sweep_figures). From the registry's "plot" entries.
+SWEEP_FIGURES = [(f"{name}.{s['stat']}", s["axis"]) for name, plot in lr.PLOTS if plot.get("when") != "leading"
+                 for s in plot.get("sweep", [])]
+HEADLINE_SWEEP_FIGURES = {name: [(f"{name}.{s['stat']}", s["axis"]) for s in plot.get("sweep", [])]
+                          for name, plot in lr.PLOTS if plot.get("when") == "leading"}
 # Distributions drawn as CDF and histogram when rows have them: (figure, file
 # prefix, axis label, title).
-DISTRIBUTIONS = [
-    ("motion_to_photon_ms", "mtp", "motion-to-photon latency (ms)", "Motion-to-photon latency"),
-    ("rotation_latency_ms", "rotation", "rotation latency (ms)", "Rotation latency"),
-    ("registration_error_arcmin", "registration", "registration error (arcmin)", "Registration error"),
-]
+DISTRIBUTIONS = [(name, plot["file"], plot["axis"], plot["title"]) for name, plot in lr.PLOTS]
+# Distributions drawn only when some row's pipeline leads with them.
+LEADING_DISTRIBUTIONS = {name for name, plot in lr.PLOTS if plot.get("when") == "leading"}
 
 
 # Columns the user chose (--figures, or the sweep file's "figures"): HEADLINE column names.
@@ -75,9 +69,9 @@ def sweep_figures(coll):
     return HEADLINE_SWEEP_FIGURES.get(lr.headline_figure(coll.rows), []) + SWEEP_FIGURES
 
 
-def leads_with_rotation(rows):
-    """Whether some row's pipeline declares rotation latency as its headline (a time warp)."""
-    return any((r.first_summary().get("headline") or [None])[0] == "rotation_latency_ms" for r in rows if r.run_dirs)
+def leads_with(rows, figure):
+    """Whether some row's pipeline declares `figure` first in its headline (rotation latency behind a time warp)."""
+    return any((r.first_summary().get("headline") or [None])[0] == figure for r in rows if r.run_dirs)
 
 
 def table_columns(coll):
@@ -92,12 +86,10 @@ def table_columns(coll):
     else:
         lead = lr.HEADLINE_COLUMNS[headline]
         ordered = [h for h in lr.HEADLINE if h[0] in lead] + [h for h in lr.HEADLINE if h[0] not in lead]
-    optional = {"rotation_latency_mean_ms", "rotation_latency_p99_ms"}
-    rotation = leads_with_rotation(coll.rows)
 
     def shown(h):
-        if h[0] in optional:
-            return rotation
+        if h[0] in lr.LEADING_COLUMNS:
+            return leads_with(coll.rows, h[1].split(".")[0])
         if h[0] in lr.SEEN_COLUMNS:
             return any(r.mean(h[1]) is not None for r in coll.rows)
         return True
@@ -148,7 +140,7 @@ def plot_distributions(coll):
     a row has, from the histogram buckets of replication 0 of each row."""
     drawn = []
     for figure, prefix, xlabel, title in DISTRIBUTIONS:
-        if figure == "rotation_latency_ms" and not leads_with_rotation(coll.rows):
+        if figure in LEADING_DISTRIBUTIONS and not leads_with(coll.rows, figure):
             continue
         rows = curve_rows(coll, figure)
         if not rows:

@@ -42,5 +42,6 @@ int command_fidelity(int argc, char** argv);  ///< latsim fidelity SCENARIO --va
 int command_report(int argc, char** argv);    ///< latsim report DIR
 int command_compare(int argc, char** argv);   ///< latsim compare CAPTURE RUN_DIR [--out DIR]
 int command_schema(int argc, char** argv);    ///< latsim schema [--format json-schema|markdown]
+int command_figures(int argc, char** argv);   ///< latsim figures [--format markdown|json]
 
 }  // namespace latsim::app

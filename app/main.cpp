@@ -24,6 +24,7 @@ void print_usage(std::FILE* out) {
       "  report DIR              tables and plots from a run or a sweep\n"
       "  compare CAPTURE RUN     a PresentMon capture beside a run: statistics, KS distances, CDFs\n"
       "  schema                  every scenario key: JSON Schema or Markdown reference\n"
+      "  figures                 every figure a run may report: name, unit, meaning, headlines, columns\n"
       "\n"
       "exit codes: 0 success, 1 run failure, 2 bad input (nothing written)\n",
       out);
@@ -56,6 +57,7 @@ int main(int argc, char** argv) {
   if (cmd == "report") return command_report(argc - 1, argv + 1);
   if (cmd == "compare") return command_compare(argc - 1, argv + 1);
   if (cmd == "schema") return command_schema(argc - 1, argv + 1);
+  if (cmd == "figures") return command_figures(argc - 1, argv + 1);
   std::fprintf(stderr, "latsim: unknown command \"%s\" (try latsim --help)\n", cmd.c_str());
   return kExitBadInput;
 }

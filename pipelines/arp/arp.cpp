@@ -12,7 +12,7 @@
 #include "latsim/des/periodic.hpp"
 #include "latsim/des/process.hpp"
 #include "latsim/pipelines/pipeline.hpp"
-#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/figure_writer.hpp"
 #include "latsim/results/run_files.hpp"
 #include "latsim/results/timeline.hpp"
 
@@ -35,7 +35,7 @@ class ArpPipeline final : public Pipeline {
     ctx_ = &ctx;
     ctx.fetch_orientation_at_scanout();
     if (ctx.scene) object_count_ = renderer::make_scene(ctx.scene->geometry).object_count();
-    ctx.recorder.expects_images();
+    ctx.signals.shows_images();
     const des::KindId kind_render = ctx.sim.kind("arp.render");
     const des::Clock& loop = ctx.clock("loop", "/pipeline/loop_phase_ms", p_.render_period, p_.loop);
     ticks_.emplace(ctx.sim, loop.schedule(), kind_render,
@@ -47,11 +47,10 @@ class ArpPipeline final : public Pipeline {
 
   void finish(RunContext& ctx) override {
     const double duration_s = ctx.duration.to_seconds();
-    results::LatencyRecorder& r = ctx.recorder;
+    results::FigureWriter& r = ctx.figures;
     // Address recalculation reads the orientation per line at scanout: its
     // rotation latency is the point; positions come with the renders.
-    r.declare_headline({"rotation_latency_ms", "translation_latency_ms", "registration_error_arcmin",
-                        "motion_to_photon_ms"});
+    r.use_headline("address_recalculation");
     r.set("memories.0.update_rate_hz", static_cast<double>(renders_) / duration_s);
     r.set("memories.0.segments", object_count_);
     r.set("memories.0.renders", renders_);
@@ -81,7 +80,7 @@ class ArpPipeline final : public Pipeline {
     }
     const des::Time start = ctx_->sim.now();
     // The new display memory is meant to be in use by the next tick.
-    ctx_->recorder.image_due(slot_end);
+    ctx_->signals.image_due(slot_end);
     co_await ctx_->sim.delay(p_.render_time);
     ++renders_;
     // Display memories are double-buffered: the new cube is used from the next field on.

@@ -15,7 +15,7 @@
 #include "latsim/des/periodic.hpp"
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/renderer/scene_spec.hpp"
-#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/figure_writer.hpp"
 #include "latsim/scenario/section.hpp"
 #include "latsim/units/units.hpp"
 
@@ -63,7 +63,7 @@ class PriorityPipeline final : public Pipeline {
     system_.emplace(ctx.sim, ctx.sim.kind("arp.priority_render"), scene_, std::move(objects),
                     arp::PrioritySystemParams{p_.model, p_.cost, p_.renderers, p_.face_px});
     system_->memories().on_present([this](const std::vector<const arp::MemoryImage*>& batch) { present(batch); });
-    ctx.recorder.expects_images();
+    ctx.signals.shows_images();
     const des::Clock& loop = ctx.clock("loop", "/pipeline/loop_phase_ms", p_.model.base_period, p_.loop);
     ticks_.emplace(ctx.sim, loop.schedule(), ctx.sim.kind("arp.priority_tick"), [this](int64_t k) { tick(k); });
     ticks_->start(0, ctx.duration);
@@ -78,11 +78,10 @@ class PriorityPipeline final : public Pipeline {
 
   void finish(RunContext& ctx) override {
     const double duration_s = ctx.duration.to_seconds();
-    results::LatencyRecorder& r = ctx.recorder;
+    results::FigureWriter& r = ctx.figures;
     // Address recalculation reads the orientation per line at scanout: its
     // rotation latency is the point; positions come with the renders.
-    r.declare_headline({"rotation_latency_ms", "translation_latency_ms", "registration_error_arcmin",
-                        "motion_to_photon_ms"});
+    r.use_headline("address_recalculation");
     const arp::PriorityModel& model = system_->model();
     const arp::DisplayMemories& memories = system_->memories();
     int64_t rendered = 0;
@@ -138,9 +137,9 @@ class PriorityPipeline final : public Pipeline {
     samples_.add(k, pose);
     const arp::PriorityTick& t = system_->tick(k, now, pose.pose.position_m, velocity_m_s_, k);
     if (!t.updated_memories.empty()) {
-      ctx_->recorder.add("objects_rendered_per_tick", static_cast<double>(t.objects_rendered));
+      ctx_->figures.add("objects_rendered_per_tick", static_cast<double>(t.objects_rendered));
       // The updated display memories are meant to be in use by the next tick.
-      ctx_->recorder.image_due(ticks_->schedule().at(k + 1));
+      ctx_->signals.image_due(ticks_->schedule().at(k + 1));
     }
   }
 

@@ -19,7 +19,7 @@
 #include "latsim/des/periodic.hpp"
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/renderer/scene_spec.hpp"
-#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/figure_writer.hpp"
 #include "latsim/results/run_files.hpp"
 #include "latsim/scenario/section.hpp"
 #include "latsim/units/units.hpp"
@@ -84,7 +84,7 @@ class RegionPriorityPipeline final : public Pipeline {
       const bool segmented = name == "segmented" || (name != "unsegmented" && p_.segmentation);
       const bool warped = name == "warped" || (name != "unwarped" && p_.model.warping);
       if (find(segmented, warped)) {
-        ctx.recorder.warn("/pipeline/compare: \"" + name + "\" is already run; listed once or it is the run itself");
+        ctx.figures.warn("/pipeline/compare: \"" + name + "\" is already run; listed once or it is the run itself");
         continue;
       }
       runs_.push_back(make_run(segmented, warped, kind_variant));
@@ -98,7 +98,7 @@ class RegionPriorityPipeline final : public Pipeline {
 
     const auto& raster = ctx.display.timing().params();
     screen_.emplace(ctx.display_params.hfov_deg, raster.width_px, raster.height_px);
-    ctx.recorder.expects_images();
+    ctx.signals.shows_images();
     const des::Clock& loop = ctx.clock("loop", "/pipeline/loop_phase_ms", p_.period, p_.loop);
     ticks_.emplace(ctx.sim, loop.schedule(), ctx.sim.kind("arp.region_tick"), [this](int64_t k) { tick(k); });
     ticks_->start(0, ctx.duration);
@@ -109,11 +109,10 @@ class RegionPriorityPipeline final : public Pipeline {
   }
 
   void finish(RunContext& ctx) override {
-    results::LatencyRecorder& r = ctx.recorder;
+    results::FigureWriter& r = ctx.figures;
     // Address recalculation reads the orientation per line at scanout: its
     // rotation latency is the point; positions come with the renders.
-    r.declare_headline({"rotation_latency_ms", "translation_latency_ms", "registration_error_arcmin",
-                        "motion_to_photon_ms"});
+    r.use_headline("address_recalculation");
     const RegionRun& primary = *runs_[0];
     primary.report(r, "", ctx.duration);
     if (window_end_ > window_start_ && window_end_ >= ctx.duration) {
@@ -149,7 +148,7 @@ class RegionPriorityPipeline final : public Pipeline {
     window_end_ = des::Time::from_seconds(p_.position_window_s[1]);
     if (window_end_ > ctx.duration) {
       // A shortened run (a --set /duration_s) has no figures for that position rather than others.
-      ctx.recorder.warn("/pipeline/position_window_s ends after the run: no window figures");
+      ctx.figures.warn("/pipeline/position_window_s ends after the run: no window figures");
       window_start_ = window_end_ = des::Time::zero();
       return;
     }
@@ -193,7 +192,7 @@ class RegionPriorityPipeline final : public Pipeline {
       if (i == 0) updated = !t.updated.empty();
     }
     // The updated display memories are meant to be in use by the next tick.
-    if (updated) ctx_->recorder.image_due(ticks_->schedule().at(k + 1));
+    if (updated) ctx_->signals.image_due(ticks_->schedule().at(k + 1));
   }
 
   void present(const std::vector<const arp::MemoryImage*>& batch) {
@@ -210,7 +209,7 @@ class RegionPriorityPipeline final : public Pipeline {
     for (int m = 0; m < memories.memory_count(); ++m) {
       const arp::MemoryImage* img = memories.shown(m);
       if (!img) continue;
-      ctx_->recorder.add("translation_latency_memory" + std::to_string(m) + "_ms",
+      ctx_->figures.add("translation_latency_memory" + std::to_string(m) + "_ms",
                          (photon - samples_.at(img->sample).sample.measured_at).to_ms());
     }
     const auto newest = ctx_->host.newest_at(ctx_->sim.now());

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/figure_writer.hpp"
 
 namespace latsim::pipelines {
 
@@ -39,7 +39,7 @@ void RegionRun::measure(const glm::dquat& head, const glm::dvec3& eye_m, const a
   for (double s : scratch_) stretch_px_.add(s);
 }
 
-void RegionRun::report(results::LatencyRecorder& r, const std::string& prefix, des::Time duration) const {
+void RegionRun::report(results::FigureWriter& r, const std::string& prefix, des::Time duration) const {
   const double duration_s = duration.to_seconds();
   const arp::DisplayMemories& memories = system_.memories();
   const arp::RegionPriorityModel& model = system_.model();
@@ -95,7 +95,7 @@ RegionRun::WindowRow RegionRun::window_row(int memory, des::Time length) const {
   return row;
 }
 
-void RegionRun::report_window(results::LatencyRecorder& r, const std::string& prefix, des::Time length) const {
+void RegionRun::report_window(results::FigureWriter& r, const std::string& prefix, des::Time length) const {
   if (!has_window()) return;
   double segments = 0.0;
   for (int m = 0; m < system_.model().memory_count(); ++m) {

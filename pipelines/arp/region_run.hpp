@@ -13,7 +13,7 @@
 #include "latsim/stats/stats.hpp"
 
 namespace latsim::results {
-class LatencyRecorder;
+class FigureWriter;
 }
 
 namespace latsim::pipelines {
@@ -41,7 +41,7 @@ class RegionRun {
 
   /// Figures under `prefix` ("" or "variants.0."); says on the recorder's
   /// warnings when the renderers could not keep up.
-  void report(results::LatencyRecorder& r, const std::string& prefix, des::Time duration) const;
+  void report(results::FigureWriter& r, const std::string& prefix, des::Time duration) const;
 
   /// The render counts now, opening (then closing) the window that
   /// report_window() describes.
@@ -59,7 +59,7 @@ class RegionRun {
   };
   WindowRow window_row(int memory, des::Time length) const;
   /// Per memory, what finished between the two marks, under `prefix` + "window."
-  void report_window(results::LatencyRecorder& r, const std::string& prefix, des::Time length) const;
+  void report_window(results::FigureWriter& r, const std::string& prefix, des::Time length) const;
 
  private:
   arp::RegionPrioritySystem system_;

@@ -13,7 +13,7 @@
 #include "latsim/sections/render_cost.hpp"
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/results/frame_recorder.hpp"
-#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/figure_writer.hpp"
 #include "latsim/results/timeline.hpp"
 
 namespace latsim::pipelines {
@@ -36,7 +36,7 @@ class DoubleBufferPipeline final : public Pipeline {
     ctx_ = &ctx;
     stream_ = std::make_unique<des::RandomStream>(ctx.stream("renderer"));
     const des::KindId kind_frame = ctx.sim.kind("renderer.frame");
-    ctx.recorder.expects_images();
+    ctx.signals.shows_images();
     ctx.app_frames.declare({}, {.sync_interval = p_.vsync ? 1 : 0, .allows_tearing = !p_.vsync});
     if (p_.vsync) ctx.display.on_retrace([this](int64_t, des::Time now) { retrace(now); });
     ctx.sim.start(renderer(), kind_frame);
@@ -54,14 +54,13 @@ class DoubleBufferPipeline final : public Pipeline {
   }
 
   void finish(RunContext& ctx) override {
-    ctx.recorder.set("nominal_frame_time_ms", p_.cost.nominal_frame_time().to_ms());
-    ctx.recorder.declare_headline({"motion_to_photon_ms", "frame_rate_hz", "missed_refreshes",
-                                   "registration_error_arcmin", "smear_arcmin"});
-    if (p_.cost.trace()) ctx.recorder.add_capture(sections::trace_summary(p_.cost));
+    ctx.figures.set("nominal_frame_time_ms", p_.cost.nominal_frame_time().to_ms());
+    ctx.figures.use_headline("double_buffer");
+    if (p_.cost.trace()) ctx.figures.add_capture(sections::trace_summary(p_.cost));
     if (!p_.vsync || p_.queued_frames != 0 || p_.cost.varies()) return;
     const auto a = analytic_double_buffer(analytic_inputs(ctx));
     if (!a) return;
-    results::LatencyRecorder& r = ctx.recorder;
+    results::FigureWriter& r = ctx.figures;
     r.set("analytic.method", a->method);
     r.set("analytic.link", a->link);
     r.set("analytic.hyperperiod_s", a->hyperperiod_s);
@@ -119,7 +118,7 @@ class DoubleBufferPipeline final : public Pipeline {
       }
       const des::Time start = ctx_->sim.now();
       // With vsync every render aims at the next refresh.
-      if (p_.vsync) ctx_->recorder.image_due(start + des::Time::ps(1));
+      if (p_.vsync) ctx_->signals.image_due(start + des::Time::ps(1));
       // A measured cost with nothing left ends the run after this event.
       if (p_.cost.exhausted()) ctx_->end_run_early(sections::trace_ran_out(p_.cost, ctx_->sim.now()));
       const des::Time render_time = p_.cost.frame_time(*stream_);

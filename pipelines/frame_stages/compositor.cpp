@@ -4,7 +4,7 @@
 
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/results/frame_recorder.hpp"
-#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/figure_writer.hpp"
 
 namespace latsim::pipelines::frame_stages {
 
@@ -65,7 +65,7 @@ bool Compositor::on_begin(JobRecord& warp) {
   // every refresh: the recorder counts the refreshes that show none (a warp
   // that ends late, or a synchronous warp without a new frame).
   const WarpClock::Slot slot = clock_.slot_of(warp.deadline);
-  if (slot.strip == 0) ctx_.recorder.image_due(ctx_.display.timing().field_start(slot.field));
+  if (slot.strip == 0) ctx_.signals.image_due(ctx_.display.timing().field_start(slot.field));
   EyeImage& src = images_.at(*newest_);
   if (!spec_.asynchronous && src.refreshes > 0) {
     // Synchronous warp: no new image, no warp; the display shows the last one again.

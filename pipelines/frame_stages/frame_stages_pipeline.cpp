@@ -8,7 +8,7 @@
 #include "frame_stages/app_frame_times.hpp"
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/results/frame_recorder.hpp"
-#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/figure_writer.hpp"
 
 namespace latsim::pipelines::frame_stages {
 
@@ -70,7 +70,7 @@ FlowHooks FrameStagesPipeline::warp_hooks() {
   h.on_begin = [this](JobRecord& warp) { return compositor_->on_begin(warp); };
   h.on_complete = [this](JobRecord& warp) {
     compositor_->on_complete(warp);
-    if (compositor_pacer_) compositor_pacer_->on_complete(warp, ctx_->recorder);
+    if (compositor_pacer_) compositor_pacer_->on_complete(warp, ctx_->figures);
   };
   if (compositor_pacer_)
     h.wake_up = [this](JobRecord& warp, des::Time now) { return compositor_pacer_->wake_up(warp, now); };
@@ -79,7 +79,7 @@ FlowHooks FrameStagesPipeline::warp_hooks() {
 
 void FrameStagesPipeline::start(RunContext& ctx) {
   ctx_ = &ctx;
-  ctx.recorder.expects_images();
+  ctx.signals.shows_images();
   // With a compositor every frame waits for a warp at a retrace (or strip).
   const bool synced = spec_.vsync || spec_.warp;
   // Beam racing renders every strip itself: the application's frames are never shown.
@@ -93,7 +93,7 @@ void FrameStagesPipeline::start(RunContext& ctx) {
   if (spec_.warp) {
     image_buffers_ = std::make_unique<des::Resource>(ctx.sim, spec_.warp->eye_buffers, "eye_buffers");
     compositor_ = std::make_unique<Compositor>(ctx, *spec_.warp, *image_buffers_);
-    residuals_ = std::make_unique<ResidualErrors>(*compositor_, ctx.recorder, ctx.motion, ctx.ipd_m, ctx.stereo);
+    residuals_ = std::make_unique<ResidualErrors>(*compositor_, ctx.images, ctx.figures, ctx.motion, ctx.ipd_m, ctx.stereo);
     ctx.display.add_listener(residuals_.get());
   } else {
     image_buffers_ = std::make_unique<des::Resource>(ctx.sim, spec_.swap_chain_images, "swap_chain");
@@ -121,7 +121,7 @@ void FrameStagesPipeline::warn_about_overload(RunContext& ctx) const {
   // Behind a compositor the display shows a (re-warped) image at every
   // refresh, so missed_refreshes and frame_rate_hz look healthy while the
   // application falls behind: say so, in the application's own terms.
-  results::LatencyRecorder& r = ctx.recorder;
+  results::FigureWriter& r = ctx.figures;
   const double seconds = ctx.sim.now().to_seconds();
   const int64_t missed = ctx.app_frames.frames_missed();
   if (missed > 0 && seconds > 0) {
@@ -162,12 +162,12 @@ void FrameStagesPipeline::start_pacing(RunContext& ctx) {
   };
   std::function<void(bool)> set_half_rate;
   if (compositor_) set_half_rate = [this](bool on) { compositor_->set_half_rate(on); };
-  app_pacing_ = std::make_unique<AppPacing>(spec_.pacing, spec_.stages, std::move(clock), ctx.recorder, ctx.timeline,
+  app_pacing_ = std::make_unique<AppPacing>(spec_.pacing, spec_.stages, std::move(clock), ctx.figures, ctx.timeline,
                                             std::move(set_half_rate));
 }
 
 void FrameStagesPipeline::finish(RunContext& ctx) {
-  results::LatencyRecorder& r = ctx.recorder;
+  results::FigureWriter& r = ctx.figures;
   for (const StageFlow* flow : {app_.get(), warp_.get()})
     if (flow)
       for (const StageSpec& st : flow->stages())
@@ -180,11 +180,10 @@ void FrameStagesPipeline::finish(RunContext& ctx) {
   // motion-to-photon includes a whole frame the warp hides), and the
   // application's own pace, not the display's.
   if (swap_chain_) {
-    r.declare_headline({"motion_to_photon_ms", "application_frame_rate_hz", "frames_missed", "smear_arcmin"});
+    r.use_headline("frame_stages");
     return;
   }
-  r.declare_headline({"rotation_latency_ms", "application_frame_rate_hz", "frames_missed", "warps_late",
-                      "smear_arcmin", "motion_to_photon_ms"});
+  r.use_headline("time_warp");
   warn_about_overload(ctx);
   r.set("frames_rewarped", compositor_->frames_rewarped());
   r.set("frames_synthesised", compositor_->frames_synthesised());

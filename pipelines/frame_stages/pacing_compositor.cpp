@@ -26,14 +26,14 @@ des::Time CompositorPacer::wake_up(JobRecord& rec, des::Time now) {
   return d - budget_;
 }
 
-void CompositorPacer::on_complete(const JobRecord& rec, results::LatencyRecorder& recorder) {
+void CompositorPacer::on_complete(const JobRecord& rec, results::FigureWriter& figures) {
   if (rec.skipped) return;
   const des::Time done = rec.end.back();
   // Done after its deadline, the warp is shown at the next one.
   const des::Time shown = done <= rec.deadline ? rec.deadline : clock_.next_deadline(done);
   const des::Time margin = rec.deadline - done;
-  recorder.add("compositor_budget_ms", budget_.to_ms());
-  recorder.add("compositor_margin_ms", margin.to_ms());
+  figures.add("compositor_budget_ms", budget_.to_ms());
+  figures.add("compositor_margin_ms", margin.to_ms());
   if (shown - rec.deadline > p_.late_slop) {
     ++misses_;
     budget_ = std::min(max_, budget_ + miss_step_);
@@ -45,6 +45,6 @@ void CompositorPacer::on_complete(const JobRecord& rec, results::LatencyRecorder
   else budget_ = std::min(max_, budget_ + step_);
 }
 
-void CompositorPacer::finish(results::LatencyRecorder& r) const { r.set("compositor_misses", misses_); }
+void CompositorPacer::finish(results::FigureWriter& r) const { r.set("compositor_misses", misses_); }
 
 }  // namespace latsim::pipelines::frame_stages

@@ -8,7 +8,7 @@
 #include "frame_stages/pacing.hpp"
 #include "frame_stages/stage_flow.hpp"
 #include "frame_stages/warp_clock.hpp"
-#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/figure_writer.hpp"
 
 namespace latsim::pipelines::frame_stages {
 
@@ -25,8 +25,8 @@ class CompositorPacer {
   /// When warp `rec` may start; sets its deadline (one not aimed for before).
   des::Time wake_up(JobRecord& rec, des::Time now);
   /// Warp `rec` has ended: adjust the budget.
-  void on_complete(const JobRecord& rec, results::LatencyRecorder& recorder);
-  void finish(results::LatencyRecorder& r) const;
+  void on_complete(const JobRecord& rec, results::FigureWriter& figures);
+  void finish(results::FigureWriter& r) const;
 
  private:
   des::Time percent_of_period(double percent) const;

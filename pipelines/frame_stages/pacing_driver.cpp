@@ -20,12 +20,12 @@ PacingStages resolve_pacing_stages(const PacingStages& given, const std::vector<
 }
 
 AppPacing::AppPacing(const PacingSpec& spec, const std::vector<StageSpec>& stages, PacingClock clock,
-                     results::LatencyRecorder& recorder, results::Timeline* timeline,
+                     results::FigureWriter& figures, results::Timeline* timeline,
                      std::function<void(bool)> set_half_rate)
     : fallback_(spec.half_rate),
       pacer_(make_app_pacer(spec)),
       clock_(std::move(clock)),
-      recorder_(recorder),
+      figures_(figures),
       timeline_(timeline),
       set_half_rate_(std::move(set_half_rate)) {
   const PacingStages s = resolve_pacing_stages(spec.stages, stages);
@@ -67,8 +67,8 @@ void AppPacing::on_complete(const JobRecord& rec) {
   planned_half_.erase(rec.job);
   const FrameSample s = measure(rec, plan);
   pacer_->measured(s);
-  recorder_.add("wake_up_error_ms", (s.gpu_done - plan.predicted_done).to_ms());
-  recorder_.add("latch_slack_ms", (plan.latch - s.gpu_done).to_ms());
+  figures_.add("wake_up_error_ms", (s.gpu_done - plan.predicted_done).to_ms());
+  figures_.add("latch_slack_ms", (plan.latch - s.gpu_done).to_ms());
   if (s.missed) ++misses_;
   const des::Time comp = clock_.compositor_time();
   const des::Time shown = clock_.next_display(s.gpu_done + comp);
@@ -99,7 +99,7 @@ void AppPacing::fall_back(bool missed) {
   if (set_half_rate_) set_half_rate_(false);
 }
 
-void AppPacing::finish(results::LatencyRecorder& r) const {
+void AppPacing::finish(results::FigureWriter& r) const {
   r.set("frames_late_to_latch", misses_);
   if (!fallback_.enabled) return;
   r.set("half_rate_periods", half_rate_periods_);

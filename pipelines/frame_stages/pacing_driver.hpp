@@ -12,7 +12,7 @@
 
 #include "frame_stages/pacing.hpp"
 #include "frame_stages/stage_flow.hpp"
-#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/figure_writer.hpp"
 #include "latsim/results/timeline.hpp"
 
 namespace latsim::pipelines::frame_stages {
@@ -31,14 +31,14 @@ class AppPacing {
  public:
   /// `first_stages` are the application's stages, for the measured spans.
   AppPacing(const PacingSpec& spec, const std::vector<StageSpec>& stages, PacingClock clock,
-            results::LatencyRecorder& recorder, results::Timeline* timeline, std::function<void(bool)> set_half_rate);
+            results::FigureWriter& figures, results::Timeline* timeline, std::function<void(bool)> set_half_rate);
 
   /// When frame `rec` may wake (its first stage's start); sets its deadline to the latch.
   des::Time wake_up(JobRecord& rec, des::Time now);
   /// Frame `rec` is complete: measure it and tell the policy.
   void on_complete(const JobRecord& rec);
   /// Reports the counters.
-  void finish(results::LatencyRecorder& r) const;
+  void finish(results::FigureWriter& r) const;
 
   /// The frames of the run so far (the first kMaxLog only).
   const std::vector<PacedFrame>& log() const { return log_; }
@@ -54,7 +54,7 @@ class AppPacing {
   std::unique_ptr<AppPacer> pacer_;
   int draw_ = 0, gpu_ = 0;  ///< first stages of the draw and GPU spans
   PacingClock clock_;
-  results::LatencyRecorder& recorder_;
+  results::FigureWriter& figures_;
   results::Timeline* timeline_;
   std::function<void(bool)> set_half_rate_;
   std::map<int64_t, FramePlan> plans_;  ///< frames woken, not yet complete

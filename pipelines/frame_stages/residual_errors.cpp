@@ -4,24 +4,23 @@
 
 #include <glm/geometric.hpp>
 
+#include "latsim/units/units.hpp"
+
 namespace latsim::pipelines::frame_stages {
 
-namespace {
-constexpr double kDegPerRad = 57.295779513082320876798;
-}  // namespace
-
-ResidualErrors::ResidualErrors(const Compositor& compositor, results::LatencyRecorder& recorder,
+ResidualErrors::ResidualErrors(const Compositor& compositor, const results::ImageBook& images,
+                               results::FigureWriter& figures,
                                const tracker::MotionSource& motion, double ipd_m, bool stereo)
-    : compositor_(compositor), recorder_(recorder), motion_(motion), ipd_m_(ipd_m), stereo_(stereo) {}
+    : compositor_(compositor), images_(images), figures_(figures), motion_(motion), ipd_m_(ipd_m), stereo_(stereo) {}
 
 void ResidualErrors::on_scanout(const display::ScanoutSpan& span) {
   const int rewarps = compositor_.rewarps_of(span.image_id);
   if (rewarps < 0) return;
-  const results::ImageRecord* img = recorder_.images().find(span.image_id);
+  const results::ImageRecord* img = images_.find(span.image_id);
   if (img == nullptr) return;
   if (!orientation_) {
-    orientation_ = &recorder_.distribution_ref("residual_orientation_error_deg");
-    position_ = &recorder_.distribution_ref("residual_position_error_mm");
+    orientation_ = &figures_.distribution("residual_orientation_error_deg");
+    position_ = &figures_.distribution("residual_position_error_mm");
   }
   // One value per line, each against the truth at the photon time of the
   // line's first pixel: a span of several lines (field fidelity) has one
@@ -39,7 +38,7 @@ void ResidualErrors::on_scanout(const display::ScanoutSpan& span) {
   stats::TickStepper t(span.photons);
   for (uint64_t i = 0; i < samples; ++i, t.step()) {
     const tracker::Pose truth = tracker::eye_pose(motion_.pose_at(t.time()), span.eye, ipd_m_, stereo_);
-    const double deg = tracker::angle_between(img->eye_pose.orientation, truth.orientation) * kDegPerRad;
+    const double deg = tracker::angle_between(img->eye_pose.orientation, truth.orientation) * units::kDegPerRad;
     const double mm = glm::length(img->eye_pose.position_m - truth.position_m) * 1e3;
     orientation_->add(deg);
     position_->add(mm);

@@ -7,7 +7,8 @@
 
 #include "frame_stages/compositor.hpp"
 #include "latsim/display/display.hpp"
-#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/figure_writer.hpp"
+#include "latsim/results/image_book.hpp"
 #include "latsim/tracker/motion_source.hpp"
 
 namespace latsim::pipelines::frame_stages {
@@ -29,14 +30,15 @@ class ResidualErrors final : public display::ScanoutListener {
     int64_t samples() const { return static_cast<int64_t>(orientation_deg.count()); }
   };
 
-  ResidualErrors(const Compositor& compositor, results::LatencyRecorder& recorder, const tracker::MotionSource& motion,
-                 double ipd_m, bool stereo);
+  ResidualErrors(const Compositor& compositor, const results::ImageBook& images, results::FigureWriter& figures,
+                 const tracker::MotionSource& motion, double ipd_m, bool stereo);
   void on_scanout(const display::ScanoutSpan& span) override;
   const std::array<Bucket, kBuckets>& by_rewarps() const { return buckets_; }
 
  private:
   const Compositor& compositor_;
-  results::LatencyRecorder& recorder_;
+  const results::ImageBook& images_;
+  results::FigureWriter& figures_;
   const tracker::MotionSource& motion_;
   double ipd_m_;
   bool stereo_;

@@ -2,7 +2,7 @@
 
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/results/frame_recorder.hpp"
-#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/figure_writer.hpp"
 #include "latsim/results/timeline.hpp"
 
 namespace latsim::pipelines::frame_stages {
@@ -30,7 +30,7 @@ void SwapChain::on_retrace(int64_t) {
   if (!vsync_) return;
   // Once a frame is on screen the application means to show a new one at
   // every refresh: the recorder counts the refreshes that show none.
-  if (on_screen_) ctx_.recorder.image_due(ctx_.sim.now());
+  if (on_screen_) ctx_.signals.image_due(ctx_.sim.now());
   if (queue_.empty()) {
     if (on_screen_) ctx_.app_frames.missed();
     return;

@@ -4,16 +4,16 @@
 #include <algorithm>
 #include <string>
 
-#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/figure_writer.hpp"
 
 namespace latsim::pipelines::frameless {
 
 void FramelessPipeline::finish(RunContext& ctx) {
   if (ctx.frames) ctx.frames->set_pixel_source(nullptr);
   const double cycle_ms = static_cast<double>(pixels_) / static_cast<double>(budget_px_s_) * 1e3;
-  results::LatencyRecorder& r = ctx.recorder;
+  results::FigureWriter& r = ctx.figures;
   // No whole images: each pixel's own latency and age.
-  r.declare_headline({"motion_to_photon_ms", "pixel_age_ms", "registration_error_arcmin"});
+  r.use_headline("frameless");
   r.set("frameless.strategy", std::string(double_buffer_ ? "double_buffer" : "frameless"));
   r.set("frameless.pixels_per_s", budget_px_s_);
   r.set("frameless.pixels_per_cycle", int64_t{pixels_});
@@ -40,17 +40,17 @@ void FramelessPipeline::sample_line(const display::ScanoutSpan& span, int line, 
     // Lit as the display lights the pixel (the middle of its lit interval).
     const des::Time photon = ctx_->photon_time(span.field, line, *it);
     if (image != nullptr) {
-      ctx_->recorder.pixel_age(image->sample, photon);
+      ctx_->signals.pixel_shown(image->sample, photon);
       continue;
     }
     const PixelState& st = visible_[pixel_id(span.eye, *it, row)];
     if (st.slot < 0) continue;
     const auto [first_field, pose] = pixel_pose(st, *it, row);
-    ctx_->recorder.pixel_lit(pose.sample, photon);
+    ctx_->signals.pixel_lit(pose.sample, photon);
     registration(span.eye, *it, row, st, pose.pose, photon);
     // Each pixel's own prediction, judged once: where it was first shown.
     if (ctx_->host.predicts() && span.eye == 0 && span.field == first_field)
-      ctx_->recorder.add_prediction_error(pose, true, true);
+      ctx_->signals.pose_predicted(pose, true, true);
   }
 }
 
@@ -84,7 +84,7 @@ void FramelessPipeline::registration(int eye, int x, int row, const PixelState& 
   // depth, drawn along the pixel's own direction.
   const int sx = st.source % width_, sy = st.source / width_;
   const glm::dvec3 point = drawn.position_m + depth_m_ * (drawn.orientation * camera_->head_direction(sx + 0.5, sy + 0.5));
-  ctx_->recorder.registration(eye, point, camera_->head_direction(x + 0.5, row + 0.5), photon);
+  ctx_->signals.point_drawn(eye, point, camera_->head_direction(x + 0.5, row + 0.5), photon);
 }
 
 }  // namespace latsim::pipelines::frameless

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/figure_writer.hpp"
 #include "latsim/results/timeline.hpp"
 #include "latsim/units/units.hpp"
 
@@ -126,7 +126,7 @@ void FramelessPipeline::delivered(const tracker::TrackerSample& s, des::Time t) 
 
 void FramelessPipeline::begin_fallback(int64_t k) {
   ++fallbacks_;
-  ctx_->recorder.count("frameless_fallbacks");
+  ctx_->figures.count("frameless_fallbacks");
   if (fallback_ == Mode::LowResolution) {
     mode_ = Mode::LowResolution;
     block_cursor_ = 0;
@@ -159,18 +159,18 @@ void FramelessPipeline::prune_samples() {
 void FramelessPipeline::retrace(int64_t, des::Time now) {
   if (double_buffer_) {
     const int64_t front = ctx_->display.front(0);
-    ctx_->recorder.add("updated_fraction", front != last_front_ ? 1.0 : 0.0);
+    ctx_->figures.add("updated_fraction", front != last_front_ ? 1.0 : 0.0);
     last_front_ = front;
     return;
   }
   advance_to(now);
   // A double-buffering fallback shows nothing new until its image is complete.
   if (mode_ == Mode::DoubleBufferFallback) {
-    ctx_->recorder.add("updated_fraction", 0.0);
+    ctx_->figures.add("updated_fraction", 0.0);
     return;
   }
   for (int32_t p : dirty_) visible_[static_cast<size_t>(p)] = computed_[static_cast<size_t>(p)];
-  ctx_->recorder.add("updated_fraction", static_cast<double>(dirty_.size()) / static_cast<double>(pixels_));
+  ctx_->figures.add("updated_fraction", static_cast<double>(dirty_.size()) / static_cast<double>(pixels_));
   dirty_.clear();
   ++generation_;
 }

@@ -3,7 +3,7 @@
 
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/pxpl5/rc_engine.hpp"
-#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/figure_writer.hpp"
 #include "pxpl5/event_rates.hpp"
 #include "pxpl5/wiring.hpp"
 
@@ -35,8 +35,7 @@ class Pxpl5RcPipeline final : public Pipeline {
 
   void finish(RunContext& ctx) override {
     wiring_->report(engine_->utilisation(ctx.duration), engine_->frames_completed());
-    ctx.recorder.declare_headline({"motion_to_photon_ms", "render_latency_fields", "frame_rate_hz",
-                                   "missed_refreshes"});
+    ctx.figures.use_headline("pxpl5_rc");
   }
 
   std::vector<EventRate> event_rates(const sections::SharedParams& shared) const override {

@@ -5,7 +5,7 @@
 
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/pxpl5/slats_engine.hpp"
-#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/figure_writer.hpp"
 #include "pxpl5/event_rates.hpp"
 #include "pxpl5/wiring.hpp"
 
@@ -40,7 +40,7 @@ class Pxpl5SlatsPipeline final : public Pipeline {
     // Once the processor holds viewing transforms, every field is due a new
     // image by the next retrace (the engine starts it at this one).
     ctx.display.on_retrace([this, &ctx](int64_t, des::Time now) {
-      if (wiring_->transforms_sent()) ctx.recorder.image_due(now + des::Time::ps(1));
+      if (wiring_->transforms_sent()) ctx.signals.image_due(now + des::Time::ps(1));
     });
   }
 
@@ -51,8 +51,8 @@ class Pxpl5SlatsPipeline final : public Pipeline {
   void finish(RunContext& ctx) override {
     const pxpl5::FieldCounts& c = engine_->counts();
     wiring_->report(engine_->utilisation(ctx.duration), c.complete);
-    results::LatencyRecorder& r = ctx.recorder;
-    r.declare_headline({"motion_to_photon_ms", "render_latency_fields", "missed_fields", "missed_field_fraction"});
+    results::FigureWriter& r = ctx.figures;
+    r.use_headline("pxpl5_slats");
     r.set("missed_fields", c.missed);
     r.set("missed_field_fraction", c.missed_fraction());
     r.set("torn_fields", c.torn);

@@ -7,7 +7,7 @@
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/pxpl5/view_workload.hpp"
 #include "latsim/renderer/scene_spec.hpp"
-#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/figure_writer.hpp"
 #include "latsim/results/timeline.hpp"
 
 namespace latsim::pipelines {
@@ -22,7 +22,7 @@ constexpr std::size_t kImagesKept = 256;
 
 }  // namespace
 
-Pxpl5Wiring::Pxpl5Wiring(RunContext& ctx) : ctx_(&ctx) { ctx.recorder.expects_images(); }
+Pxpl5Wiring::Pxpl5Wiring(RunContext& ctx) : ctx_(&ctx) { ctx.signals.shows_images(); }
 
 pxpl5::FieldTiming Pxpl5Wiring::field_timing() const {
   const display::RasterTiming& t = ctx_->display.timing();
@@ -161,7 +161,7 @@ void Pxpl5Wiring::region_written(const pxpl5::RegionWrite& w) {
 }
 
 void Pxpl5Wiring::report(const pxpl5::Utilisation& u, int64_t frames_completed) const {
-  results::LatencyRecorder& r = ctx_->recorder;
+  results::FigureWriter& r = ctx_->figures;
   r.object("stage_ms");
   for (const auto& [name, dist] : samples_by_name_) r.publish(name, dist);
   r.set("utilisation.gp", u.gp);

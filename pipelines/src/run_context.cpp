@@ -1,7 +1,6 @@
 #include "latsim/pipelines/run_context.hpp"
 
 #include "latsim/des/run_clocks.hpp"
-#include "latsim/results/latency_recorder.hpp"
 #include "latsim/results/timeline.hpp"
 
 namespace latsim::pipelines {

@@ -11,7 +11,6 @@
 #include "latsim/renderer/camera.hpp"
 #include "latsim/renderer/image_ops.hpp"
 #include "latsim/renderer/ray_caster.hpp"
-#include "latsim/results/latency_recorder.hpp"
 #include "latsim/results/run_files.hpp"
 #include "warped_spans.hpp"
 
@@ -129,7 +128,7 @@ struct FrameCapture::Impl {
       return;
     }
     ShownSpan s{span.x_begin, span.x_end, false, {}, {}, ImageRecord::Warp::none, {}, false, 0, {}};
-    if (const ImageRecord* img = in.recorder.images().find(span.image_id)) {
+    if (const ImageRecord* img = in.images.find(span.image_id)) {
       s.lit = true;
       s.eye_pose = img->eye_pose;
       s.measured_at = img->sample.measured_at;
@@ -300,7 +299,7 @@ struct FrameCapture::Impl {
   void write_capture(const Collection& c) {
     const double error = renderer::image_error(displayed.colour, truth.colour);
     error_sum += error;
-    LatencyRecorder& r = in.recorder;
+    FigureWriter& r = in.figures;
     const std::string at = "frames." + std::to_string(entries++) + ".";
     r.list(at + "files");
     if (in.files.enabled()) {
@@ -370,8 +369,8 @@ void FrameCapture::finish() {
     m.current.reset();
     m.process(done);
   }
-  m.in.recorder.list("frames");
-  m.in.recorder.set("frames_mean_image_error", m.entries == 0 ? 0.0 : m.error_sum / static_cast<double>(m.entries));
+  m.in.figures.list("frames");
+  m.in.figures.set("frames_mean_image_error", m.entries == 0 ? 0.0 : m.error_sum / static_cast<double>(m.entries));
 }
 
 }  // namespace latsim::results

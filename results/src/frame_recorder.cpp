@@ -1,6 +1,6 @@
 #include "latsim/results/frame_recorder.hpp"
 
-#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/figure_writer.hpp"
 #include "latsim/results/presentmon_log.hpp"
 
 namespace latsim::results {
@@ -24,7 +24,7 @@ void FrameRecorder::log_presentmon(RunFiles& files, std::string application) {
   log_ = std::make_unique<PresentMonLog>(std::move(application), presents_);
 }
 
-void FrameRecorder::finish(LatencyRecorder& figures, des::Time duration) const {
+void FrameRecorder::finish(FigureWriter figures, des::Time duration) const {
   if (!declared_) return;
   figures.set("frames_rendered", rendered_);
   if (figures_.rate) figures.set("application_frame_rate_hz", static_cast<double>(rendered_) / duration.to_seconds());

@@ -14,8 +14,8 @@ double head_angular_speed_rad_s(const tracker::MotionSource& motion, des::Time t
   return tracker::angle_between(motion.pose_at(a).orientation, motion.pose_at(b).orientation) / (b - a).to_seconds();
 }
 
-SmearRecorder::SmearRecorder(LatencyRecorder& recorder, const tracker::MotionSource& motion)
-    : smear_(recorder.distribution_ref("smear_arcmin")), motion_(motion), still_(motion.is_still()) {}
+SmearRecorder::SmearRecorder(FigureWriter figures, const tracker::MotionSource& motion)
+    : smear_(figures.distribution("smear_arcmin")), motion_(motion), still_(motion.is_still()) {}
 
 void SmearRecorder::on_scanout(const display::ScanoutSpan& span) {
   // One value per sample of the span, each at its own photon time.

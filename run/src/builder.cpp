@@ -227,24 +227,25 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
                                                      p.display.pixel_stride, p.display.pixel_events);
   });
   built_from("/probes", "registration probes", [&] {
-    run.recorder = std::make_unique<LatencyRecorder>(run.sim, *run.motion, *run.host, run.images, run.display->timing(),
-                                                     probes_of(run), p.host.ipd_m, stereo, p.output.keep_samples);
+    run.recording = std::make_unique<RunRecording>(run.sim, *run.motion, *run.host, run.images, run.display->timing(),
+                                                   probes_of(run), p.host.ipd_m, stereo, p.output.keep_samples);
   });
-  for (const auto& w : run.input_warnings) run.recorder->warn(w);
-  if (auto luck = phase_luck(run)) run.recorder->warn(*luck);
-  run.recorder->enable_prediction(p.host.prediction.has_value());
-  if (p.motion_phases) run.recorder->split_by_phase(*p.motion_phases);
+  RunRecording& rec = *run.recording;
+  for (const auto& w : run.input_warnings) rec.book().warn(w);
+  if (auto luck = phase_luck(run)) rec.book().warn(*luck);
+  rec.prediction().enable(p.host.prediction.has_value());
+  if (p.motion_phases) rec.split_by_phase(*p.motion_phases);
   if (p.apparent_latency)
-    run.recorder->measure_apparent_latency(*p.apparent_latency, p.motion_phases.value_or(tracker::MotionPhaseParams{}));
-  if (p.measurement) run.recorder->film(*p.measurement, run.clocks->find("camera")->schedule());
-  if (run.controller_motion) run.recorder->track_controller(*run.controller_motion);
-  run.recorder->enable_ledger(options.write_ledger);
-  run.recorder->enable_sample_log(options.write_samples);
-  run.display->add_listener(run.recorder.get());
+    rec.seen().measure_apparent_latency(*p.apparent_latency, p.motion_phases.value_or(tracker::MotionPhaseParams{}));
+  if (p.measurement) rec.seen().film(*p.measurement, run.clocks->find("camera")->schedule());
+  if (run.controller_motion) rec.seen().track_controller(*run.controller_motion);
+  rec.keep_ledger(options.write_ledger);
+  rec.keep_sample_log(options.write_samples);
+  run.display->add_listener(&rec.scanout());
   if (p.display.persistence) {
     run.display->set_persistence(*p.display.persistence);
-    run.recorder->set_persistence(&run.display->persistence());
-    run.smear = std::make_unique<SmearRecorder>(*run.recorder, *run.motion);
+    rec.registration().set_persistence(&run.display->persistence());
+    run.smear = std::make_unique<SmearRecorder>(rec.book().writer("smear"), *run.motion);
     run.display->add_listener(run.smear.get());
   }
   run.files = RunFiles(options.out_dir, options.staging_dir);
@@ -253,14 +254,13 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
     built_from("/frames", "frame capture", [&] {
       run.frames = std::make_unique<FrameCapture>(
           *p.frames, p.scene ? p.scene->geometry : renderer::SceneSpec{},
-          FrameCaptureInputs{*run.recorder, *run.host, *run.motion, run.display->timing(), p.display.hfov_deg,
-                             p.host.ipd_m, stereo, run.files,
+          FrameCaptureInputs{run.images, rec.book().writer("frame capture"), *run.host, *run.motion,
+                             run.display->timing(), p.display.hfov_deg, p.host.ipd_m, stereo, run.files,
                              p.display.persistence ? &run.display->persistence() : nullptr});
     });
     run.display->add_listener(run.frames.get());
   }
-  LatencyRecorder* rec = run.recorder.get();
-  rec->set_timeline(timeline);
+  rec.images().set_timeline(timeline);
   if (timeline) {
     // The display's own track: each field's vertical blank and active
     // scanout, from the retraces the display really makes (phase included).
@@ -271,16 +271,18 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
       timeline->add("SCANOUT", field, -1, "display", scanout, timing->field_start(field + 1));
     });
   }
-  rec->set_frame_recorder(&run.app_frames);
+  rec.scanout().set_frame_recorder(&run.app_frames);
   const bool line = run.transport->occupancy() > des::Time::zero();
-  run.host->on_carried([rec, line](const tracker::TrackerSample& s, const tracker::Carriage& c) {
-    rec->record_carried(s, c, line);
+  results::LinkFigures* link = &rec.link();
+  run.host->on_carried([link, line](const tracker::TrackerSample& s, const tracker::Carriage& c) {
+    link->record_carried(s, c, line);
   });
 
   built_from("/pipeline", "pipeline", [&] {
     run.ctx = std::unique_ptr<RunContext>(new RunContext{
         run.sim, run.seed, options.replication, run.duration, *run.motion, p.tracker, *run.transport, *run.host,
-        *run.display, p.display, p.scene ? &*p.scene : nullptr, run.images, *run.recorder, run.app_frames, run.files, *run.clocks, p.host.ipd_m,
+        *run.display, p.display, p.scene ? &*p.scene : nullptr, run.images, rec.pipeline_figures(), rec.signals(),
+        run.app_frames, run.files, *run.clocks, p.host.ipd_m,
         stereo, timeline, run.frames.get()});
     run.pipeline->start(*run.ctx);
   });

@@ -34,7 +34,7 @@ std::string format_seconds(des::Time t) {
 // Legal input whose run says little or nothing: the warnings channel tells
 // (stderr and summary.json "warnings") instead of an exit 0 in silence.
 void warn_about_outcome(Run& run, const Json& figures) {
-  LatencyRecorder& rec = *run.recorder;
+  FigureBook& rec = run.recording->book();
   const std::string span = format_seconds(run.duration);
   // (A run that shows no image at all is warned of by the recorder.)
   const Json* mtp = figures.contains("motion_to_photon_ms") ? &figures["motion_to_photon_ms"] : nullptr;
@@ -94,12 +94,12 @@ RunTotals totals_of(const Run& run) {
 }
 
 Json figures_of(Run& run) {
-  LatencyRecorder& rec = *run.recorder;
+  RunRecording& rec = *run.recording;
   run.pipeline->finish(*run.ctx);
-  run.app_frames.finish(rec, run.duration);
+  run.app_frames.finish(rec.book().writer("application frames"), run.duration);
   if (run.frames) run.frames->finish();
   rec.finish(totals_of(run));
-  Json figures = rec.figures();
+  Json figures = rec.book().figures();
   warn_about_outcome(run, figures);
   return figures;
 }
@@ -119,8 +119,8 @@ Json write_results(Run& run, const scenario::ScenarioDocument& doc, const RunOpt
                      {"replication", options.replication},
                      {"scenario", resolved_with_defaults(run, doc)},
                      {"figures", figures},
-                     {"headline", run.recorder->headline()},
-                     {"warnings", run.recorder->warnings()},
+                     {"headline", run.recording->book().headline()},
+                     {"warnings", run.recording->book().warnings()},
                      {"events", run.sim.events_executed()},
                      {"events_per_model", events_per_model},
                      {"fingerprint", hex64(run.sim.fingerprint())}};
@@ -128,7 +128,7 @@ Json write_results(Run& run, const scenario::ScenarioDocument& doc, const RunOpt
   summary["command_line"] = options.command_line;
   summary["exit_status"] = 0;
   summary["models"] = models;
-  if (!run.recorder->captures().empty()) summary["captures"] = run.recorder->captures();
+  if (!run.recording->book().captures().empty()) summary["captures"] = run.recording->book().captures();
   summary["events_estimate"] = run.estimate.to_json();
   summary["wall_s"] = wall_s;
   if (run.timeline.size() > 0) summary["timeline_entries"] = run.timeline.size();
@@ -137,8 +137,8 @@ Json write_results(Run& run, const scenario::ScenarioDocument& doc, const RunOpt
   if (files.enabled()) {
     run.timeline.finish(files);
     run.app_frames.finish_log(files);
-    if (options.write_ledger) run.recorder->ledger().write(files);
-    if (options.write_samples) run.recorder->sample_log().write(files);
+    if (options.write_ledger) run.recording->ledger().write(files);
+    if (options.write_samples) run.recording->sample_log().write(files);
     files.write_text("figures.json", dump(deterministic, options.compact_json));
   }
   // The whole command and the process's peak, taken after the analytic

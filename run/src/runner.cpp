@@ -47,17 +47,17 @@ void simulate(Run& run) {
     // The figures cover the time simulated; the warning says why it is short.
     run.duration = run.sim.now();
     run.ctx->duration = run.duration;
-    run.recorder->warn(*run.ctx->ended_early);
+    run.recording->book().warn(*run.ctx->ended_early);
   }
 }
 
 // Copies what the run recorded into `tables`.
 void keep_tables(const Run& run, RunTables& tables) {
-  const results::Ledger& ledger = run.recorder->ledger();
+  const results::Ledger& ledger = run.recording->ledger();
   tables.frames = ledger.frames();
   tables.fields = ledger.fields();
   tables.tracker = ledger.tracker();
-  tables.samples = run.recorder->sample_log().samples();
+  tables.samples = run.recording->sample_log().samples();
   // The stage intervals (the JSON's counters and flows are not timeline.csv's rows).
   for (const results::Timeline::Entry& e : run.timeline.entries())
     if (e.kind == results::Timeline::Kind::interval) tables.timeline.push_back(e);
@@ -96,7 +96,7 @@ std::vector<std::string> validate_scenario(const scenario::ScenarioDocument& doc
   RunOptions options;
   options.max_events = max_events;
   build(run, doc, options);
-  return run.recorder->warnings();
+  return run.recording->book().warnings();
 }
 
 double estimate_scenario_events(const scenario::ScenarioDocument& doc, double max_events) {

@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 
+#include "latsim/results/figure_registry.hpp"
 #include "latsim/sweep/plan.hpp"
 
 namespace latsim::sweep {
@@ -56,28 +57,10 @@ void flatten(const Json& node, const std::string& name, FlatFigures& out) {
 }  // namespace
 
 std::vector<HeadlineColumn> headline_columns() {
-  return {
-      {"mtp_mean_ms", "motion_to_photon_ms.mean"},
-      {"mtp_p50_ms", "motion_to_photon_ms.p50"},
-      {"mtp_p99_ms", "motion_to_photon_ms.p99"},
-      {"mtp_max_ms", "motion_to_photon_ms.max"},
-      {"render_latency_ms", "render_latency_ms"},
-      {"render_latency_fields", "render_latency_fields"},
-      {"frame_rate_hz", "frame_rate_hz"},
-      {"missed_refreshes", "missed_refreshes"},
-      {"registration_error_mean_arcmin", "registration_error_arcmin.mean"},
-      {"registration_error_p99_arcmin", "registration_error_arcmin.p99"},
-      {"rotation_latency_mean_ms", "rotation_latency_ms.mean"},
-      {"rotation_latency_p99_ms", "rotation_latency_ms.p99"},
-      {"apparent_latency_onset_mean_ms", "apparent_latency_ms_onset.mean"},
-      {"apparent_latency_steady_mean_ms", "apparent_latency_ms_steady.mean"},
-      {"measured_latency_mean_ms", "measured_latency_ms.mean"},
-      {"controller_latency_mean_ms", "controller_latency_ms.mean"},
-      {"controller_apparent_latency_onset_mean_ms", "controller_apparent_latency_ms_onset.mean"},
-      {"controller_apparent_latency_steady_mean_ms", "controller_apparent_latency_ms_steady.mean"},
-      {"events", "events"},
-      {"wall_s", "wall_s"},
-  };
+  // The registry's columns, in its order (results/figure_registry.json).
+  std::vector<HeadlineColumn> columns;
+  for (const results::FigureColumn& c : results::FigureRegistry::builtin().columns()) columns.push_back({c.name, c.figure});
+  return columns;
 }
 
 std::optional<double> find_figure(const Json& summary, const std::string& path) {

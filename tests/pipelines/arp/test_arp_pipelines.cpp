@@ -16,7 +16,7 @@
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/results/frame_recorder.hpp"
 #include "latsim/results/image_book.hpp"
-#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/run_recording.hpp"
 #include "latsim/results/run_files.hpp"
 #include "latsim/run/builtin_pipelines.hpp"
 #include "latsim/run/tracker_host.hpp"
@@ -39,8 +39,8 @@ struct Harness {
         tracker(tracking, *motion, des::RandomStream(1, "tracker", 0)),
         host(sim, tracker, link),
         display(sim, display::RasterTiming(display::RasterParams{}), 1, display::ScanoutFidelity::Line),
-        recorder(sim, *motion, host, images, display.timing(), results::ProbeSet{}, 0.064, false, false) {
-    display.add_listener(&recorder);
+        recording(sim, *motion, host, images, display.timing(), results::ProbeSet{}, 0.064, false, false) {
+    display.add_listener(&recording.scanout());
   }
 
   /// Builds the scenario's /pipeline through its registered declaration and runs it.
@@ -57,14 +57,14 @@ struct Harness {
     const auto pipeline = run::builtin_pipelines().find(type)->bind(section, shared)();
     pipelines::RunContext ctx{sim,     1,        0,       duration, *motion,         tracker_params,
                               link,    host,     display, shared.display, shared.scene ? &*shared.scene : nullptr,
-                              images,  recorder, app_frames, files,   clocks, 0.064,   false,    nullptr,         nullptr};
+                              images,  recording.pipeline_figures(), recording.signals(), app_frames, files, clocks, 0.064,   false,    nullptr,         nullptr};
     pipeline->start(ctx);
     host.start(duration);
     display.start(duration);
     sim.run_until(duration);
     pipeline->finish(ctx);
-    app_frames.finish(recorder, duration);
-    return recorder.figures();
+    app_frames.finish(recording.book().writer("application frames"), duration);
+    return recording.book().figures();
   }
 
   scenario::ScenarioDocument doc;
@@ -78,7 +78,7 @@ struct Harness {
   run::TrackerHost host;
   display::Display display;
   results::ImageBook images;
-  results::LatencyRecorder recorder;
+  results::RunRecording recording;
   results::FrameRecorder app_frames;
 };
 
@@ -105,8 +105,8 @@ Latencies run_arp(double rate_hz, std::unique_ptr<tracker::MotionSource> motion)
   Harness h({{"pipeline", {{"type", "arp"}, {"render_rate_hz", rate_hz}, {"render_time_ms", 4.0}, {"loop_phase_ms", 0.0}}}},
             std::move(motion));
   h.run(des::Time::s(2));
-  return {h.recorder.distribution("rotation_latency_ms")->summary(),
-          h.recorder.distribution("translation_latency_ms")->summary()};
+  return {h.recording.book().distribution("rotation_latency_ms")->summary(),
+          h.recording.book().distribution("translation_latency_ms")->summary()};
 }
 
 }  // namespace
@@ -222,7 +222,7 @@ TEST_CASE("gallery with doubled render costs queues and updates less often inste
   for (int m = 2; m < 4; ++m) {
     CHECK(g["memories"][m]["update_rate_hz"].get<double>() < f["memories"][m]["update_rate_hz"].get<double>());
   }
-  CHECK(!over.recorder.warnings().empty());
+  CHECK(!over.recording.book().warnings().empty());
 }
 
 TEST_CASE("priority pipeline with a still user renders once") {

@@ -12,7 +12,7 @@
 #include "latsim/display/params.hpp"
 #include "latsim/results/frame_recorder.hpp"
 #include "latsim/results/image_book.hpp"
-#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/run_recording.hpp"
 #include "latsim/results/run_files.hpp"
 #include "latsim/results/smear_recorder.hpp"
 #include "latsim/run/tracker_host.hpp"
@@ -78,7 +78,7 @@ struct Rig {
   display::DisplayParams display_params;
   display::Display display;
   results::ImageBook images;
-  results::LatencyRecorder recorder;
+  results::RunRecording recording;
   results::FrameRecorder app_frames;
   results::RunFiles files;
   des::RunClocks clocks{1, 0};
@@ -112,17 +112,17 @@ struct Rig {
         host(sim, tracker, link),
         display_params(display_of(o)),
         display(sim, display::RasterTiming(display_params.raster), 1, display_params.fidelity),
-        recorder(sim, *motion, host, images, display.timing(), results::ProbeSet{}, 0.064, false, false),
+        recording(sim, *motion, host, images, display.timing(), results::ProbeSet{}, 0.064, false, false),
         pipeline(fs::FrameStagesPipeline::Params{std::move(spec)}) {
-    display.add_listener(&recorder);
+    display.add_listener(&recording.scanout());
     if (o.persistence) {
       display.set_persistence(*o.persistence);
-      recorder.set_persistence(&display.persistence());
-      smear = std::make_unique<results::SmearRecorder>(recorder, *motion);
+      recording.registration().set_persistence(&display.persistence());
+      smear = std::make_unique<results::SmearRecorder>(recording.book().writer("smear"), *motion);
       display.add_listener(smear.get());
     }
     ctx.reset(new pipelines::RunContext{sim, 1, 0, des::Time::zero(), *motion, tracker_params, link, host, display,
-                                        display_params, nullptr, images, recorder, app_frames, files, clocks, 0.064, false, nullptr,
+                                        display_params, nullptr, images, recording.pipeline_figures(), recording.signals(), app_frames, files, clocks, 0.064, false, nullptr,
                                         nullptr});
   }
 
@@ -135,13 +135,13 @@ struct Rig {
     pipeline.start(*ctx);
     sim.run_until(end);
     pipeline.finish(*ctx);
-    app_frames.finish(recorder, end);
-    figures = recorder.figures();
+    app_frames.finish(recording.book().writer("application frames"), end);
+    figures = recording.book().figures();
   }
 
   /// A summary statistic ("min", "max", "mean", "count") of a recorded distribution.
   double stat(const char* name, const std::string& which) const {
-    const auto* d = recorder.distribution(name);
+    const auto* d = recording.book().distribution(name);
     if (d == nullptr) return -1.0;
     const auto s = d->summary();
     if (which == "min") return s.min;

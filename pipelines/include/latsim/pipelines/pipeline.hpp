@@ -29,7 +29,7 @@ class Pipeline {
   virtual ~Pipeline() = default;
   /// Schedules the pipeline's first events (its parameters came with its construction).
   virtual void start(RunContext& ctx) = 0;
-  /// Reports pipeline-specific figures to ctx.recorder (e.g. missed fields).
+  /// Reports pipeline-specific figures to ctx.figures (e.g. missed fields).
   virtual void finish(RunContext& /*ctx*/) {}
   /// Events per simulated second of the pipeline's own processes, each with
   /// the key that drives it (EventRate), known before start(); none

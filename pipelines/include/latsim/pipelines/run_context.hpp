@@ -14,7 +14,10 @@
 #include "latsim/des/simulator.hpp"
 #include "latsim/display/display.hpp"
 #include "latsim/sections/shared.hpp"
+#include "latsim/results/figure_writer.hpp"
+#include "latsim/results/image_book.hpp"
 #include "latsim/results/image_record.hpp"
+#include "latsim/results/run_signals.hpp"
 #include "latsim/tracker/host_feed.hpp"
 #include "latsim/tracker/host_prediction.hpp"
 #include "latsim/tracker/motion_source.hpp"
@@ -26,7 +29,6 @@ class RunClocks;
 
 namespace latsim::results {
 class ImageBook;
-class LatencyRecorder;
 class Timeline;
 class FrameCapture;
 class FrameRecorder;
@@ -50,7 +52,8 @@ struct RunContext {
   const display::DisplayParams& display_params;
   const sections::SceneParams* scene;            ///< /scene, when the scenario has one
   results::ImageBook& images;                  ///< every image shown is registered here first
-  results::LatencyRecorder& recorder;          ///< every figure and warning goes here
+  results::FigureWriter& figures;              ///< the pipeline's own figures and warnings (docs/adding-a-figure.md)
+  results::RunSignals& signals;                ///< what happens that the recorders turn into figures
   results::FrameRecorder& app_frames;          ///< the application's frames: rendered, missed
   results::RunFiles& files;                    ///< every result file goes here
   des::RunClocks& clocks;                      ///< every clock of the run, with its phase

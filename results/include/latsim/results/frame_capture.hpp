@@ -16,13 +16,14 @@
 #include "latsim/display/raster_timing.hpp"
 #include "latsim/sections/shared.hpp"
 #include "latsim/renderer/scene_spec.hpp"
+#include "latsim/results/figure_writer.hpp"
+#include "latsim/results/image_book.hpp"
 #include "latsim/results/image_record.hpp"
 #include "latsim/tracker/host_feed.hpp"
 #include "latsim/tracker/motion_source.hpp"
 
 namespace latsim::results {
 
-class LatencyRecorder;
 class RunFiles;
 
 /// What one displayed pixel shows when a pipeline computes pixels itself.
@@ -46,8 +47,9 @@ class PixelSource {
 
 /// Everything a capture needs from the run besides its configuration.
 struct FrameCaptureInputs {
-  LatencyRecorder& recorder;              ///< image ids -> the pose each image was rendered from; figures
-  const tracker::HostFeed& host;                   ///< newest orientation for address-recalculation images
+  const ImageBook& images;                ///< image ids -> the pose each image was rendered from
+  FigureWriter figures;                   ///< the captures' figures (family "frame capture")
+  const tracker::HostFeed& host;          ///< newest orientation for address-recalculation images
   const tracker::MotionSource& motion;    ///< the true head pose (ground truth)
   const display::RasterTiming& timing;    ///< rows and photon times
   double hfov_deg = 90.0;

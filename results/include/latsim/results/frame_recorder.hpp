@@ -1,9 +1,10 @@
 // The application's frames, as a pipeline emits them: each frame whose work
-// is complete, and each that missed the refresh it was paced for. The
-// recorder owns the figures (frames_rendered, frames_missed,
-// application_frame_rate_hz), so that every pipeline that counts frames
-// reports them under one name with one meaning (docs/figures.md), and, when
-// the run keeps files, the per-frame log presentmon.csv (PresentMonLog).
+// is complete, and each that missed the refresh it was paced for. This
+// listener owns the figures of the family "application frames"
+// (frames_rendered, frames_missed, application_frame_rate_hz), so that every
+// pipeline that counts frames reports them under one name with one meaning
+// (docs/figures.md), and, when the run keeps files, the per-frame log
+// presentmon.csv (PresentMonLog).
 #pragma once
 
 #include <cstdint>
@@ -15,7 +16,7 @@
 
 namespace latsim::results {
 
-class LatencyRecorder;
+class FigureWriter;
 class PresentMonLog;
 class RunFiles;
 
@@ -55,8 +56,9 @@ class FrameRecorder {
   /// `files`, naming the application `application` (written when the first
   /// row is final; nothing when no frame is).
   void log_presentmon(RunFiles& files, std::string application);
-  /// Sets the declared figures in `figures` for a run of `duration`.
-  void finish(LatencyRecorder& figures, des::Time duration) const;
+  /// Sets the declared figures through `figures` (family "application
+  /// frames") for a run of `duration`.
+  void finish(FigureWriter figures, des::Time duration) const;
   /// Completes presentmon.csv (rows still final-less are left out) and
   /// commits it with the run's other files.
   void finish_log(RunFiles& files);

@@ -4,7 +4,7 @@
 
 #include "latsim/stats/stats.hpp"
 #include "latsim/display/display.hpp"
-#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/figure_writer.hpp"
 #include "latsim/tracker/motion_source.hpp"
 
 namespace latsim::results {
@@ -21,7 +21,8 @@ double head_angular_speed_rad_s(const tracker::MotionSource& motion, des::Time t
 /// persistence model, so an impulse display pays nothing.
 class SmearRecorder final : public display::ScanoutListener {
  public:
-  SmearRecorder(LatencyRecorder& recorder, const tracker::MotionSource& motion);
+  /// Writes smear_arcmin through `figures` (family "smear").
+  SmearRecorder(FigureWriter figures, const tracker::MotionSource& motion);
   void on_scanout(const display::ScanoutSpan& span) override;
 
  private:

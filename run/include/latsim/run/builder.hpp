@@ -17,7 +17,7 @@
 #include "latsim/results/frame_capture.hpp"
 #include "latsim/results/frame_recorder.hpp"
 #include "latsim/results/image_book.hpp"
-#include "latsim/results/latency_recorder.hpp"
+#include "latsim/results/run_recording.hpp"
 #include "latsim/results/run_files.hpp"
 #include "latsim/results/smear_recorder.hpp"
 #include "latsim/results/timeline.hpp"
@@ -44,7 +44,7 @@ struct Run {
   std::unique_ptr<TrackerHost> host;
   std::unique_ptr<display::Display> display;
   results::ImageBook images;
-  std::unique_ptr<results::LatencyRecorder> recorder;
+  std::unique_ptr<results::RunRecording> recording;  ///< every recorder of the run and its figure book
   results::FrameRecorder app_frames;
   std::unique_ptr<results::FrameCapture> frames;  // only when the scenario asks for frames
   std::unique_ptr<results::SmearRecorder> smear;  // only on a display with persistence

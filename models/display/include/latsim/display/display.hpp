@@ -78,7 +78,7 @@ struct BufferRegion {
   bool operator==(const BufferRegion&) const = default;
 };
 
-/// Receives every span the display lights (the latency recorder, frame capture).
+/// Receives every span the display lights (the recorders, frame capture).
 class ScanoutListener {
  public:
   virtual ~ScanoutListener() = default;

@@ -1,39 +1,37 @@
-// What a viewer or a camera sees: the recorder's apparent latency, the
-// simulated camera rig and the tracked controller, computed at the end of the
-// run from the orientations shown at one pixel per refresh.
+#include "latsim/results/seen_figures.hpp"
+
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "latsim/results/latency_recorder.hpp"
-
 namespace latsim::results {
 
-void LatencyRecorder::measure_apparent_latency(const measurement::ApparentLatencyParams& params,
+void SeenFigures::measure_apparent_latency(const measurement::ApparentLatencyParams& params,
                                                const tracker::MotionPhaseParams& phases) {
   apparent_ = params;
   apparent_phases_ = phases;
   keep_centre_trace();
 }
 
-void LatencyRecorder::keep_centre_trace() {
+void SeenFigures::keep_centre_trace() {
   if (centre_trace_) return;
   centre_trace_.emplace(measurement::ScreenPoint{0.5, 0.5}, timing_.params().width_px, timing_.lines_per_field());
-  ++shown_traces_;
+  ++traces_;
 }
 
-void LatencyRecorder::film(const measurement::CameraRigParams& params, const des::PeriodicSchedule& camera) {
+void SeenFigures::film(const measurement::CameraRigParams& params, const des::PeriodicSchedule& camera) {
   rig_ = params;
   camera_ = camera;
   rig_trace_.emplace(params.display_point, timing_.params().width_px, timing_.lines_per_field());
-  ++shown_traces_;
+  ++traces_;
 }
 
-void LatencyRecorder::track_controller(const tracker::MotionSource& motion) {
+void SeenFigures::track_controller(const tracker::MotionSource& motion) {
   controller_ = &motion;
   keep_centre_trace();
 }
 
-void LatencyRecorder::offer_shown_slow(const display::ScanoutSpan& span, const glm::dquat& orientation,
+void SeenFigures::shown(const display::ScanoutSpan& span, const glm::dquat& orientation,
                                        const ImageRecord& img) {
   for (std::optional<measurement::ShownTrace>* trace : {&centre_trace_, &rig_trace_}) {
     if (!trace->has_value()) continue;
@@ -75,22 +73,22 @@ std::vector<measurement::ShownSample> controller_samples(std::span<const measure
 
 }  // namespace
 
-void LatencyRecorder::apparent_figures(const std::string& prefix, std::span<const measurement::ShownSample> shown,
+void SeenFigures::apparent_figures(const std::string& prefix, std::span<const measurement::ShownSample> shown,
                                        const tracker::MotionSource& truth) {
   tracker::MotionPhaseClassifier phases(truth, apparent_phases_);
   const measurement::ApparentLatencyResult r = measurement::apparent_latency(shown, truth, phases, *apparent_);
   for (const measurement::WindowShift& w : r.windows) {
-    add(prefix + "apparent_latency_ms", w.shift_ms);
-    add(prefix + "apparent_latency_ms_" + std::string(tracker::phase_name(w.phase)), w.shift_ms);
+    figures_.add(prefix + "apparent_latency_ms", w.shift_ms);
+    figures_.add(prefix + "apparent_latency_ms_" + std::string(tracker::phase_name(w.phase)), w.shift_ms);
   }
-  table_.set(prefix + "apparent_latency_windows_unresolved", r.unresolved);
+  figures_.set(prefix + "apparent_latency_windows_unresolved", r.unresolved);
   if (r.steady_ms) {
-    for (double c : r.catch_up_ms) add(prefix + "prediction_catch_up_ms", c);
-    table_.set(prefix + "prediction_never_caught_up", r.never_caught_up);
+    for (double c : r.catch_up_ms) figures_.add(prefix + "prediction_catch_up_ms", c);
+    figures_.set(prefix + "prediction_never_caught_up", r.never_caught_up);
   }
 }
 
-void LatencyRecorder::rig_figures(std::span<const measurement::ShownSample> shown, const tracker::MotionSource& truth,
+void SeenFigures::rig_figures(std::span<const measurement::ShownSample> shown, const tracker::MotionSource& truth,
                                   des::Time duration) {
   const glm::dquat reference = truth.pose_at(des::Time::zero()).orientation;
   const glm::dvec3 axis = rig_.axis;
@@ -100,32 +98,32 @@ void LatencyRecorder::rig_figures(std::span<const measurement::ShownSample> show
   const measurement::DisplaySignal display(measurement::lit_angles(shown, reference, axis));
   const des::Time exposure = rig_.exposure ? *rig_.exposure : camera_.nominal_period();
   const measurement::RigResult r = measurement::film(object, display, camera_, exposure, duration, rig_);
-  for (double v : r.frame_counting_ms) add("measured_latency_ms", v);
-  for (double v : r.shift_ms) add("measured_latency_shift_ms", v);
-  table_.set("measurement_resolution_ms", r.resolution_ms);
-  table_.set("measurement_movements", static_cast<int64_t>(r.frame_counting_ms.size()));
-  table_.set("measurement_frames", r.frames);
+  for (double v : r.frame_counting_ms) figures_.add("measured_latency_ms", v);
+  for (double v : r.shift_ms) figures_.add("measured_latency_shift_ms", v);
+  figures_.set("measurement_resolution_ms", r.resolution_ms);
+  figures_.set("measurement_movements", static_cast<int64_t>(r.frame_counting_ms.size()));
+  figures_.set("measurement_frames", r.frames);
   if (r.frame_counting_ms.empty()) {
     const bool head = rig_.object == measurement::CameraRigParams::Object::head;
-    warn(std::string("the camera rig saw no movement from rest to rest (measurement_movements is 0): the ") +
+    figures_.warn(std::string("the camera rig saw no movement from rest to rest (measurement_movements is 0): the ") +
          (head ? "head" : "controller") +
          " must rest for /measurement/rest_ms between movements larger than /measurement/threshold_deg");
   }
 }
 
-void LatencyRecorder::measurement_figures(des::Time duration) {
+void SeenFigures::finish(des::Time duration) {
   // Each trace sorted once (an empty span: no trace kept).
   using Samples = std::span<const measurement::ShownSample>;
   const Samples centre = centre_trace_ ? Samples(centre_trace_->sorted()) : Samples();
   const Samples rig = rig_trace_ ? Samples(rig_trace_->sorted()) : Samples();
   if ((centre_trace_ && centre.empty()) || (rig_trace_ && rig.empty()))
-    warn("apparent latency, the camera rig and the controller's figures need whole images at the display point; "
+    figures_.warn("apparent latency, the camera rig and the controller's figures need whole images at the display point; "
          "this run lit none there (frameless rendering shows no images), so their figures are absent");
   if (!centre.empty()) {
     if (apparent_) apparent_figures("", centre, motion_);
     if (controller_ != nullptr) {
       for (const measurement::ShownSample& s : centre)
-        if (s.controller_drawn) add("controller_latency_ms", (s.photon - s.controller_measured).to_ms());
+        if (s.controller_drawn) figures_.add("controller_latency_ms", (s.photon - s.controller_measured).to_ms());
       if (apparent_) apparent_figures("controller_", controller_samples(centre), *controller_);
     }
   }
