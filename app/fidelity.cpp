@@ -1,10 +1,9 @@
 // latsim fidelity: what one step of a fidelity knob changes in a figure and
 // what it costs in wall time, events and memory.
 #include <cstdio>
-#include <fstream>
 #include <iostream>
+#include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -14,6 +13,7 @@
 #include "commands.hpp"
 #include "latsim/results/run_files.hpp"
 #include "latsim/run/event_budget.hpp"
+#include "latsim/run/prepared_run.hpp"
 #include "latsim/run/runner.hpp"
 #include "latsim/scenario/config.hpp"
 #include "latsim/sweep/fidelity_table.hpp"
@@ -39,13 +39,6 @@ struct FidelityRequest {
   double max_events = run::kDefaultMaxEvents;  ///< --max-events, for every level
   bool progress = false;                        ///< --progress: each level's runs show theirs, terminal or not
 };
-
-Json read_summary(const fs::path& file) {
-  std::ifstream in(file);
-  std::stringstream buf;
-  buf << in.rdbuf();
-  return Json::parse(buf.str());
-}
 
 // A few figure names a metric could be, for the one-line error when it is not found.
 std::string some_figure_names(const Json& summary) {
@@ -79,7 +72,9 @@ FidelityLevel run_level(const FidelityRequest& request, const std::string& assig
   const ChildResult child = run_child(argv);
   if (child.exit_code != 0)
     throw std::runtime_error("the run at " + assignment + " failed with exit status " + std::to_string(child.exit_code));
-  const Json summary = read_summary(level_dir / "summary.json");
+  const std::optional<Json> summary_read = results::read_summary(level_dir / "summary.json", "run the level again");
+  if (!summary_read) throw std::runtime_error("the run at " + assignment + " wrote no summary.json");
+  const Json& summary = *summary_read;
   const auto metric = find_figure(summary, request.metric);
   if (!metric) throw std::runtime_error("the run at " + assignment + " has no figure " + request.metric);
   FidelityLevel level;
@@ -128,11 +123,23 @@ int command_fidelity(int argc, char** argv) {
   }
   // Every level must be a valid scenario before anything runs or is written;
   // each one's expected events (declared rates x duration) price it.
+  // The coarsest level is also run in memory below, from the same build.
   std::vector<double> expected_events;
+  std::optional<scenario::ScenarioDocument> coarsest_doc;
+  std::unique_ptr<run::PreparedRun> coarsest;
   for (const auto& value : axis.values) {
     std::vector<std::string> overrides = request.sets;
     overrides.push_back(axis.pointer + "=" + value);
     try {
+      if (!coarsest) {
+        coarsest_doc.emplace(run::load_scenario(request.scenario_file, overrides));
+        run::RunOptions in_memory;
+        in_memory.seed = request.seed;
+        in_memory.max_events = request.max_events;
+        coarsest = std::make_unique<run::PreparedRun>(*coarsest_doc, in_memory);
+        expected_events.push_back(coarsest->estimate().events);
+        continue;
+      }
       expected_events.push_back(
           run::estimate_scenario_events(run::load_scenario(request.scenario_file, overrides), request.max_events));
     } catch (const scenario::ScenarioError& e) {
@@ -145,12 +152,7 @@ int command_fidelity(int argc, char** argv) {
   // The metric must be a figure of the scenario before anything is written:
   // the coarsest level, run in memory (no files), says which figures it has.
   try {
-    std::vector<std::string> overrides = request.sets;
-    overrides.push_back(axis.pointer + "=" + axis.values.front());
-    run::RunOptions in_memory;
-    in_memory.seed = request.seed;
-    in_memory.max_events = request.max_events;
-    const Json summary = run::run_scenario(run::load_scenario(request.scenario_file, overrides), in_memory);
+    const Json summary = coarsest->run();
     if (!find_figure(summary, request.metric)) {
       std::cerr << "fidelity: --metric " << request.metric << " is not a figure of " << request.scenario_file
                 << " (it has " << some_figure_names(summary) << ", ...; every one is in a run's figures.json)\n";

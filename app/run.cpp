@@ -11,6 +11,7 @@
 
 #include "commands.hpp"
 #include "latsim/results/run_files.hpp"
+#include "latsim/run/prepared_run.hpp"
 #include "latsim/run/runner.hpp"
 #include "latsim/scenario/config.hpp"
 #include "latsim/scenario/readable.hpp"
@@ -102,9 +103,9 @@ int command_run(int argc, char** argv) {
   const std::string name = scenario::readable(file, 2 * scenario::kQuotedChars);
   try {
     const auto doc = run::load_scenario(file, sets);
-    // Validate fully before touching the output directory: bad input writes nothing.
-    run::validate_scenario(doc, max_events);
-    summary = run::run_scenario(doc, opt);
+    // Built once, fully validated before the output directory is touched: bad input writes nothing.
+    run::PreparedRun prepared(doc, opt);
+    summary = prepared.run();
   } catch (const scenario::ScenarioError& e) {
     return bad_input(file, e);
   } catch (const run::RunInterrupted& e) {

@@ -15,6 +15,7 @@
 #include "errors.hpp"
 #include "interruptible.hpp"
 #include "latsim/results/ledger.hpp"
+#include "latsim/run/prepared_run.hpp"
 #include "latsim/run/runner.hpp"
 
 namespace latsim::python {
@@ -131,10 +132,11 @@ py::tuple run(const RunCall& call) {
     run_interruptibly([&](const std::atomic<bool>& stop) {
       const auto doc = call.text ? run::load_scenario_text(*call.text, call.scenario, call.overrides)
                                  : run::load_scenario(call.scenario, call.overrides);
-      run::validate_scenario(doc);
       run::RunOptions stoppable = options;
       stoppable.stop = &stop;
-      summary = run::run_scenario(doc, stoppable);
+      // Built once, fully validated before anything is written.
+      run::PreparedRun prepared(doc, stoppable);
+      summary = prepared.run();
     });
   } catch (const scenario::ScenarioError& e) {
     throw BadInput::of(e, call.scenario);

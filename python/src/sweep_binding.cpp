@@ -45,17 +45,9 @@ struct SweepOutcome {
   std::vector<std::string> failures;
 };
 
-// The scenario as a run takes it, every default filled in (what the plan
-// checks axis pointers against).
-Json resolve_defaults(const Json& scenario, const std::filesystem::path& base_dir) {
-  auto doc = scenario::ScenarioDocument::from_json(scenario, base_dir);
-  run::validate_scenario(doc);
-  return doc.resolved();
-}
-
 sweep::SweepPlan plan_of(const SweepCall& call) {
-  if (!call.text) return sweep::SweepPlan::load(call.sweep, resolve_defaults);
-  return sweep::SweepPlan::from_json(scenario::parse_json(*call.text, call.sweep), call.sweep, resolve_defaults);
+  if (!call.text) return sweep::SweepPlan::load(call.sweep, run::resolve_defaults);
+  return sweep::SweepPlan::from_json(scenario::parse_json(*call.text, call.sweep), call.sweep, run::resolve_defaults);
 }
 
 // Checks every point, then runs the unfinished runs longest first and writes the tables.

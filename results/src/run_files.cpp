@@ -5,7 +5,9 @@
 
 #include <cerrno>
 #include <cstring>
+#include <fstream>
 #include <set>
+#include <sstream>
 #include <utility>
 
 #include "latsim/renderer/png_writer.hpp"
@@ -218,6 +220,23 @@ void RunFiles::commit(const std::string& last) {
   }
   if (fs::exists(staging_ / last, ec)) check(::rename((staging_ / last).c_str(), (dir_ / last).c_str()) == 0, dir_ / last);
   discard();
+}
+
+}  // namespace latsim::results
+
+namespace latsim::results {
+
+std::optional<nlohmann::json> read_summary(const fs::path& file, const std::string& remedy) {
+  std::ifstream in(file);
+  if (!in) return std::nullopt;
+  std::stringstream buf;
+  buf << in.rdbuf();
+  try {
+    return nlohmann::json::parse(buf.str());
+  } catch (const nlohmann::json::parse_error& e) {
+    // Written atomically, so this is damage from outside latsim; say so rather than guess.
+    throw std::runtime_error(file.string() + ": unreadable summary (" + e.what() + "); " + remedy);
+  }
 }
 
 }  // namespace latsim::results

@@ -1,5 +1,6 @@
 #include "latsim/run/runner.hpp"
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <stdexcept>
@@ -7,6 +8,7 @@
 #include "latsim/run/builder.hpp"
 #include "latsim/run/builtin_pipelines.hpp"
 #include "latsim/run/event_budget.hpp"
+#include "latsim/run/prepared_run.hpp"
 #include "latsim/run/result_writer.hpp"
 
 namespace latsim::run {
@@ -21,6 +23,9 @@ std::string seconds_text(des::Time t) {
   std::snprintf(buf, sizeof buf, "%.12g s", t.to_seconds());
   return buf;
 }
+
+// Builds of runs made by this process (builds_made()).
+std::atomic<uint64_t> builds_made_{0};
 
 // Progress is reported this often; checking the clock costs a few ns per call.
 constexpr uint64_t kEventsPerProgress = 1 << 14;
@@ -92,30 +97,55 @@ scenario::ScenarioDocument load_scenario_text(std::string_view text, const std::
 }
 
 std::vector<std::string> validate_scenario(const scenario::ScenarioDocument& doc, double max_events) {
-  Run run;
   RunOptions options;
   options.max_events = max_events;
-  build(run, doc, options);
-  return run.recording->book().warnings();
+  return PreparedRun(doc, options).warnings();
 }
 
 double estimate_scenario_events(const scenario::ScenarioDocument& doc, double max_events) {
-  Run run;
   RunOptions options;
   options.max_events = max_events;
-  build(run, doc, options);
-  return run.estimate.events;
+  return PreparedRun(doc, options).estimate().events;
+}
+
+Json resolve_defaults(const Json& scenario, const std::filesystem::path& base_dir) {
+  const auto doc = scenario::ScenarioDocument::from_json(scenario, base_dir);
+  RunOptions options;
+  options.max_events = 0.0;  // the budget is judged where the run's own limit is known
+  (void)PreparedRun(doc, options);
+  return doc.resolved();
 }
 
 Json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& options) {
+  // When the command began (reading included), else now: before the build.
+  RunOptions timed = options;
+  if (!timed.command_start) timed.command_start = std::chrono::steady_clock::now();
+  return PreparedRun(doc, timed).run();
+}
+
+PreparedRun::PreparedRun(const scenario::ScenarioDocument& doc, RunOptions options)
+    : doc_(doc), options_(std::move(options)), run_(std::make_unique<Run>()) {
+  build(*run_, doc_, options_);
+  builds_made_.fetch_add(1, std::memory_order_relaxed);
+}
+
+PreparedRun::~PreparedRun() = default;
+
+const std::vector<std::string>& PreparedRun::warnings() const { return run_->recording->book().warnings(); }
+
+const EventEstimate& PreparedRun::estimate() const { return run_->estimate; }
+
+Json PreparedRun::run() {
+  if (ran_) throw std::logic_error("a prepared run runs once");
+  ran_ = true;
+  Run& run = *run_;
+  const RunOptions& options = options_;
   const auto command_start = options.command_start.value_or(std::chrono::steady_clock::now());
-  Run run;
-  build(run, doc, options);
   run.files.prepare();
   // Written as it is produced: memory does not grow with the run's length.
   if (run.files.enabled()) run.timeline.stream_to(run.files);
   if (run.files.enabled() && options.write_presentmon)
-    run.app_frames.log_presentmon(run.files, doc.resolved()["pipeline"].value("type", std::string("latsim")));
+    run.app_frames.log_presentmon(run.files, doc_.resolved()["pipeline"].value("type", std::string("latsim")));
   // Per-event timing costs two clock reads per event: only when asked.
   run.sim.set_profiling(options.profile);
   run.sim.watch_stop_flag(options.stop);
@@ -127,9 +157,11 @@ Json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& optio
   simulate(run);
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   Json figures = figures_of(run);
-  Json summary = write_results(run, doc, options, figures, wall_s, command_start);
+  Json summary = write_results(run, doc_, options, figures, wall_s, command_start);
   if (options.tables) keep_tables(run, *options.tables);
   return summary;
 }
+
+uint64_t builds_made() { return builds_made_.load(std::memory_order_relaxed); }
 
 }  // namespace latsim::run

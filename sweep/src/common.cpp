@@ -9,6 +9,7 @@
 #include <set>
 #include <thread>
 
+#include "latsim/run/prepared_run.hpp"
 #include "latsim/run/runner.hpp"
 #include "latsim/scenario/config.hpp"
 #include "latsim/scenario/json_text.hpp"
@@ -22,13 +23,6 @@ namespace {
 
 using Json = nlohmann::json;
 namespace fs = std::filesystem;
-
-Json resolve_defaults(const Json& scenario, const fs::path& base_dir) {
-  auto doc = scenario::ScenarioDocument::from_json(scenario, base_dir);
-  // The event budget is check_points' to judge, with the sweep's own limit.
-  run::validate_scenario(doc, 0.0);
-  return doc.resolved();
-}
 
 // The sweep-file location to blame for a scenario error at `pointer`: the axis
 // value that put something bad there, or else the point as a whole.
@@ -52,7 +46,7 @@ unsigned available_cpus() {
 
 std::optional<SweepPlan> load_plan(const SweepRequest& request) {
   try {
-    return SweepPlan::load(request.sweep_file, resolve_defaults);
+    return SweepPlan::load(request.sweep_file, run::resolve_defaults);
   } catch (const SweepError& e) {
     std::cerr << e.what() << "\n";
     return std::nullopt;
@@ -118,8 +112,10 @@ PointCheck check_points(const SweepPlan& plan, const std::vector<size_t>& run_in
     const SweepRun& run = plan.runs()[firsts[i]];
     try {
       auto doc = scenario::ScenarioDocument::from_json(run.scenario, plan.base_dir());
-      run::validate_scenario(doc, max_events);
-      point_cost[run.point] = expected_cost(doc);
+      // One build checks the point and gives its one estimate.
+      run::RunOptions options;
+      options.max_events = max_events;
+      point_cost[run.point] = expected_cost(run::PreparedRun(doc, options).estimate());
     } catch (const scenario::ScenarioError& e) {
       problems[i] = blame(plan, run, e);
     } catch (const std::exception& e) {

@@ -24,17 +24,7 @@ fs::path SweepStore::summary_file(const std::string& run_id) const { return run_
 bool SweepStore::is_finished(const std::string& run_id) const { return fs::exists(summary_file(run_id)); }
 
 std::optional<nlohmann::json> SweepStore::load_summary(const std::string& run_id) const {
-  const fs::path file = summary_file(run_id);
-  std::ifstream in(file);
-  if (!in) return std::nullopt;
-  std::stringstream buf;
-  buf << in.rdbuf();
-  try {
-    return nlohmann::json::parse(buf.str());
-  } catch (const nlohmann::json::parse_error& e) {
-    // Written atomically, so this is damage from outside latsim; say so rather than guess.
-    throw std::runtime_error(file.string() + ": unreadable summary (" + e.what() + "); delete it to run this point again");
-  }
+  return results::read_summary(summary_file(run_id), "delete it to run this point again");
 }
 
 size_t SweepStore::remove_run_temporaries(const std::string& run_id) const {

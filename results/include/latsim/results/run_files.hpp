@@ -5,10 +5,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 namespace latsim::renderer {
 struct ImageRGB;
@@ -39,6 +42,12 @@ void write_file_atomically(const std::filesystem::path& file, std::string_view b
 /// Where a run directory is assembled before commit: "<dir>.tmp.<pid>" beside
 /// it (so that the final rename stays on one file system).
 std::filesystem::path staging_dir_of(const std::filesystem::path& dir, long pid);
+
+/// A run's summary.json, the one way it is read back: nullopt when there is
+/// none (the run has not finished); a file that cannot be parsed was damaged
+/// outside latsim (it is written atomically, last), and throws
+/// std::runtime_error naming it and ending with `remedy`.
+std::optional<nlohmann::json> read_summary(const std::filesystem::path& file, const std::string& remedy);
 
 /// A result file written piece by piece while the run produces it, into the
 /// run's staging directory: it reaches the run directory with the other

@@ -131,6 +131,11 @@ std::vector<std::string> validate_scenario(const scenario::ScenarioDocument& doc
 /// steps of work together.
 double estimate_scenario_events(const scenario::ScenarioDocument& doc, double max_events = kDefaultMaxEvents);
 
+/// The scenario as a run takes it, every default filled in (what a sweep
+/// checks its axis pointers against): built once, without an event budget
+/// (a sweep judges that with its own limit).
+nlohmann::json resolve_defaults(const nlohmann::json& scenario, const std::filesystem::path& base_dir);
+
 /// Every key a scenario may hold, from the parameter declarations of the
 /// shared sections and of every registered pipeline. Built once per process:
 /// it depends on nothing but the code.

@@ -1,0 +1,60 @@
+// One run lifecycle: a scenario is parsed, bound and built once per run.
+// Validation, the event estimate and the run itself use that one build,
+// wherever a run starts: latsim run and the Python module (PreparedRun),
+// latsim validate, a sweep's checks and its resolved defaults.
+#include <catch2/catch.hpp>
+
+#include <stdexcept>
+
+#include "latsim/run/prepared_run.hpp"
+#include "latsim/run/runner.hpp"
+#include "run_helpers.hpp"
+
+using namespace latsim;
+
+namespace {
+
+scenario::ScenarioDocument doc_of(const nlohmann::json& s) {
+  return scenario::ScenarioDocument::from_json(s, LATSIM_SOURCE_DIR "/scenarios");
+}
+
+// Builds made while `f` runs.
+template <class F>
+uint64_t builds_during(F&& f) {
+  const uint64_t before = run::builds_made();
+  f();
+  return run::builds_made() - before;
+}
+
+}  // namespace
+
+TEST_CASE("a prepared run validates, estimates and runs from one build", "[run][builds]") {
+  const auto doc = doc_of(testing::base_scenario());
+  CHECK(builds_during([&] {
+          run::PreparedRun prepared(doc, run::RunOptions{});
+          CHECK(prepared.warnings().empty());
+          // 2 s of a 60 Hz tracker, 60 Hz retraces and one render per refresh.
+          CHECK(prepared.estimate().events == Approx(3 * 120.0));
+          const nlohmann::json summary = prepared.run();
+          CHECK(summary.at("events").get<int64_t>() > 0);
+          CHECK_THROWS_AS(prepared.run(), std::logic_error);
+        }) == 1);
+}
+
+TEST_CASE("every way into a run builds it once", "[run][builds]") {
+  const auto doc = doc_of(testing::base_scenario());
+  CHECK(builds_during([&] { (void)run::run_scenario(doc, run::RunOptions{}); }) == 1);
+  CHECK(builds_during([&] { (void)run::validate_scenario(doc); }) == 1);
+  CHECK(builds_during([&] { (void)run::estimate_scenario_events(doc); }) == 1);
+  CHECK(builds_during([&] { (void)run::resolve_defaults(testing::base_scenario(), LATSIM_SOURCE_DIR "/scenarios"); }) ==
+        1);
+}
+
+TEST_CASE("bad input is refused by the one build, before anything runs", "[run][builds]") {
+  nlohmann::json s = testing::base_scenario();
+  s["display"]["refresh_hz"] = -60;
+  const auto doc = doc_of(s);
+  CHECK(builds_during([&] {
+          CHECK_THROWS_AS(run::PreparedRun(doc, run::RunOptions{}), scenario::ScenarioError);
+        }) == 0);
+}
