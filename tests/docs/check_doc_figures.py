@@ -16,7 +16,7 @@ last quoted digit, plus a little for binary fractions).
 
 Each scenario runs once, with its own duration and seed.
 
-usage: check_doc_figures.py LATSIM SOURCE_DIR WORK_DIR [doc.md ...]
+usage: check_doc_figures.py LATSIM SOURCE_DIR WORK_DIR [doc.md ...]   (default: every docs/*.md)
 """
 import json
 import os
@@ -27,7 +27,10 @@ import sys
 
 MARK = re.compile(r"<!--\s*fig\s+(\S+\.json)\s+(\S+)(?:\s+x(\S+))?\s*-->")
 NUMBER = re.compile(r"-?\d{1,3}(?:,\d{3})+(?:\.\d+)?|-?\d+(?:\.\d+)?")
-DEFAULT_DOCS = ["docs/arp.md", "docs/pxpl5.md", "docs/devices.md", "docs/validation.md", "docs/figures.md"]
+def default_docs(source):
+    """Every Markdown file in docs/, in name order."""
+    folder = os.path.join(source, "docs")
+    return sorted(os.path.join("docs", name) for name in os.listdir(folder) if name.endswith(".md"))
 
 
 def lookup(figures, path):
@@ -72,7 +75,7 @@ def run(latsim, source, work, scenario, cache):
 
 def main():
     latsim, source, work = sys.argv[1:4]
-    docs = sys.argv[4:] or DEFAULT_DOCS
+    docs = sys.argv[4:] or default_docs(source)
     os.makedirs(work, exist_ok=True)
     cache, failures, checked = {}, [], 0
     for doc in docs:
