@@ -22,10 +22,12 @@ The head looks at the model's centre (during the fly-through: along the
 flight, then back at the model) and looks round it all the time: +-15 degrees
 of yaw at 0.23 Hz and +-8 degrees of pitch at 0.31 Hz. Samples every 20 ms,
 t_s,px,py,pz,qw,qx,qy,qz (latsim's trace CSV); head frame x right, y up,
-looking down -z."""
+looking down -z. With --check it only compares the shipped file with what
+it would write."""
 
 import math
 import os
+import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 OUT = os.path.join(HERE, "..", "scenarios", "pxpl5", "data", "flythrough.csv")
@@ -97,7 +99,7 @@ def look_quaternion(eye, goal, t):
     return (cy * cp, cy * sp, sy * cp, -sy * sp)
 
 
-def main():
+def trace_text():
     rows = ["t_s,px,py,pz,qw,qx,qy,qz"]
     n = int(round(LAP_S / STEP_S))
     for i in range(n):
@@ -105,9 +107,22 @@ def main():
         p = position(t)
         q = look_quaternion(p, target(t), t)
         rows.append(f"{t:.2f},{p[0]:.5f},{p[1]:.5f},{p[2]:.5f},{q[0]:.7f},{q[1]:.7f},{q[2]:.7f},{q[3]:.7f}")
+    return "\n".join(rows) + "\n"
+
+
+def main():
+    """Writes the trace; with --check, says whether the shipped file is what this script writes."""
+    text = trace_text()
+    if sys.argv[1:] == ["--check"]:
+        with open(OUT, encoding="ascii") as f:
+            same = f.read() == text
+        print("ok: flythrough.csv is what make_flythrough.py writes" if same
+              else "FAIL: scenarios/pxpl5/data/flythrough.csv differs from scripts/make_flythrough.py (run it)")
+        return 0 if same else 1
     with open(OUT, "w", encoding="ascii") as f:
-        f.write("\n".join(rows) + "\n")
+        f.write(text)
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

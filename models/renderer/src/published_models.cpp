@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace latsim::renderer {

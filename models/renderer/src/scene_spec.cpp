@@ -32,7 +32,8 @@ Scene build(const SceneSpec& spec) {
 
 Scene make_scene(const SceneSpec& spec, SphereForm spheres) {
   Scene scene = build(spec);
-  return spheres == SphereForm::native ? scene : tessellate_spheres(scene);
+  if (spheres == SphereForm::native || scene.spheres().empty()) return scene;
+  return tessellate_spheres(scene);
 }
 
 }  // namespace latsim::renderer
