@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "latsim/renderer/scene_spec.hpp"
+
 namespace latsim::pipelines {
 
 namespace {
@@ -55,10 +57,20 @@ std::vector<EventRate> slats_event_rates(const pxpl5::SlatsParams& p, const Pxpl
           {"/tracker/rate_hz", "pxpl5", tracker_hz * kEventsPerSend}};
 }
 
+// Triangles one image transforms as on screen. With the view workload the
+// view decides, from none to all of the geometry's (spheres counted as
+// triangles): half of them keeps the estimate within a factor of two of
+// either end's transform time.
+double rc_triangles_in_view(const Pxpl5Common& common, const params::SharedParams& shared) {
+  if (common.workload != Pxpl5WorkloadKind::view || !shared.scene) return static_cast<double>(common.synthetic.triangles);
+  const renderer::Scene scene = renderer::make_scene(shared.scene->geometry, renderer::SphereForm::native);
+  return 0.5 * static_cast<double>(scene.triangles().size() + scene.spheres().size());
+}
+
 std::vector<EventRate> rc_event_rates(const pxpl5::RcParams& p, const Pxpl5Common& common,
                                       const params::SharedParams& shared) {
   const double eyes = common.stereo ? 2.0 : 1.0;
-  const double triangles = static_cast<double>(common.synthetic.triangles);
+  const double triangles = rc_triangles_in_view(common, shared);
   const double bins = triangles * common.synthetic.regions_per_triangle;
   const double slaves = p.slaves();
   const double regions = grid_of(shared).regions();

@@ -62,6 +62,16 @@ void bind(scenario::Section& s, Pxpl5RcPipeline::Params& p, const params::Shared
   s.duration("reject_us_per_triangle", r.reject_time_per_triangle,
              {.unit = "us", .doc = "one eye, a triangle outside the view: transform its corners, clip test (view workload)"});
   s.duration("binitize_us_per_bin", r.binitize_time_per_bin, {.unit = "us", .doc = "one command into one region's bin"});
+  s.duration("sphere_transform_us", r.sphere_transform_time,
+             {.unit = "us", .doc = "one eye, a sphere on screen: transform its centre and radius, set up its quadratics"});
+  s.duration("sphere_reject_us", r.sphere_reject_time,
+             {.unit = "us", .doc = "one eye, a sphere outside the view: transform its centre, clip test"});
+  s.integer("words_per_sphere_command", r.words_per_sphere_command,
+            {.min = 1.0, .max = 4096.0, .doc = "one sphere for one eye: disk, z and normal quadratics, colour"});
+  s.check("max_message_words", r.hw.max_message_words >= r.words_per_sphere_command,
+          "must hold at least one sphere command (words_per_sphere_command)");
+  s.duration("render_us_per_sphere_command", r.render_time_per_sphere_command,
+             {.unit = "us", .doc = "one sphere command into one region (quadratic expressions)"});
   s.duration("token_hop_us", r.token_hop_time, {.unit = "us", .doc = "a region token from one processor to the next"});
   s.duration("region_shade_us", r.region_shade_time, {.unit = "us", .doc = "end-of-frame (deferred shading) commands"});
   s.integer("end_of_frame_words", r.end_of_frame_words, {.min = 0.0, .max = 1048576.0, .doc = "end-of-frame commands on the ring"});
@@ -96,7 +106,11 @@ void bind(scenario::Section& s, Pxpl5RcPipeline::Params& p, const params::Shared
   p.common.view_spans = {{at + "/ring_mwords_per_s", s_per_word * r.hw.words_per_command, true, true},{at + "/transform_us_per_triangle", r.transform_time_per_triangle.to_seconds(), true, false},
                          {at + "/reject_us_per_triangle", r.reject_time_per_triangle.to_seconds(), true, false},
                          {at + "/binitize_us_per_bin", r.binitize_time_per_bin.to_seconds(), true, true},
-                         {at + "/render_us_per_command", r.hw.render_time_per_command.to_seconds(), true, true}};
+                         {at + "/render_us_per_command", r.hw.render_time_per_command.to_seconds(), true, true},
+                         {at + "/sphere_transform_us", r.sphere_transform_time.to_seconds(), true, false, true},
+                         {at + "/render_us_per_sphere_command", r.render_time_per_sphere_command.to_seconds(), true,
+                          true, true}};
+  p.common.draws_spheres = true;
 }
 
 }  // namespace

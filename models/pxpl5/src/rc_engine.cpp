@@ -63,13 +63,26 @@ void RcEngine::sample(const std::string& name, double value) {
 
 int64_t RcEngine::newest_sample(des::Time t) const { return hooks_.newest_sample ? hooks_.newest_sample(t) : -1; }
 
-// One slave's TRANSFORM of one eye: set-up, every triangle of its display
+// One slave's TRANSFORM of one eye: set-up, every primitive of its display
 // list (on screen: transform, light, set up; elsewhere: transform and reject)
-// and one bin entry per region an on-screen triangle covers.
+// and one bin entry per region an on-screen primitive covers.
 des::Time RcEngine::transform_time(const BinCounts& bins, int s) const {
   return p_.transform_overhead + p_.transform_time_per_triangle * bins.on_screen(s) +
          p_.reject_time_per_triangle * (bins.triangles(s) - bins.on_screen(s)) +
+         p_.sphere_transform_time * bins.spheres_on_screen(s) +
+         p_.sphere_reject_time * (bins.spheres(s) - bins.spheres_on_screen(s)) +
          p_.binitize_time_per_bin * bins.bin_entries(s);
+}
+
+int64_t RcEngine::bin_words(const BinCounts& bins, int s, int region) const {
+  const int64_t spheres = bins.sphere_commands(s, region);
+  return (bins.commands(s, region) - spheres) * p_.hw.words_per_command + spheres * p_.words_per_sphere_command;
+}
+
+des::Time RcEngine::bin_render_time(const BinCounts& bins, int s, int region) const {
+  const int64_t spheres = bins.sphere_commands(s, region);
+  return p_.hw.render_time_per_command * (bins.commands(s, region) - spheres) +
+         p_.render_time_per_sphere_command * spheres;
 }
 
 // SEND(i) may start once EDIT(i-1) has finished; unless the read is late,
@@ -147,6 +160,13 @@ des::Process RcEngine::transform_process() {
     for (int s = 0; s < p_.slaves(); ++s) sgp_busy_[s] += busy[s];
     sample("stage_ms.TRANSFORM", slowest.to_ms());
     sample("triangles_on_screen", static_cast<double>(work.on_screen_count));
+    if (workload_.spheres() > 0) sample("spheres_on_screen", static_cast<double>(work.spheres_on_screen_count));
+    // How many regions an on-screen primitive touches in this view (SPEC.md section 4: typically 1.3).
+    if (const int64_t shown = work.on_screen_count + work.spheres_on_screen_count; shown > 0) {
+      int64_t entries = 0;
+      for (int s = 0; s < p_.slaves(); ++s) entries += bins.bin_entries(s);
+      sample("regions_per_primitive", static_cast<double>(entries) / static_cast<double>(shown));
+    }
     es.transform_done.trigger();
     // Busiest region (most waiting commands) first; ties in screen order.
     std::vector<int> order(grid_.regions());
@@ -180,14 +200,13 @@ des::Process RcEngine::renderer_process(int k) {
     des::Time processed = start;  // when the renderer has consumed everything received so far
     for (int s = 0; s < p_.slaves(); ++s) {
       co_await sim_.delay(p_.token_hop_time);
-      const int64_t commands = bins.commands(s, task.region);
-      if (commands == 0) continue;
+      if (bins.commands(s, task.region) == 0) continue;
       co_await sgp_ports_[s]->acquire();
       co_await ring_.acquire();
-      co_await sim_.delay(p_.hw.transfer_time(commands * p_.hw.words_per_command));
+      co_await sim_.delay(p_.hw.transfer_time(bin_words(bins, s, task.region)));
       ring_.release();
       sgp_ports_[s]->release();
-      processed = std::max(processed, sim_.now()) + p_.hw.render_time_per_command * commands;
+      processed = std::max(processed, sim_.now()) + bin_render_time(bins, s, task.region);
     }
     co_await ring_.acquire();
     co_await sim_.delay(p_.hw.transfer_time(p_.end_of_frame_words));
@@ -239,6 +258,11 @@ des::Process RcEngine::copy_process() {
   }
 }
 
+const char* RcEngine::eye_label(int eye) const {
+  if (!p_.stereo) return "mono";
+  return eye == 0 ? "left" : "right";
+}
+
 // Both eyes swap together at the first retrace after the pair's last COPY.
 void RcEngine::finish_frame(int64_t i) {
   FrameState& f = frame(i);
@@ -254,7 +278,11 @@ void RcEngine::finish_frame(int64_t i) {
     ready.eyes.push_back(EyeImage{e, f.sample_token, f.sample_read_at, es.transform_start, es.copy_end});
     // The published measure: TRANSFORM start to the end of the eye's COPY.
     sample("transform_to_copy_end_fields", (es.copy_end - es.transform_start).to_ms() / field_ms);
-    sample("transform_to_retrace_fields", (f.swap_at - es.transform_start).to_ms() / field_ms);
+    const double to_swap_fields = (f.swap_at - es.transform_start).to_ms() / field_ms;
+    sample("transform_to_retrace_fields", to_swap_fields);
+    // The same per eye, each over frames: the two eyes of a stereo frame start
+    // TRANSFORM an eye apart and swap together, so their pool mixes two offsets.
+    sample(std::string("transform_to_swap_fields.") + eye_label(e), to_swap_fields);
   }
   sample("copy_ms_per_frame", (sim_.now() - f.copy_start).to_ms());
   // Retrace to retrace between consecutive frames: the published "frame time".

@@ -35,7 +35,12 @@ struct RcParams {
   des::Time transform_overhead = des::Time::us(100);          ///< per SGP and eye: matrices, bin reset
   des::Time transform_time_per_triangle = des::Time::from_us(37.5);  ///< one eye, on screen: i860 at 40 MHz
   des::Time reject_time_per_triangle = des::Time::from_us(3.75);     ///< one eye, outside the view: transform, clip test
-  des::Time binitize_time_per_bin = des::Time::us(5);         ///< one command into one region's bin
+  des::Time binitize_time_per_bin = des::Time::us(5);         ///< one command (either kind) into one region's bin
+  // Spheres (docs/pxpl5.md, "Spheres"; assumptions with the ranges given there).
+  des::Time sphere_transform_time = des::Time::us(15);        ///< one eye, on screen: centre, radius, quadratic set-up
+  des::Time sphere_reject_time = des::Time::from_us(1.25);    ///< one eye, outside the view: centre and clip test
+  int words_per_sphere_command = 30;                          ///< disk, z and normal quadratics, colour
+  des::Time render_time_per_sphere_command = des::Time::from_us(3.8);  ///< one sphere command into one region
   des::Time token_hop_time = des::Time::us(5);                ///< a region token from one GP to the next
   des::Time region_shade_time = des::Time::us(300);           ///< end-of-frame (deferred shading) commands
   int end_of_frame_words = 32;
@@ -96,7 +101,13 @@ class RcEngine {
   void sample(const std::string& name, double value);
   int64_t newest_sample(des::Time t) const;
   des::Time transform_time(const BinCounts& bins, int slave) const;
+  /// Ring words and renderer time of one slave's bin for one region.
+  int64_t bin_words(const BinCounts& bins, int slave, int region) const;
+  des::Time bin_render_time(const BinCounts& bins, int slave, int region) const;
   void finish_frame(int64_t i);
+  /// The eye's name in per-eye figures: left and right (the left eye is
+  /// transformed first), or mono.
+  const char* eye_label(int eye) const;
 
   des::Process send_process();
   des::Process edit_process();
