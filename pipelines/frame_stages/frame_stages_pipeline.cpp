@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "latsim/params/render_cost.hpp"
+#include "latsim/sections/render_cost.hpp"
 #include "frame_stages/app_frame_times.hpp"
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/results/frame_recorder.hpp"
@@ -26,7 +26,7 @@ FlowEnv FrameStagesPipeline::env(des::RandomStream& stream) {
   const display::RasterTiming* timing = &ctx_->display.timing();
   e.next_retrace = [timing](des::Time t) { return timing->field_start(timing->field_at_or_after(t)); };
   e.out_of_input = [ctx = ctx_](const renderer::RenderCost& cost) {
-    ctx->end_run_early(params::trace_ran_out(cost, ctx->sim.now()));
+    ctx->end_run_early(sections::trace_ran_out(cost, ctx->sim.now()));
   };
   return e;
 }
@@ -171,7 +171,7 @@ void FrameStagesPipeline::finish(RunContext& ctx) {
   for (const StageFlow* flow : {app_.get(), warp_.get()})
     if (flow)
       for (const StageSpec& st : flow->stages())
-        if (st.cost.trace()) r.add_capture(params::trace_summary(st.cost));
+        if (st.cost.trace()) r.add_capture(sections::trace_summary(st.cost));
   if (app_pacing_) app_pacing_->finish(r);
   if (compositor_pacer_) compositor_pacer_->finish(r);
   // frames_rendered, application_frame_rate_hz and frames_missed are ctx.app_frames'.

@@ -23,11 +23,11 @@ constexpr double kEventsPerHop = 1.0;
 // The host, per sample it sends (Slats) or per frame (RC): a wake, the ring and the transfer.
 constexpr double kEventsPerSend = 3.0;
 
-double fields_per_s_of(const params::SharedParams& shared) {
+double fields_per_s_of(const sections::SharedParams& shared) {
   return 1.0 / shared.display.raster.field_period.to_seconds();
 }
 
-pxpl5::RegionGrid grid_of(const params::SharedParams& shared) {
+pxpl5::RegionGrid grid_of(const sections::SharedParams& shared) {
   const display::RasterParams& r = shared.display.raster;
   return pxpl5::RegionGrid::for_screen(r.width_px, r.height_px, r.interlaced, 128);
 }
@@ -35,7 +35,7 @@ pxpl5::RegionGrid grid_of(const params::SharedParams& shared) {
 }  // namespace
 
 std::vector<EventRate> slats_event_rates(const pxpl5::SlatsParams& p, const Pxpl5Common& common,
-                                         const params::SharedParams& shared) {
+                                         const sections::SharedParams& shared) {
   const double eyes = common.stereo ? 2.0 : 1.0;
   const double triangles = static_cast<double>(common.synthetic.triangles);
   // The GP starts a field at a retrace once it is free: one per refresh at most.
@@ -61,14 +61,14 @@ std::vector<EventRate> slats_event_rates(const pxpl5::SlatsParams& p, const Pxpl
 // view decides, from none to all of the geometry's (spheres counted as
 // triangles): half of them keeps the estimate within a factor of two of
 // either end's transform time.
-double rc_triangles_in_view(const Pxpl5Common& common, const params::SharedParams& shared) {
+double rc_triangles_in_view(const Pxpl5Common& common, const sections::SharedParams& shared) {
   if (common.workload != Pxpl5WorkloadKind::view || !shared.scene) return static_cast<double>(common.synthetic.triangles);
   const renderer::Scene scene = renderer::make_scene(shared.scene->geometry, renderer::SphereForm::native);
   return 0.5 * static_cast<double>(scene.triangles().size() + scene.spheres().size());
 }
 
 std::vector<EventRate> rc_event_rates(const pxpl5::RcParams& p, const Pxpl5Common& common,
-                                      const params::SharedParams& shared) {
+                                      const sections::SharedParams& shared) {
   const double eyes = common.stereo ? 2.0 : 1.0;
   const double triangles = rc_triangles_in_view(common, shared);
   const double bins = triangles * common.synthetic.regions_per_triangle;

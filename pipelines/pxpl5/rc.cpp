@@ -39,7 +39,7 @@ class Pxpl5RcPipeline final : public Pipeline {
                                    "missed_refreshes"});
   }
 
-  std::vector<EventRate> event_rates(const params::SharedParams& shared) const override {
+  std::vector<EventRate> event_rates(const sections::SharedParams& shared) const override {
     return rc_event_rates(p_.rc, p_.common, shared);
   }
 
@@ -49,7 +49,7 @@ class Pxpl5RcPipeline final : public Pipeline {
   std::unique_ptr<pxpl5::RcEngine> engine_;
 };
 
-void bind(scenario::Section& s, Pxpl5RcPipeline::Params& p, const params::SharedParams& shared) {
+void bind(scenario::Section& s, Pxpl5RcPipeline::Params& p, const sections::SharedParams& shared) {
   pxpl5::RcParams& r = p.rc;
   bind_hardware(s, r.hw);
   s.integer("graphics_processors", r.graphics_processors, {.min = 2.0, .max = 256.0, .doc = "one master plus the slaves"});

@@ -178,7 +178,7 @@ void Pxpl5Wiring::report(const pxpl5::Utilisation& u, int64_t frames_completed) 
   if (workload_ && workload_->spheres() > 0) r.set("display_list_spheres", workload_->spheres());
   r.set("images_without_sample", images_without_sample_);
   for (const char* name : {"transform_to_copy_end_fields", "copy_ms_per_frame"})
-    if (!samples_by_name_.count(name)) r.publish(name, des::Distribution{});
+    if (!samples_by_name_.count(name)) r.publish(name, stats::Distribution{});
 }
 
 void bind_hardware(scenario::Section& s, pxpl5::HardwareParams& h) {
@@ -198,7 +198,7 @@ void bind_hardware(scenario::Section& s, pxpl5::HardwareParams& h) {
              {.unit = "us", .doc = "one triangle command into one region"});
 }
 
-void bind_pxpl5_common(scenario::Section& s, const params::SharedParams& shared, const pxpl5::HardwareParams& hw,
+void bind_pxpl5_common(scenario::Section& s, const sections::SharedParams& shared, const pxpl5::HardwareParams& hw,
                        Pxpl5Common& common) {
   common.stereo = shared.host.stereo;
   s.check("frame_buffers", !(common.stereo && hw.frame_buffers < 2), "stereo needs one frame buffer per eye (2)");

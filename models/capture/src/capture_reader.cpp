@@ -9,7 +9,7 @@
 
 #include "csv_row.hpp"
 #include "latsim/capture/capture.hpp"
-#include "latsim/des/input_file.hpp"
+#include "latsim/io/input_file.hpp"
 
 namespace latsim::capture {
 
@@ -88,7 +88,7 @@ class LineSource {
       size_t got = 0;
       try {
         got = in_.read(buffer_.data() + had, kChunkBytes);
-      } catch (const des::InputFileError& e) {
+      } catch (const io::InputFileError& e) {
         throw CaptureError(file_, 0, std::string("cannot read the capture file: ") + e.what());
       }
       buffer_.resize(had + got);
@@ -103,10 +103,10 @@ class LineSource {
   int64_t number() const { return number_; }
 
  private:
-  static des::InputFile open(const std::filesystem::path& file) {
+  static io::InputFile open(const std::filesystem::path& file) {
     try {
-      return des::InputFile(file, kMaxCaptureBytes);
-    } catch (const des::InputFileError& e) {
+      return io::InputFile(file, kMaxCaptureBytes);
+    } catch (const io::InputFileError& e) {
       throw CaptureError(file, 0, std::string("cannot read the capture file: ") + e.what());
     }
   }
@@ -118,7 +118,7 @@ class LineSource {
   }
 
   const std::filesystem::path& file_;
-  des::InputFile in_;
+  io::InputFile in_;
   std::string buffer_;
   size_t pos_ = 0;
   int64_t number_ = 0;

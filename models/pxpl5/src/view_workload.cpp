@@ -1,8 +1,8 @@
 #include "latsim/pxpl5/view_workload.hpp"
+#include "latsim/units/units.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
@@ -11,7 +11,6 @@ namespace latsim::pxpl5 {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 /// A corner in eye space as (x, y, d): d = distance in front of the eye.
 struct EyePoint {
@@ -71,7 +70,7 @@ ViewBinner::ViewBinner(std::vector<WorldTriangle> triangles, ViewScreen screen, 
   if (!(screen_.hfov_deg > 0.0 && screen_.hfov_deg < 180.0) || screen_.width_px < 1 || screen_.height_px < 1 ||
       screen_.region_px < 1 || !(screen_.near_m > 0.0))
     throw std::invalid_argument("ViewBinner: bad screen");
-  tan_half_h_ = std::tan(screen_.hfov_deg * kPi / 360.0);
+  tan_half_h_ = std::tan(units::deg_to_rad(0.5 * screen_.hfov_deg));
   // Square pixels: the vertical extent follows from the aspect ratio.
   tan_half_v_ = tan_half_h_ * screen_.height_px / screen_.width_px;
 }
