@@ -128,6 +128,7 @@ class DoubleBufferPipeline final : public Pipeline {
       if (!p_.vsync) {
         // No vsync: the new image replaces the front buffer mid-scan.
         for (int eye = 0; eye < ctx_->display.eyes(); ++eye) ctx_->display.present_now(eye, done.ids[eye]);
+        ctx_->app_frames.flipped(done.frame, ctx_->sim.now());
         continue;
       }
       queue_.push_back(std::move(done));
@@ -175,6 +176,7 @@ class DoubleBufferPipeline final : public Pipeline {
       const Done d = std::move(queue_.front());
       queue_.pop_front();
       for (int eye = 0; eye < ctx_->display.eyes(); ++eye) ctx_->display.present_now(eye, d.ids[eye]);
+      ctx_->app_frames.flipped(d.frame, now);
       if (ctx_->timeline) ctx_->timeline->add("QUEUED", d.frame, -1, "swapchain", d.render_end, now);
     }
     retrace_.resume();

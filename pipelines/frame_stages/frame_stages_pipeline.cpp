@@ -155,9 +155,10 @@ void FrameStagesPipeline::start_pacing(RunContext& ctx) {
   clock.period = period;
   clock.period_multiple = spec_.warp && spec_.warp->half_rate ? 2 : 1;
   clock.next_display = [timing](des::Time t) { return timing->field_start(timing->field_at_or_after(t)); };
-  // The compositor latches its budget (or its late warp's lead) before the retrace; a swap chain at the retrace.
+  // The compositor latches its lead (Monado: budget and margin; else the late warp's) before the
+  // retrace; a swap chain at the retrace.
   clock.compositor_time = [this] {
-    if (compositor_pacer_) return compositor_pacer_->budget();
+    if (compositor_pacer_) return compositor_pacer_->lead();
     return warp_ ? warp_->late_lead(0) : des::Time::zero();
   };
   std::function<void(bool)> set_half_rate;
