@@ -57,7 +57,11 @@ class DoubleBufferPipeline final : public Pipeline {
     ctx.recorder.set("nominal_frame_time_ms", p_.cost.nominal_frame_time().to_ms());
     ctx.recorder.declare_headline({"motion_to_photon_ms", "frame_rate_hz", "missed_refreshes",
                                    "registration_error_arcmin", "smear_arcmin"});
-    if (p_.cost.trace()) ctx.recorder.add_capture(params::trace_summary(p_.cost));
+    if (p_.cost.trace()) {
+      ctx.recorder.add_capture(params::trace_summary(p_.cost));
+      const double refresh_hz = 1.0 / ctx.display_params.raster.field_period.to_seconds();
+      for (const std::string& w : params::trace_warnings(p_.cost, refresh_hz)) ctx.recorder.warn(w);
+    }
     if (!p_.vsync || p_.queued_frames != 0 || p_.cost.varies()) return;
     const auto a = analytic_double_buffer(analytic_inputs(ctx));
     if (!a) return;

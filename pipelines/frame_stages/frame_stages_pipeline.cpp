@@ -49,6 +49,9 @@ FlowHooks FrameStagesPipeline::app_hooks() {
   h.image_buffers = image_buffers_.get();
   h.on_complete = [this](JobRecord& frame) {
     ctx_->app_frames.rendered(app_frame_times(frame, app_->last_run_first()));
+    // What a runtime calls its prediction time: the pose query to the photon time it asked for.
+    if (frame.last_pose && !frame.skipped)
+      ctx_->recorder.add("query_to_photon_ms", (frame.last_pose->target - frame.last_sample_at).to_ms());
     if (compositor_) compositor_->on_frame_complete(frame);
     else swap_chain_->on_frame_complete(frame);
     if (app_pacing_) app_pacing_->on_complete(frame);
@@ -169,10 +172,14 @@ void FrameStagesPipeline::start_pacing(RunContext& ctx) {
 
 void FrameStagesPipeline::finish(RunContext& ctx) {
   results::LatencyRecorder& r = ctx.recorder;
+  const double refresh_hz = 1.0 / ctx.display_params.raster.field_period.to_seconds();
   for (const StageFlow* flow : {app_.get(), warp_.get()})
     if (flow)
       for (const StageSpec& st : flow->stages())
-        if (st.cost.trace()) r.add_capture(params::trace_summary(st.cost));
+        if (st.cost.trace()) {
+          r.add_capture(params::trace_summary(st.cost));
+          for (const std::string& w : params::trace_warnings(st.cost, refresh_hz)) r.warn(w);
+        }
   if (app_pacing_) app_pacing_->finish(r);
   if (compositor_pacer_) compositor_pacer_->finish(r);
   // frames_rendered, application_frame_rate_hz and frames_missed are ctx.app_frames'.

@@ -19,7 +19,8 @@ void PresentReplayPipeline::start(RunContext& ctx) {
                                     .present_mode = p_.mode_text};
   ctx.app_frames.declare({.missed = false, .rate = true}, facts);
   const double refresh_hz = 1.0 / ctx.display_params.raster.field_period.to_seconds();
-  for (const std::string& w : capture::presentmon_warnings(p_.source->process, p_.source->capture_period_ms, refresh_hz))
+  for (const std::string& w :
+       capture::presentmon_warnings(p_.source->process, p_.source->capture_period_ms, refresh_hz, false))
     ctx.recorder.warn(w);
   if (p_.source->frames_left_out > 0)
     ctx.recorder.warn(p_.pointer + ": " + std::to_string(p_.source->frames_left_out) + " of the capture's " +

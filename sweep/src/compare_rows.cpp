@@ -196,13 +196,29 @@ void presentmon_rows(const capture::PresentMonProcess& cap, const RunSide& run, 
                "frames reach the screen through a compositor's own images)";
     judge(r, q, 0.5, ms);
     out.rows.push_back(std::move(r));
-    CompareRow c = row("display_change", "display change interval (ms)",
-                       side("MsBetweenDisplayChange", frames_of(cap, [](auto& f) { return f.between_display_change_ms; })),
-                       from_run ? side("between flips (MsUntilScanout)", scanout_changes(rf, flip))
-                                : side("MsBetweenDisplayChange", frames_of(rf, [](auto& f) { return f.between_display_change_ms; })),
+    // Display changes are whole refreshes apart on a display that flips at
+    // its retraces; the capture times them to its clock's jitter, the run
+    // exactly: both are compared in refreshes of their own display.
+    const std::optional<double> cap_period = capture::refresh_period_ms(q.capture);
+    const double run_period = run.refresh_hz > 0.0 ? 1000.0 / run.refresh_hz : cap_period.value_or(0.0);
+    auto in_refreshes = [](std::vector<double> v, std::optional<double> period) {
+      if (period && *period > 0.0)
+        for (double& x : v) x = std::round(x / *period);
+      return v;
+    };
+    std::vector<double> cap_changes = frames_of(cap, [](auto& f) { return f.between_display_change_ms; });
+    std::vector<double> run_changes =
+        from_run ? scanout_changes(rf, flip) : frames_of(rf, [](auto& f) { return f.between_display_change_ms; });
+    const bool periods = cap_period.has_value() && run_period > 0.0;
+    CompareRow c = row("display_change", periods ? "display change interval (refreshes)" : "display change interval (ms)",
+                       side("MsBetweenDisplayChange", in_refreshes(std::move(cap_changes), cap_period)),
+                       side(from_run ? "between flips (MsUntilScanout)" : "MsBetweenDisplayChange",
+                            in_refreshes(std::move(run_changes), periods ? std::optional(run_period) : std::nullopt)),
                        !from_run ? Standing::predicted : have ? Standing::converted : Standing::differs,
-                       "the interval between the flips of successive displayed frames");
-    judge(c, q, 0.5, ms);
+                       periods ? "the interval between the flips of successive displayed frames, in refreshes of "
+                                 "each side's display (the capture's timed to its clock's jitter)"
+                               : "the interval between the flips of successive displayed frames");
+    judge(c, q, periods ? 0.05 : 0.5, periods ? "" : ms);
     out.rows.push_back(std::move(c));
   }
   // Frames never displayed, as 0/1 per frame: the KS distance is the difference of the shares.

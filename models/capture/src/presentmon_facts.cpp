@@ -87,7 +87,7 @@ std::optional<double> refresh_period_ms(const std::filesystem::path& file) {
 }
 
 std::vector<std::string> presentmon_warnings(const PresentMonProcess& p, std::optional<double> capture_period_ms,
-                                             double refresh_hz) {
+                                             double refresh_hz, bool cpu_busy_as_work) {
   std::vector<std::string> out;
   std::string who = p.source.string();
   who.append(" (").append(p.application);
@@ -108,6 +108,7 @@ std::vector<std::string> presentmon_warnings(const PresentMonProcess& p, std::op
                     " Hz; the scenario's display refreshes at " + fmt(refresh_hz, "%.2f") +
                     " Hz, so waits the capture's display imposed are replayed against another");
   }
+  if (!cpu_busy_as_work) return out;
   std::vector<double> busy, between;
   for (const PresentMonFrame& f : p.frames) {
     if (f.cpu_busy_ms) busy.push_back(*f.cpu_busy_ms);
@@ -117,7 +118,7 @@ std::vector<std::string> presentmon_warnings(const PresentMonProcess& p, std::op
     out.push_back(who + ": its CPU busy time (PresentMon: from the previous Present()'s return to this one's call, "
                         "the application's own waiting included) is " + fmt(median(busy), "%.2f") +
                   " ms at the median against a frame interval of " + fmt(median(between), "%.2f") +
-                  " ms: it holds waiting, not only work");
+                  " ms: it holds waiting, not only work, so a stage costing it waits twice");
   return out;
 }
 

@@ -77,25 +77,37 @@ class StatsReader {
     const auto prd = column("average_prediction_milliseconds"), tears = column("screen_tear_count");
     const auto early = column("early_frame_count"), stale = column("stale_frame_count");
     const auto app = column("app_gpu_time_microseconds"), tw = column("timewarp_gpu_time_microseconds");
-    double previous_ms = 0.0;
+    // The tool's first row counts from its start, part of a second; its last
+    // row, written when the recording stops, repeats the one before less
+    // than a second later. Rows between are a second's figures (their Time
+    // Stamps jitter by a few hundred ms, the counts are still per second).
+    struct Row {
+      int64_t line = 0;
+      double stamp_ms = 0.0;
+      std::optional<double> rate, refresh, prd, tears, early, stale, app, tw;
+    };
+    std::vector<Row> rows;
     while (rows_.next()) {
       ++out_.rows_read;
-      const std::optional<double> t = number(stamp);
-      // Counts are per second: a row that covers less is not a sample of one.
-      const bool partial = !t || *t - previous_ms < 950.0;
-      if (t) previous_ms = *t;
-      if (partial) {
-        ++out_.partial_rows;
-        continue;
-      }
-      put("frame_rate_hz", number(rate));
-      put("refresh_hz", number(refresh));
-      put("prediction_ms", number(prd));
-      put("tears_per_s", number(tears));
-      put("early_per_s", number(early));
-      put("stale_per_s", number(stale));
-      put("app_gpu_ms", number(app), 1e-3);
-      put("timewarp_gpu_ms", number(tw), 1e-3);
+      rows.push_back(Row{rows_.line(), number(stamp).value_or(0.0), number(rate), number(refresh), number(prd),
+                         number(tears), number(early), number(stale), number(app), number(tw)});
+    }
+    size_t first = rows.empty() ? 0 : 1, end = rows.size();
+    if (end > first + 1 && rows[end - 1].stamp_ms - rows[end - 2].stamp_ms < 950.0) --end;
+    out_.partial_rows = static_cast<int64_t>(rows.size() - (end > first ? end - first : 0));
+    for (size_t i = first; i < end; ++i) {
+      const Row& r = rows[i];
+      auto put_row = [&](const char* key, std::optional<double> v, double scale = 1.0) {
+        if (v) out_.series[key].add(*v * scale, r.line);
+      };
+      put_row("frame_rate_hz", r.rate);
+      put_row("refresh_hz", r.refresh);
+      put_row("prediction_ms", r.prd);
+      put_row("tears_per_s", r.tears);
+      put_row("early_per_s", r.early);
+      put_row("stale_per_s", r.stale);
+      put_row("app_gpu_ms", r.app, 1e-3);
+      put_row("timewarp_gpu_ms", r.tw, 1e-3);
     }
   }
 

@@ -104,9 +104,10 @@ std::optional<double> refresh_period_ms(const std::filesystem::path& file);
 /// Warnings on replaying a process's frames on a display of `refresh_hz`:
 /// uncapped (sync interval 0: its frame rate is its own, not the display's),
 /// composed by the desktop compositor (DWM adds its own frame of latency),
-/// taken at another refresh rate (more than 0.5 % away), and CPU busy that
-/// holds waiting (the median busy time within 10 % of the median interval).
+/// taken at another refresh rate (more than 0.5 % away), and, with
+/// `cpu_busy_as_work` (the CPU busy time read as work), CPU busy that holds
+/// waiting (the median busy time within 10 % of the median interval).
 std::vector<std::string> presentmon_warnings(const PresentMonProcess& p, std::optional<double> capture_period_ms,
-                                             double refresh_hz);
+                                             double refresh_hz, bool cpu_busy_as_work);
 
 }  // namespace latsim::capture

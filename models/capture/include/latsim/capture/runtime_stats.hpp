@@ -46,15 +46,16 @@ struct RuntimeStats {
   Generation generation = Generation::generic;  ///< ovr_metrics, vrapi or steamvr
   bool per_frame = false;                       ///< SteamVR: a sample a frame; the others a second
   int64_t rows_read = 0;
-  int64_t partial_rows = 0;  ///< OVR Metrics rows covering less than a second (the first and last, usually): left out
+  int64_t partial_rows = 0;  ///< OVR Metrics rows that are no second's figures (the first; the last when short): left out
   std::map<std::string, StatSeries> series;
   /// The series named `key`, or none.
   const StatSeries* find(const std::string& key) const;
 };
 
 /// Reads a runtime's statistics file. OVR Metrics: 9999 is "not available"
-/// (no sample); a row whose Time Stamp is less than 0.95 s after the one
-/// before (the first: after 0) covers part of a second and is left out.
+/// (no sample); the first row (counted from the tool's start, part of a
+/// second) and a last row less than 0.95 s after the one before (the flush
+/// when the recording stops, repeating it) are left out.
 /// VrApi: every statistics line, whatever logcat wrote before it. SteamVR:
 /// a CSV of Compositor_FrameTiming's fields by name (m_nFrameIndex,
 /// m_flSystemTimeInSeconds, ...), a row a frame; its refresh rate comes from
