@@ -17,6 +17,10 @@
    distance within the bound a prefix allows.
 5. Bad input (missing capture, several processes and none chosen, a malformed
    cell): exit 2, one line on stderr, nothing written.
+6. A runtime's own statistics (an OVR Metrics export) against the Quest 2
+   scenario driven by it: one verdict line per quantity, the replayed GPU
+   times left out, early frames said to have no counterpart; a broken row of
+   an export is bad input naming its file and line.
 
 Usage: test_presentmon_out.py LATSIM SOURCE_DIR SCRATCH_DIR
 """
@@ -209,6 +213,35 @@ with open(malformed, "w") as f:
 err = bad([malformed, run_dir], "a malformed cell")
 check(":3:" in err and "MsGPUBusy" in err and "'fast'" in err, "names line, column and value")
 bad([real, os.path.join(SCRATCH, "no_run_here")], "a run directory that does not exist")
+
+# --- 6. a runtime's statistics ---------------------------------------------
+ovr = os.path.join(SOURCE, "scenarios", "measured", "captures", "ovr-metrics", "OGMP_1.csv")
+quest_dir = os.path.join(SCRATCH, "quest")
+r = subprocess.run([LATSIM, "run", os.path.join(SOURCE, "scenarios", "measured", "quest2_ovr_72hz.json"), "--out",
+                    quest_dir, "--quiet", "--set", "/duration_s=3"], capture_output=True, text=True)
+check(r.returncode == 0, f"the Quest 2 run exits 0 ({r.stderr.strip()})")
+r = subprocess.run([LATSIM, "compare", ovr, quest_dir, "--no-plots"], capture_output=True, text=True)
+check(r.returncode == 0, f"compare of an OVR Metrics export with a run exits 0 ({r.stderr.strip()})")
+rows = {x["quantity"]: x for x in csv.DictReader(open(os.path.join(quest_dir, "compare", "compare.csv")))}
+check(list(rows) == ["frame_rate", "refresh", "prediction", "stale", "early", "tears", "app_gpu", "timewarp_gpu"],
+      f"the runtime's quantities ({list(rows)})")
+check(rows["app_gpu"]["standing"] == "replayed" and rows["timewarp_gpu"]["standing"] == "replayed",
+      "the GPU times the run plays from the export are replayed")
+check(rows["prediction"]["standing"] == "predicted" and rows["prediction"]["agrees"] in ("0", "1"),
+      "the prediction time is judged")
+check(rows["early"]["standing"] == "no counterpart" and rows["early"]["agrees"] == "", "early frames: no counterpart")
+check(rows["refresh"]["standing"] == "input", "the refresh rate is the scenario's")
+check(rows["prediction"]["capture_count"] == "104", "the export's 104 whole seconds")
+verdict = open(os.path.join(quest_dir, "compare", "compare.md")).read().split("## Verdict")[1]
+check(sum(1 for line in verdict.splitlines() if line.startswith("- ")) == len(rows), "one verdict line per quantity")
+broken = os.path.join(SCRATCH, "broken_ovr.csv")
+with open(ovr) as f:
+    lines = f.read().splitlines()
+lines[3] = lines[3].replace(",72,", ",7x2,", 1)
+with open(broken, "w") as f:
+    f.write("\n".join(lines) + "\n")
+err = bad([broken, quest_dir], "a broken row of an OVR Metrics export")
+check("broken_ovr.csv:4:" in err, f"names the file and line ({err.strip()})")
 
 print(f"{'FAILED' if failures else 'ok'}: {len(failures)} failures")
 sys.exit(1 if failures else 0)
