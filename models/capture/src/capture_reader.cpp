@@ -83,18 +83,13 @@ struct Layout {
   size_t needed = 0;  // fields a row must have
 };
 
-std::optional<size_t> find(const std::vector<std::string>& header, std::string_view name) {
-  const auto it = std::find(header.begin(), header.end(), name);
-  if (it == header.end()) return std::nullopt;
-  return static_cast<size_t>(it - header.begin());
-}
 
 std::string missing_column(const std::vector<std::string>& header, Generation g, const std::string& name) {
   std::string text = "no column \"" + shown(name) + "\" in this " + generation_name(g) + " capture";
   for (const auto& group : kAliases)
     if (std::find(group.begin(), group.end(), name) != group.end())
       for (std::string_view alias : group)
-        if (!alias.empty() && alias != name && find(header, alias))
+        if (!alias.empty() && alias != name && find_column(header, alias))
           text += " (here it is \"" + std::string(alias) + "\")";
   return text + "; its columns: " + name_list(header);
 }
@@ -122,7 +117,7 @@ class Reader {
     header_ = rows_.header();
     capture_.generation = rows_.vrapi() ? Generation::vrapi : detect_generation(header_);
     for (const std::string& name : request_.columns) {
-      const auto at = find(header_, name);
+      const auto at = find_column(header_, name);
       if (!at) fail(missing_column(header_, capture_.generation, name));
       if (const auto why = not_a_duration(capture_.generation, name)) fail(*why);
       layout_.wanted.push_back(*at);
@@ -131,9 +126,9 @@ class Reader {
       display_.push_back(is_display_column(name));
       extremes_.emplace_back();
     }
-    layout_.application = find(header_, "Application");
-    layout_.process_id = find(header_, "ProcessID");
-    if (capture_.generation == Generation::v1) layout_.dropped = find(header_, "Dropped");
+    layout_.application = find_column(header_, "Application");
+    layout_.process_id = find_column(header_, "ProcessID");
+    if (capture_.generation == Generation::v1) layout_.dropped = find_column(header_, "Dropped");
     const ProcessSelect& sel = request_.select;
     if (!sel.application.empty() && !layout_.application)
       fail("an application is chosen but the capture has no Application column");

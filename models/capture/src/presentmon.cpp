@@ -41,53 +41,48 @@ struct Columns {
   std::optional<size_t> time_s, scanout;  // TimeInSeconds; a latsim run's MsUntilScanout
 };
 
-std::optional<size_t> find(const std::vector<std::string>& header, std::string_view name) {
-  const auto it = std::find(header.begin(), header.end(), name);
-  if (it == header.end()) return std::nullopt;
-  return static_cast<size_t>(it - header.begin());
-}
 
 Columns layout(const std::vector<std::string>& h, Generation g) {
   Columns c;
-  c.application = find(h, "Application");
-  c.process_id = find(h, "ProcessID");
-  c.sync = find(h, "SyncInterval");
-  c.mode = find(h, "PresentMode");
-  c.tearing = find(h, "AllowsTearing");
-  c.frame_type = find(h, "FrameType");
-  c.time_s = find(h, "TimeInSeconds");
-  c.scanout = find(h, "MsUntilScanout");
+  c.application = find_column(h, "Application");
+  c.process_id = find_column(h, "ProcessID");
+  c.sync = find_column(h, "SyncInterval");
+  c.mode = find_column(h, "PresentMode");
+  c.tearing = find_column(h, "AllowsTearing");
+  c.frame_type = find_column(h, "FrameType");
+  c.time_s = find_column(h, "TimeInSeconds");
+  c.scanout = find_column(h, "MsUntilScanout");
   switch (g) {
     case Generation::current:
-      c.runtime = find(h, "PresentRuntime");
-      c.between = find(h, "MsBetweenPresents");
-      c.in_present = find(h, "MsInPresentAPI");
-      if (!c.in_present) c.in_present = find(h, "MsCPUWait");
-      c.cpu_busy = find(h, "MsCPUBusy");
-      c.gpu_busy = find(h, "MsGPUBusy");
-      c.gpu_time = find(h, "MsGPUTime");
-      c.until_displayed = find(h, "MsUntilDisplayed");
-      c.display_change = find(h, "MsBetweenDisplayChange");
+      c.runtime = find_column(h, "PresentRuntime");
+      c.between = find_column(h, "MsBetweenPresents");
+      c.in_present = find_column(h, "MsInPresentAPI");
+      if (!c.in_present) c.in_present = find_column(h, "MsCPUWait");
+      c.cpu_busy = find_column(h, "MsCPUBusy");
+      c.gpu_busy = find_column(h, "MsGPUBusy");
+      c.gpu_time = find_column(h, "MsGPUTime");
+      c.until_displayed = find_column(h, "MsUntilDisplayed");
+      c.display_change = find_column(h, "MsBetweenDisplayChange");
       break;
     case Generation::v2:
-      c.runtime = find(h, "PresentRuntime");
-      c.in_present = find(h, "CPUWait");
-      c.cpu_busy = find(h, "CPUBusy");
-      c.gpu_busy = find(h, "GPUBusy");
-      c.gpu_time = find(h, "GPUTime");
-      c.display_latency = find(h, "DisplayLatency");
-      c.displayed_time = find(h, "DisplayedTime");
+      c.runtime = find_column(h, "PresentRuntime");
+      c.in_present = find_column(h, "CPUWait");
+      c.cpu_busy = find_column(h, "CPUBusy");
+      c.gpu_busy = find_column(h, "GPUBusy");
+      c.gpu_time = find_column(h, "GPUTime");
+      c.display_latency = find_column(h, "DisplayLatency");
+      c.displayed_time = find_column(h, "DisplayedTime");
       break;
     case Generation::v1:
-      c.runtime = find(h, "Runtime");
-      c.dropped = find(h, "Dropped");
-      c.between = find(h, "msBetweenPresents");
-      c.in_present = find(h, "msInPresentAPI");
-      c.gpu_busy = find(h, "msGPUActive");
-      c.render_start = find(h, "msUntilRenderStart");
-      c.render_complete = find(h, "msUntilRenderComplete");
-      c.until_displayed = find(h, "msUntilDisplayed");
-      c.display_change = find(h, "msBetweenDisplayChange");
+      c.runtime = find_column(h, "Runtime");
+      c.dropped = find_column(h, "Dropped");
+      c.between = find_column(h, "msBetweenPresents");
+      c.in_present = find_column(h, "msInPresentAPI");
+      c.gpu_busy = find_column(h, "msGPUActive");
+      c.render_start = find_column(h, "msUntilRenderStart");
+      c.render_complete = find_column(h, "msUntilRenderComplete");
+      c.until_displayed = find_column(h, "msUntilDisplayed");
+      c.display_change = find_column(h, "msBetweenDisplayChange");
       break;
     default: break;
   }

@@ -13,11 +13,6 @@ namespace latsim::capture {
 
 namespace {
 
-std::optional<size_t> find(const std::vector<std::string>& header, std::string_view name) {
-  const auto it = std::find(header.begin(), header.end(), name);
-  if (it == header.end()) return std::nullopt;
-  return static_cast<size_t>(it - header.begin());
-}
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -35,7 +30,7 @@ std::string fmt(double v, const char* format) {
 
 std::vector<ProcessCount> presentmon_processes(const std::filesystem::path& file) {
   RowSource rows(file);
-  const auto app = find(rows.header(), "Application"), pid = find(rows.header(), "ProcessID");
+  const auto app = find_column(rows.header(), "Application"), pid = find_column(rows.header(), "ProcessID");
   std::vector<ProcessCount> out;
   std::map<std::pair<std::string, int64_t>, size_t> at;
   while (rows.next()) {
@@ -57,9 +52,9 @@ std::optional<double> refresh_period_ms(const std::filesystem::path& file) {
   const Generation g = detect_generation(h);
   if (!is_presentmon(g)) return std::nullopt;
   // v2 writes how long each frame stayed on screen instead of the change interval.
-  const auto change = g == Generation::v2 ? find(h, "DisplayedTime")
-                                          : find(h, g == Generation::v1 ? "msBetweenDisplayChange" : "MsBetweenDisplayChange");
-  const auto sync = find(h, "SyncInterval"), tearing = find(h, "AllowsTearing");
+  const auto change = g == Generation::v2 ? find_column(h, "DisplayedTime")
+                                          : find_column(h, g == Generation::v1 ? "msBetweenDisplayChange" : "MsBetweenDisplayChange");
+  const auto sync = find_column(h, "SyncInterval"), tearing = find_column(h, "AllowsTearing");
   if (!change || !sync) return std::nullopt;
   std::vector<double> intervals;
   while (rows.next()) {

@@ -13,6 +13,12 @@ bool blank(std::string_view line) { return line.find_first_not_of(" \t\r") == st
 
 }  // namespace
 
+std::optional<size_t> find_column(const std::vector<std::string>& header, std::string_view name) {
+  const auto it = std::find(header.begin(), header.end(), name);
+  if (it == header.end()) return std::nullopt;
+  return static_cast<size_t>(it - header.begin());
+}
+
 bool split_vrapi(std::string_view line, VrApiFields& out) {
   out.keys.clear();
   out.values.clear();

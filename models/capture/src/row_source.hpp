@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -19,6 +20,9 @@ namespace latsim::capture {
 struct VrApiFields {
   std::vector<std::string_view> keys, values;
 };
+
+/// Where column `name` is in a header (none: it has no such column).
+std::optional<size_t> find_column(const std::vector<std::string>& header, std::string_view name);
 
 /// The fields of a VrApi statistics line: the text from "FPS=" on, whatever
 /// logcat wrote before it ("I VrApi   : "); none when the line is no such line.

@@ -11,11 +11,6 @@ namespace latsim::capture {
 
 namespace {
 
-std::optional<size_t> find(const std::vector<std::string>& header, std::string_view name) {
-  const auto it = std::find(header.begin(), header.end(), name);
-  if (it == header.end()) return std::nullopt;
-  return static_cast<size_t>(it - header.begin());
-}
 
 /// A reader of one kind: the columns it needs, then every row.
 class StatsReader {
@@ -39,7 +34,7 @@ class StatsReader {
 
  private:
   std::optional<size_t> column(std::string_view name, bool required = true) {
-    const auto at = find(rows_.header(), name);
+    const auto at = find_column(rows_.header(), name);
     if (!at && required)
       throw CaptureError(rows_.file(), 1, "no column \"" + std::string(name) + "\" in this " +
                                               generation_name(out_.generation) + " file");
