@@ -234,6 +234,17 @@ check(rows["refresh"]["standing"] == "input", "the refresh rate is the scenario'
 check(rows["prediction"]["capture_count"] == "104", "the export's 104 whole seconds")
 verdict = open(os.path.join(quest_dir, "compare", "compare.md")).read().split("## Verdict")[1]
 check(sum(1 for line in verdict.splitlines() if line.startswith("- ")) == len(rows), "one verdict line per quantity")
+# The two VrApi lines and a SteamVR frame timing file (written from openvr.h's fields) against the same run.
+for capture, quantities in ((os.path.join(SOURCE, "scenarios", "measured", "captures", "vrapi", "vrapi_stats_lines.txt"),
+                             {"frame_rate", "prediction", "stale", "early", "tears"}),
+                            (os.path.join(SOURCE, "tests", "capture", "data", "steamvr_frame_timing.csv"),
+                             {"frame_interval", "stale", "app_gpu", "timewarp_gpu"})):
+    out = os.path.join(SCRATCH, "vs_" + os.path.basename(capture))
+    r = subprocess.run([LATSIM, "compare", capture, quest_dir, "--no-plots", "--out", out], capture_output=True,
+                       text=True)
+    check(r.returncode == 0, f"compare of {os.path.basename(capture)} with a run exits 0 ({r.stderr.strip()})")
+    got = {x["quantity"]: x for x in csv.DictReader(open(os.path.join(out, "compare.csv")))}
+    check(quantities <= set(got), f"{os.path.basename(capture)}: rows {sorted(got)}")
 broken = os.path.join(SCRATCH, "broken_ovr.csv")
 with open(ovr) as f:
     lines = f.read().splitlines()
