@@ -49,6 +49,8 @@ class PresentPath {
   /// allows: the Present of the newest waits until one is.
   bool blocks() const { return static_cast<int>(waiting_.size()) > spec_.max_frame_latency; }
   const PresentPathSpec& spec() const { return spec_; }
+  /// Frames presented and not yet taken nor passed over.
+  int waiting() const { return static_cast<int>(waiting_.size()); }
 
  private:
   struct Waiting {

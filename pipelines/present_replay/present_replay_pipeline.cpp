@@ -46,10 +46,19 @@ des::Time PresentReplayPipeline::start_time() const {
   return des::Time::zero();
 }
 
+// What the runtime can know when a frame starts: its nominal CPU and GPU
+// time, and the frames queued before it, each taking its refreshes.
 des::Time PresentReplayPipeline::expected_photon_time() const {
-  const des::Time ready = ctx_->sim.now() + p_.source->mean_cpu_busy + p_.source->mean_gpu_busy;
+  const des::Time now = ctx_->sim.now();
+  const des::Time ready = now + p_.source->mean_cpu_busy + p_.source->mean_gpu_busy;
   if (p_.path.show == PresentPathSpec::Show::immediate) return ctx_->first_line_photon_time(ready);
-  return ctx_->photon_time_after(ready, p_.path.composed ? 1 : 0);
+  const display::RasterTiming& t = ctx_->display.timing();
+  int64_t field = t.field_at_or_after(ready);
+  if (p_.path.show == PresentPathSpec::Show::queued) {
+    const int64_t behind = static_cast<int64_t>(path_.waiting()) * p_.path.sync_interval;
+    field = std::max(field, t.field_at_or_before(now) + 1 + behind);
+  }
+  return ctx_->frame_photon_time(field + (p_.path.composed ? 1 : 0));
 }
 
 des::Process PresentReplayPipeline::application() {
