@@ -137,7 +137,6 @@ void PresentReplayPipeline::show(int64_t j) {
   for (int eye = 0; eye < ctx_->display.eyes(); ++eye)
     ctx_->display.present_now(eye, f.image_ids[static_cast<size_t>(eye)]);
   ctx_->app_frames.flipped(j, ctx_->sim.now());
-  ++shown_;
   settled_[j] = true;
   maybe_complete(j);
   forget(j);

@@ -67,7 +67,7 @@ class PresentReplayPipeline final : public Pipeline {
   std::map<int64_t, Frame> frames_;  ///< presented, not yet both complete and shown or passed over
   std::map<int64_t, bool> settled_;  ///< frames shown or passed over, before they complete
   des::Time gpu_free_;
-  int64_t played_ = 0, wraps_ = 0, dropped_ = 0, shown_ = 0;
+  int64_t played_ = 0, wraps_ = 0, dropped_ = 0;
   bool stopped_ = false, ending_ = false;
 };
 
