@@ -57,7 +57,11 @@ class DoubleBufferPipeline final : public Pipeline {
     ctx.recorder.set("nominal_frame_time_ms", p_.cost.nominal_frame_time().to_ms());
     ctx.recorder.declare_headline({"motion_to_photon_ms", "frame_rate_hz", "missed_refreshes",
                                    "registration_error_arcmin", "smear_arcmin"});
-    if (p_.cost.trace()) ctx.recorder.add_capture(sections::trace_summary(p_.cost));
+    if (p_.cost.trace()) {
+      ctx.recorder.add_capture(sections::trace_summary(p_.cost));
+      const double refresh_hz = 1.0 / ctx.display_params.raster.field_period.to_seconds();
+      for (const std::string& w : sections::trace_warnings(p_.cost, refresh_hz)) ctx.recorder.warn(w);
+    }
     if (!p_.vsync || p_.queued_frames != 0 || p_.cost.varies()) return;
     const auto a = analytic_double_buffer(analytic_inputs(ctx));
     if (!a) return;
@@ -128,6 +132,7 @@ class DoubleBufferPipeline final : public Pipeline {
       if (!p_.vsync) {
         // No vsync: the new image replaces the front buffer mid-scan.
         for (int eye = 0; eye < ctx_->display.eyes(); ++eye) ctx_->display.present_now(eye, done.ids[eye]);
+        ctx_->app_frames.flipped(done.frame, ctx_->sim.now());
         continue;
       }
       queue_.push_back(std::move(done));
@@ -175,6 +180,7 @@ class DoubleBufferPipeline final : public Pipeline {
       const Done d = std::move(queue_.front());
       queue_.pop_front();
       for (int eye = 0; eye < ctx_->display.eyes(); ++eye) ctx_->display.present_now(eye, d.ids[eye]);
+      ctx_->app_frames.flipped(d.frame, now);
       if (ctx_->timeline) ctx_->timeline->add("QUEUED", d.frame, -1, "swapchain", d.render_end, now);
     }
     retrace_.resume();

@@ -41,6 +41,8 @@ std::vector<std::string> declared(const Json& scenario) {
   if (type == "frameless") return {"motion_to_photon_ms", "pixel_age_ms", "registration_error_arcmin"};
   if (type == "pxpl5_rc") return {"motion_to_photon_ms", "render_latency_fields", "frame_rate_hz", "missed_refreshes"};
   if (type == "pxpl5_slats") return {"motion_to_photon_ms", "render_latency_fields", "missed_fields", "missed_field_fraction"};
+  // A replay's frames come at the capture's pace: what the present path made of them.
+  if (type == "present_replay") return {"motion_to_photon_ms", "application_frame_rate_hz", "frames_dropped", "frame_rate_hz"};
   return {};
 }
 
