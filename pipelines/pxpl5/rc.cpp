@@ -83,6 +83,17 @@ void bind(scenario::Section& s, Pxpl5RcPipeline::Params& p, const params::Shared
                          "first need the viewing transforms"});
       },
       {.doc = "when the host reads the tracker"});
+  s.flag("copy_holds_renderer", r.copy_holds_renderer,
+         {.doc = "a region's COPY holds the renderer that rendered it, as Slats' copies do (an assumption: "
+                 "docs/pxpl5.md); default false"});
+  s.choice("swap_at", r.swap_at,
+           {{"any_field", pxpl5::SwapAt::any_field}, {"frame_start", pxpl5::SwapAt::frame_start}},
+           {.doc = "any_field: the first retrace after the pair's COPY; frame_start: on an interlaced display only "
+                   "a retrace that starts a frame (an assumption: docs/pxpl5.md)"});
+  s.choice("stereo_swap", r.stereo_swap,
+           {{"together", pxpl5::StereoSwap::together}, {"per_eye", pxpl5::StereoSwap::per_eye}},
+           {.doc = "together: both frame buffers swap after the pair's last COPY (SPEC.md section 4); per_eye: each "
+                   "after its own eye's COPY (examined against the published minimum case: docs/pxpl5.md)"});
   bind_pxpl5_common(s, shared, r.hw, p.common);
   // What one frame of the synthetic workload costs must fit the run's clock.
   const double triangles = static_cast<double>(p.common.synthetic.triangles) * (p.common.stereo ? 2.0 : 1.0);
