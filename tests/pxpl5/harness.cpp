@@ -63,7 +63,12 @@ RunRecord run_rc(const RcParams& params, WorkloadSource& source, des::Time durat
   des::Simulator sim;
   const des::PeriodicSchedule tracker(des::Time::zero(), kTrackerPeriod);
   auto newest = [tracker](des::Time t) { return tracker.index_at_or_before(t); };
-  RcEngine engine(sim, params, ntsc_timing(), ntsc_grid(), source, recording_hooks(rec, newest));
+  EngineHooks hooks = recording_hooks(rec, newest);
+  hooks.frame_ready = [&rec, &sim](const FrameReady& f) {
+    rec.frames.push_back(f);
+    rec.frame_ready_at.push_back(sim.now());
+  };
+  RcEngine engine(sim, params, ntsc_timing(), ntsc_grid(), source, hooks);
   engine.start(duration);
   sim.run_until(duration);
   rec.utilisation = engine.utilisation(duration);

@@ -18,6 +18,7 @@ struct RunRecord {
   std::vector<StageInterval> stages;
   std::map<std::string, des::Distribution> samples;
   std::vector<FrameReady> frames;
+  std::vector<des::Time> frame_ready_at;  ///< when each of `frames` was handed over (RC)
   std::vector<RegionWrite> writes;
   FieldCounts counts;
   Utilisation utilisation;

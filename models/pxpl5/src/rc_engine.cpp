@@ -255,11 +255,10 @@ des::Process RcEngine::copy_process() {
     for (int r = 0; r < grid_.regions(); ++r) {
       while (static_cast<int>(es.render_order.size()) <= r) co_await es.rendered;
       co_await fb_ports_[fb]->acquire();
-      des::Resource* renderer = nullptr;
-      if (p_.copy_holds_renderer) {
-        renderer = renderers_[static_cast<std::size_t>(es.renderer_of_region[static_cast<std::size_t>(es.render_order[r])])].get();
-        co_await renderer->acquire();
-      }
+      // With copy_holds_renderer the copy also takes the renderer holding the region.
+      const int k = p_.copy_holds_renderer ? es.renderer_of_region[static_cast<std::size_t>(es.render_order[r])] : -1;
+      des::Resource* renderer = k >= 0 ? renderers_[static_cast<std::size_t>(k)].get() : nullptr;
+      if (renderer != nullptr) co_await renderer->acquire();
       co_await ring_.acquire();
       const des::Time start = sim_.now();
       if (r == 0) es.copy_start = start;
@@ -269,6 +268,7 @@ des::Process RcEngine::copy_process() {
       if (renderer != nullptr) renderer->release();
       fb_ports_[fb]->release();
       stage("COPY", i, e, unit_name("FB", fb), start, sim_.now());
+      if (renderer != nullptr) stage("COPY", i, e, unit_name("R", k), start, sim_.now());
     }
     es.copy_end = sim_.now();
     sample("stage_ms.COPY", (es.copy_end - es.copy_start).to_ms());
