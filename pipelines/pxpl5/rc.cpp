@@ -30,6 +30,9 @@ class Pxpl5RcPipeline final : public Pipeline {
     wiring_->expect_photon_time([this, &ctx](des::Time t) { return ctx.photon_time_after(t + wiring_->read_to_copy_end()); });
     engine_ = std::make_unique<pxpl5::RcEngine>(ctx.sim, p_.rc, wiring_->field_timing(), wiring_->grid(),
                                                 wiring_->workload(p_.common), wiring_->hooks());
+    // A host that waits for the tracker wakes when a sample becomes visible (no events otherwise).
+    if (p_.rc.host_waits_for_new_sample)
+      ctx.host.on_delivery([this](const tracker::TrackerSample&, des::Time) { engine_->sample_visible(); });
     engine_->start(ctx.sim.now() + ctx.duration);
   }
 
@@ -76,11 +79,14 @@ void bind(scenario::Section& s, Pxpl5RcPipeline::Params& p, const params::Shared
   s.duration("region_shade_us", r.region_shade_time, {.unit = "us", .doc = "end-of-frame (deferred shading) commands"});
   s.integer("end_of_frame_words", r.end_of_frame_words, {.min = 0.0, .max = 1048576.0, .doc = "end-of-frame commands on the ring"});
   s.object(
-      "host", r.host_read,
-      [](scenario::Section& h, pxpl5::HostRead& read) {
-        h.choice("read", read, {{"send_start", pxpl5::HostRead::send_start}, {"late", pxpl5::HostRead::late}},
+      "host", r,
+      [](scenario::Section& h, pxpl5::RcParams& rc) {
+        h.choice("read", rc.host_read, {{"send_start", pxpl5::HostRead::send_start}, {"late", pxpl5::HostRead::late}},
                  {.doc = "send_start: the tracker is read as SEND starts; late: as EDIT starts, when the slaves "
                          "first need the viewing transforms"});
+        h.flag("wait_for_new_sample", rc.host_waits_for_new_sample,
+               {.doc = "SEND first waits until the host sees a tracker sample newer than the previous frame's (an "
+                       "application blocking on the tracker; examined in docs/pxpl5.md); default false"});
       },
       {.doc = "when the host reads the tracker"});
   s.flag("copy_holds_renderer", r.copy_holds_renderer,

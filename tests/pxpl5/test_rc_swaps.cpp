@@ -46,12 +46,13 @@ CopySpan copy_span(const RunRecord& r, int64_t frame, int eye) {
 // ms; COPY of both eyes starts at max(T(i), S(i - 1)), once the previous frame
 // is swapped in, and takes 31.2 ms; the frame swaps at S(i), the first allowed
 // retrace after that. Both eyes' latency is S(i) - T(i).
-std::vector<double> host_bound_by_hand(int frames, bool frame_start) {
+std::vector<double> host_bound_by_hand(int frames, bool frame_start, des::Time period = des::Time::ms(40),
+                                       int64_t first = 1) {
   const FieldTiming timing = ntsc_timing();
   std::vector<double> fields;
   des::Time previous_swap = des::Time::zero();
   for (int i = 0; i < frames; ++i) {
-    const des::Time t = des::Time::ms(40) * (i + 1);
+    const des::Time t = period * (i + first);
     const des::Time copy_end = std::max(t, previous_swap) + des::Time::us(780) * 40;
     previous_swap = timing.retrace(allowed_field_after(copy_end, frame_start));
     fields.push_back((previous_swap - t).to_ms() / timing.period_ms());
@@ -168,4 +169,27 @@ TEST_CASE("copies that hold the renderer: one renderer can no longer keep up wit
   for (const StageInterval* c : copy)
     for (const StageInterval* g : render) overlaps += (c->end <= g->start || g->end <= c->start) ? 0 : 1;
   CHECK(overlaps == 0);
+}
+
+// A host that blocks until the tracker has a sample newer than the last
+// frame's, with a 20 Hz tracker (sample k visible at k x 50 ms) and the
+// processors costing nothing but COPY: SEND of frame i waits for sample i,
+// so by hand T(i) = 50 i ms, and the frames follow the recurrence of the
+// host-bound case above with a 50 ms period. Latency 31.2 ms plus the wait
+// for a retrace: the host's pace lowers it from the full pipeline's.
+TEST_CASE("a host that waits for a new tracker sample paces the frames at the tracker's rate", "[pxpl5][rc][host]") {
+  RcParams p = trivial_rc_params();
+  p.host_waits_for_new_sample = true;
+  const RunRecord r = run_rc_with_tracker(p, Workload{0, 1.0}, des::Time::s(3), des::RationalSeconds{1, 20});
+  const std::vector<double> hand = host_bound_by_hand(static_cast<int>(r.frames.size()), false, des::Time::ms(50), 0);
+  REQUIRE(r.frames.size() > 50);
+  for (std::size_t i = 0; i < r.frames.size(); ++i) {
+    CHECK(r.frames[i].eyes[0].sample_token == static_cast<int64_t>(i));
+    CHECK((r.frames[i].swap_at - r.frames[i].eyes[0].transform_start).to_ms() / r.field_ms ==
+          Approx(hand[i]).margin(1e-9));
+  }
+  // Without the wait the same host runs the pipeline full, COPY-bound: one frame every two fields.
+  p.host_waits_for_new_sample = false;
+  const RunRecord full = run_rc_with_tracker(p, Workload{0, 1.0}, des::Time::s(3), des::RationalSeconds{1, 20});
+  CHECK(full.dist("frame_time_ms").summary().mean == Approx(2000.0 / 60.0).margin(1e-6));
 }

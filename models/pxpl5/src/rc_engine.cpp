@@ -16,6 +16,7 @@ RcEngine::RcEngine(des::Simulator& sim, RcParams params, FieldTiming timing, Reg
       workload_(workload),
       hooks_(std::move(hooks)),
       work_available_(sim, "pxpl5.rc.work"),
+      sample_arrived_(sim, "pxpl5.rc.sample"),
       ring_(sim, params.hw.ring_channels, "pxpl5.ring") {
   if (p_.slaves() < 1) throw std::invalid_argument("RC needs a master and at least one slave GP");
   for (int s = 0; s < p_.slaves(); ++s) sgp_ports_.push_back(std::make_unique<des::Resource>(sim, 1));
@@ -34,6 +35,11 @@ void RcEngine::start(des::Time end) {
   const des::KindId render = sim_.kind("pxpl5.render");
   for (int k = 0; k < p_.hw.renderers; ++k) sim_.spawn(renderer_process(k), render);
   sim_.spawn(copy_process(), sim_.kind("pxpl5.copy"));
+}
+
+void RcEngine::sample_visible() {
+  sample_arrived_.trigger();
+  sample_arrived_.reset();
 }
 
 RcEngine::FrameState& RcEngine::frame(int64_t i) {
@@ -95,9 +101,14 @@ des::Process RcEngine::send_process() {
     if (sim_.now() >= end_) co_return;
     FrameState& f = frame(i);
     const des::Time start = sim_.now();
+    if (p_.host_waits_for_new_sample && hooks_.newest_index) {
+      // The application blocks until the tracker delivers a newer sample.
+      while (hooks_.newest_index(sim_.now()) <= last_sent_index_) co_await sample_arrived_;
+      last_sent_index_ = hooks_.newest_index(sim_.now());
+    }
     if (p_.host_read == HostRead::send_start) {
-      f.sample_read_at = start;
-      f.sample_token = newest_sample(start);
+      f.sample_read_at = sim_.now();
+      f.sample_token = newest_sample(sim_.now());
     }
     co_await sim_.delay(p_.send_time + p_.hw.transfer_time(p_.send_words));
     stage("SEND", i, -1, "host", start, sim_.now());

@@ -57,6 +57,10 @@ struct RcParams {
   des::Time region_shade_time = des::Time::us(300);           ///< end-of-frame (deferred shading) commands
   int end_of_frame_words = 32;
   HostRead host_read = HostRead::send_start;
+  /// SEND first waits until the host sees a tracker sample newer than the
+  /// previous frame's (an application that blocks on the tracker; examined,
+  /// off by default). Needs the newest_index hook and sample_visible() calls.
+  bool host_waits_for_new_sample = false;
   // Mechanisms examined against the published fly-through spreads
   // (docs/pxpl5.md, "What could spread a small model's latency"); both off
   // by default, as SPEC.md section 4 has them.
@@ -83,6 +87,9 @@ class RcEngine {
 
   /// Spawns the stage processes; no new frame is sent at or after `end`.
   void start(des::Time end);
+  /// A new tracker sample has become visible to the host (called by the run
+  /// when host_waits_for_new_sample is set).
+  void sample_visible();
   Utilisation utilisation(des::Time elapsed) const;
   int64_t frames_completed() const { return frames_completed_; }
   const RcParams& params() const { return p_; }
@@ -158,6 +165,8 @@ class RcEngine {
   std::deque<EyeState> eyes_;
   std::deque<RegionTask> unrendered_;  // the MGP's list, busiest region first per eye
   des::Signal work_available_;         // pulsed when regions join the list
+  des::Signal sample_arrived_;         // pulsed by sample_visible()
+  int64_t last_sent_index_ = -1;       // tracker index of the newest sample a SEND waited for
 
   des::Resource ring_;
   std::vector<std::unique_ptr<des::Resource>> renderers_;  // taken only with copy_holds_renderer
