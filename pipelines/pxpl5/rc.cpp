@@ -86,12 +86,12 @@ void bind(scenario::Section& s, Pxpl5RcPipeline::Params& p, const params::Shared
                          "first need the viewing transforms"});
         h.flag("wait_for_new_sample", rc.host_waits_for_new_sample,
                {.doc = "SEND first waits until the host sees a tracker sample newer than the previous frame's (an "
-                       "application blocking on the tracker; examined in docs/pxpl5.md); default false"});
+                       "application blocking on the tracker; examined in docs/pxpl5.md)"});
       },
-      {.doc = "when the host reads the tracker"});
+      {.doc = "when the host reads the tracker, and whether it waits for a new sample"});
   s.flag("copy_holds_renderer", r.copy_holds_renderer,
          {.doc = "a region's COPY holds the renderer that rendered it, as Slats' copies do (an assumption: "
-                 "docs/pxpl5.md); default false"});
+                 "docs/pxpl5.md)"});
   s.choice("swap_at", r.swap_at,
            {{"any_field", pxpl5::SwapAt::any_field}, {"frame_start", pxpl5::SwapAt::frame_start}},
            {.doc = "any_field: the first retrace after the pair's COPY; frame_start: on an interlaced display only "
