@@ -94,9 +94,19 @@ std::vector<EventRate> rc_event_rates(const pxpl5::RcParams& p, const Pxpl5Commo
   // its commands (at most all of them), the end-of-frame transfer, the
   // shading wait and the copy.
   const double holders = std::min(slaves, std::max(1.0, common.synthetic.regions_per_triangle * triangles / regions));
+  // A copy that holds its renderer waits for it too; a swap held back to a
+  // frame's start hands the frame over one event later.
   const double per_region = slaves * kEventsPerHop + holders * (kEventsPerTransfer + 1.0) + kEventsPerTransfer + 2.0 +
-                            kEventsPerCopy;
-  return {{key, "pxpl5", frames_per_s * (eyes * regions * per_region + kEventsPerSend + 4.0)}};
+                            kEventsPerCopy + (p.copy_holds_renderer ? 2.0 : 0.0);
+  const double per_frame = kEventsPerSend + 4.0 + (p.swap_at == pxpl5::SwapAt::frame_start ? 1.0 : 0.0);
+  std::vector<EventRate> rates{{key, "pxpl5", frames_per_s * (eyes * regions * per_region + per_frame)}};
+  if (p.host_waits_for_new_sample) {
+    // Every sample becomes visible as an event, and may wake the waiting host.
+    const double tracker_hz = 1.0 / shared.tracker.period.to_seconds();
+    rates.push_back({"/tracker/rate_hz", "transport", tracker_hz});
+    rates.push_back({"/tracker/rate_hz", "pxpl5", tracker_hz});
+  }
+  return rates;
 }
 
 }  // namespace latsim::pipelines

@@ -105,6 +105,10 @@ pxpl5::EngineHooks Pxpl5Wiring::hooks() {
     const auto s = ctx_->host.newest_at(t);
     return s ? remember(*s, t) : -1;
   };
+  h.newest_index = [this](des::Time t) -> int64_t {
+    const auto s = ctx_->host.newest_at(t);
+    return s ? s->index : -1;
+  };
   h.sample_age_ms = [this](int64_t older, int64_t newer) {
     const auto a = poses_.find(older), b = poses_.find(newer);
     if (a == poses_.end() || b == poses_.end()) return 0.0;

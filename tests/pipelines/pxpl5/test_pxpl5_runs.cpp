@@ -289,3 +289,19 @@ TEST_CASE("the head of the fly-through follows the view, far above the small mod
   CHECK(fig(r, "triangles_on_screen")["max"].get<double>() < 59592 / 2.0);
   CHECK(fig(r, "triangles_on_screen")["min"].get<double>() == 0.0);
 }
+
+// A viewer that blocks until the tracker has a newer sample, the tracker at
+// 20 Hz on a direct link: sample k reaches the host 50 ms after sample k - 1,
+// three fields, so once the first frame is out every frame waits for its
+// sample and the minimum case swaps every three fields instead of every two.
+TEST_CASE("a run whose host waits for the tracker is paced by it", "[pxpl5][scenario][host]") {
+  const double field_ms = 1000.0 / 60.0;
+  const std::vector<std::string> slow{"/tracker/rate_hz=20", "/duration_s=4", "/output/timeline=false"};
+  std::vector<std::string> waiting = slow;
+  waiting.push_back("/pipeline/host/wait_for_new_sample=true");
+  const Json paced = run_file("pxpl5/rc_min_latency.json", waiting);
+  CHECK(fig(paced, "frame_time_ms")["min"].get<double>() == Approx(3 * field_ms).margin(1e-6));
+  CHECK(fig(paced, "frame_time_ms")["max"].get<double>() == Approx(3 * field_ms).margin(1e-6));
+  const Json free_running = run_file("pxpl5/rc_min_latency.json", slow);
+  CHECK(fig(free_running, "frame_time_ms")["max"].get<double>() == Approx(2 * field_ms).margin(1e-6));
+}
