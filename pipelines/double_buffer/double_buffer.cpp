@@ -56,7 +56,11 @@ class DoubleBufferPipeline final : public Pipeline {
   void finish(RunContext& ctx) override {
     ctx.figures.set("nominal_frame_time_ms", p_.cost.nominal_frame_time().to_ms());
     ctx.figures.use_headline("double_buffer");
-    if (p_.cost.trace()) ctx.figures.add_capture(sections::trace_summary(p_.cost));
+    if (p_.cost.trace()) {
+      ctx.figures.add_capture(sections::trace_summary(p_.cost));
+      const double refresh_hz = 1.0 / ctx.display_params.raster.field_period.to_seconds();
+      for (const std::string& w : sections::trace_warnings(p_.cost, refresh_hz)) ctx.figures.warn(w);
+    }
     if (!p_.vsync || p_.queued_frames != 0 || p_.cost.varies()) return;
     const auto a = analytic_double_buffer(analytic_inputs(ctx));
     if (!a) return;
@@ -127,6 +131,7 @@ class DoubleBufferPipeline final : public Pipeline {
       if (!p_.vsync) {
         // No vsync: the new image replaces the front buffer mid-scan.
         for (int eye = 0; eye < ctx_->display.eyes(); ++eye) ctx_->display.present_now(eye, done.ids[eye]);
+        ctx_->app_frames.flipped(done.frame, ctx_->sim.now());
         continue;
       }
       queue_.push_back(std::move(done));
@@ -174,6 +179,7 @@ class DoubleBufferPipeline final : public Pipeline {
       const Done d = std::move(queue_.front());
       queue_.pop_front();
       for (int eye = 0; eye < ctx_->display.eyes(); ++eye) ctx_->display.present_now(eye, d.ids[eye]);
+      ctx_->app_frames.flipped(d.frame, now);
       if (ctx_->timeline) ctx_->timeline->add("QUEUED", d.frame, -1, "swapchain", d.render_end, now);
     }
     retrace_.resume();

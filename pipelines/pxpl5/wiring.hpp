@@ -34,6 +34,7 @@ struct Pxpl5ViewSpan {
   double per_item_s = 0.0;
   bool per_eye = false;      ///< items are counted once per eye (Rendering Control), not once for both (Slats)
   bool per_region = false;   ///< and in every region (the most a triangle can touch)
+  bool spheres = false;      ///< items are the spheres, not the triangles
 };
 
 /// What both pipelines read besides their own costs.
@@ -42,6 +43,8 @@ struct Pxpl5Common {
   Pxpl5WorkloadKind workload = Pxpl5WorkloadKind::synthetic;
   pxpl5::Workload synthetic;
   std::vector<Pxpl5ViewSpan> view_spans;  ///< workload view: what one image costs must fit the run's clock
+  bool draws_spheres = false;             ///< the pipeline has sphere primitives (Rendering Control)
+  bool cull_back_faces = false;           ///< workload view: back-facing triangles are rejected
 };
 
 /// Declares the /pipeline keys both Pixel-Planes 5 pipelines share.

@@ -31,6 +31,11 @@ void gallery(Section& s, renderer::GalleryParams& g) {
           "tiles larger");
 }
 
+void model_size(Section& s, renderer::SceneSpec& g, double default_m, const char* doc) {
+  g.model_size_m = default_m;
+  s.number("size_m", g.model_size_m, {.unit = "m", .min = 0.0, .max = 1e6, .above_min = true, .doc = doc});
+}
+
 void persistence(Section& s, display::PersistenceParams& p, const display::RasterParams& raster) {
   using Mode = display::PersistenceParams::Mode;
   const auto flash = [&p](Section& m) {
@@ -123,6 +128,21 @@ void bind(Section& s, SceneParams& p) {
             }},
            {"room", "a 6 x 2.7 x 8 m room with tiled walls and a dozen furniture boxes", [&g](Section&) { g.type = Type::Room; }},
            {"test_pattern", "coloured boxes at 2 to 9 m before a checkered backdrop, seen best from the origin looking down −z", [&g](Section&) { g.type = Type::TestPattern; }},
+           {"mig", "the Mig of the Pixel-Planes 5 measurements: a jet of 417 triangles, nose towards −z, centred on the origin (docs/pxpl5.md)",
+            [&g](Section& m) {
+              g.type = Type::Mig;
+              model_size(m, g, 1.0, "length, nose to tail");
+            }},
+           {"molecules", "the Molecules of the Pixel-Planes 5 measurements: 1,219 atoms (spheres) and a ribbon of 2,620 triangles in a ball centred on the origin (docs/pxpl5.md)",
+            [&g](Section& m) {
+              g.type = Type::Molecules;
+              model_size(m, g, 1.0, "diameter of the ball the molecule fills");
+            }},
+           {"head", "the head of the Pixel-Planes 5 measurements: a range-scan grid of 59,592 triangles, facing +z, centred on the origin (docs/pxpl5.md)",
+            [&g](Section& m) {
+              g.type = Type::Head;
+              model_size(m, g, 1.0, "height, neck to crown");
+            }},
            {"obj", "a Wavefront OBJ mesh",
             [&g](Section& m) {
               g.type = Type::Obj;

@@ -2,6 +2,7 @@
 #include <cstdio>
 
 #include "latsim/capture/capture.hpp"
+#include "latsim/capture/presentmon.hpp"
 #include "latsim/sections/render_cost.hpp"
 
 namespace latsim::sections {
@@ -109,6 +110,23 @@ nlohmann::json trace_summary(const renderer::RenderCost& cost) {
   if (!c.application.empty()) j["application"] = c.application;
   if (c.process_id) j["process_id"] = *c.process_id;
   return j;
+}
+
+std::vector<std::string> trace_warnings(const renderer::RenderCost& cost, double refresh_hz) {
+  const renderer::TraceCost* t = cost.trace();
+  if (!t || !capture::is_presentmon(t->capture->generation)) return {};
+  const capture::Capture& c = *t->capture;
+  const std::string& column = c.columns.front().name;
+  const bool busy = column == "MsCPUBusy" || column == "CPUBusy";
+  std::vector<std::string> out;
+  try {
+    const capture::PresentMonProcess p = capture::read_presentmon(c.source, {c.application, c.process_id});
+    for (std::string& w : capture::presentmon_warnings(p, capture::refresh_period_ms(c.source), refresh_hz, busy))
+      out.push_back(t->label + ": " + w);
+  } catch (const capture::CaptureError&) {
+    // The column was read; a capture whose other PresentMon columns are not whole says nothing more.
+  }
+  return out;
 }
 
 std::string trace_ran_out(const renderer::RenderCost& cost, des::Time now) {

@@ -94,6 +94,12 @@ std::vector<Case> every_pipeline() {
   cases.push_back({"frame_stages with vsync", "modern/vsync.json", {}});
   cases.push_back({"frame_stages with time warp", "modern/timewarp.json", {}});
   cases.push_back({"frame_stages with continuous time warp", "modern/continuous_timewarp.json", {}, false, 8});
+  // A steady application replayed on its Legacy Flip queue (tests/pipelines/data/README.md): it starts each
+  // frame at a retrace, three behind the frames queued before it.
+  cases.push_back({"present_replay", nullptr,
+                   {{"display", progressive_60hz(640, 480)},
+                    {"pipeline", {{"type", "present_replay"},
+                                  {"capture", {{"file", LATSIM_SOURCE_DIR "/tests/pipelines/data/steady_present.csv"}}}}}}});
   return cases;
 }
 

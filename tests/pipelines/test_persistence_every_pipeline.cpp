@@ -53,6 +53,7 @@ std::vector<Case> every_pipeline() {
       {"frame_stages unsynchronized", "modern/unsynchronized.json", {}},
       {"frame_stages with time warp", "modern/timewarp.json", {}},
       {"frame_stages with continuous time warp", "modern/continuous_timewarp.json", {}},
+      {"present_replay", "measured/current_cpu_gpu.json", {}},
   };
 }
 

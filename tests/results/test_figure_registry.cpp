@@ -46,22 +46,6 @@ std::string parse_error(const std::string& text) {
   return "";
 }
 
-std::vector<fs::path> shipped_scenarios() {
-  std::vector<fs::path> found;
-  for (const auto& e : fs::recursive_directory_iterator(LATSIM_SOURCE_DIR "/scenarios")) {
-    const fs::path& p = e.path();
-    if (p.extension() != ".json" || p.filename() == "base.json" || p.string().find("/sweeps/") != std::string::npos)
-      continue;
-    std::ifstream in(p);
-    std::stringstream text;
-    text << in.rdbuf();
-    if (text.str().find("\"axes\":") != std::string::npos) continue;
-    found.push_back(p);
-  }
-  std::sort(found.begin(), found.end());
-  return found;
-}
-
 /// What the runs produced: per declared figure, the pipelines that reported it.
 struct Produced {
   std::map<const FigureDecl*, std::set<std::string>> by;
@@ -187,7 +171,7 @@ TEST_CASE("the registry names registered pipelines and orders its columns", "[fi
 
 TEST_CASE("every figure a run reports is declared, and every declared figure is reported", "[figures]") {
   Produced produced;
-  for (const fs::path& file : shipped_scenarios()) produced.add(run_file(file, {"/duration_s=2"}), file.string());
+  for (const fs::path& file : testing::shipped_scenarios()) produced.add(run_file(file, {"/duration_s=2"}), file.string());
   // Figures no shipped scenario reports in two seconds: the cases that do.
   const fs::path s = LATSIM_SOURCE_DIR "/scenarios";
   // The window of position_window_s (gallery_experiment's ends at 30 s).

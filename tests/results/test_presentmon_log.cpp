@@ -85,12 +85,13 @@ TEST_CASE("presentmon.csv: rows in frame order once final, NA for frames passed 
   CHECK(rows[0] ==
         "Application,ProcessID,SwapChainAddress,PresentRuntime,SyncInterval,AllowsTearing,FrameType,TimeInSeconds,"
         "MsBetweenPresents,MsBetweenDisplayChange,MsRenderPresentLatency,MsUntilDisplayed,CPUStartTimeInSeconds,"
-        "MsCPUBusy,MsGPULatency,MsGPUTime,MsGPUBusy,MsGPUWait,FrameId");
+        "MsCPUBusy,MsGPULatency,MsGPUTime,MsGPUBusy,MsGPUWait,FrameId,PresentMode,MsInPresentAPI,MsCPUWait,"
+        "MsBetweenAppStart,MsUntilScanout");
   // Frame 0: present at 3 ms; no previous present or photon; GPU end 10 - present 3 = 7; displayed 16 - 3 = 13;
   // CPU start 0; busy 2; GPU latency 3.5 - 0; GPU time 10 - 3.5 = 6.5, busy 6, wait 0.5.
   CHECK(rows[1] ==
         "frame_stages,0,0x0,latsim,1,0,Application,0.003000000000,NA,NA,7.000000000,13.000000000,0.000000000000,"
-        "2.000000000,3.500000000,6.500000000,6.000000000,0.500000000,0");
+        "2.000000000,3.500000000,6.500000000,6.000000000,0.500000000,0,NA,NA,NA,NA,NA");
   // Frame 1: present 23 ms, 20 after frame 0's; never displayed: NA, NA.
   const auto f1 = cells(rows[2]);
   CHECK(f1[7] == "0.023000000000");
@@ -126,7 +127,36 @@ TEST_CASE("presentmon.csv: a frame without CPU work has NA CPU columns, and time
   // Present 12345678901 ps = 0.012345678901 s; render-present 0; until displayed 20 ms - 12.345678901 ms.
   CHECK(rows[1] ==
         "double_buffer,0,0x0,latsim,0,1,Application,0.012345678901,NA,NA,0.000000000,7.654321099,NA,NA,NA,"
-        "12.345678900,12.345678900,0.000000000,0");
+        "12.345678900,12.345678900,0.000000000,0,NA,NA,NA,NA,NA");
+}
+
+TEST_CASE("presentmon.csv: a pipeline that models the Present call and the flip fills their columns") {
+  // present_replay's facts: a Legacy Flip swap chain; frame 0 presented at
+  // 3 ms after 2 ms of CPU busy time, its call returning 0.5 ms later (CPU
+  // wait 0.5, CPU start to next CPU start 2.5), flipped in at the retrace at
+  // 16 ms (scanout 16 - 3 = 13 ms after the present) and first lit at 16.5.
+  Dir dir;
+  {
+    RunFiles files(dir.path);
+    PresentMonLog log("present_replay", {.sync_interval = 1, .present_mode = "Hardware: Legacy Flip"});
+    FrameTimes f = frame(0, 0);
+    f.in_present = Time::us(500);
+    log.completed(f, files);
+    log.flipped(0, Time::ms(16));
+    log.shown(0, Time::from_ms(16.5), files);
+    log.finish(files);
+    files.commit();
+  }
+  const auto rows = lines_of(dir.path / "presentmon.csv");
+  REQUIRE(rows.size() == 2);
+  const auto c = cells(rows[1]);
+  REQUIRE(c.size() == 24);
+  CHECK(c[11] == "13.500000000");  // MsUntilDisplayed: first light
+  CHECK(c[19] == "Hardware: Legacy Flip");
+  CHECK(c[20] == "0.500000000");
+  CHECK(c[21] == "0.500000000");
+  CHECK(c[22] == "2.500000000");
+  CHECK(c[23] == "13.000000000");  // MsUntilScanout: the flip, PresentMon's display time
 }
 
 TEST_CASE("presentmon.csv: a run with no frame shown writes no file") {

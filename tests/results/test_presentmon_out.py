@@ -1,20 +1,26 @@
 """presentmon.csv and latsim compare, end to end.
 
-1. The two-sample Kolmogorov-Smirnov distance and the percentiles of
-   analysis/compare.py against small examples worked by hand.
+1. (The two-sample Kolmogorov-Smirnov distance and the percentiles are
+   checked by hand in tests/models/capture/test_comparison.cpp, where they live.)
 2. A frame_stages run whose stage costs vary (uniform) writes presentmon.csv
    whose every value agrees with the run's other records, read independently:
    timeline.csv (each stage's start and end, in ms with six decimals) and
    frames.csv (the ledger: each image's scanout start, in ps). timeline.csv
    truncates each instant to the nanosecond, so a duration from it is within
    1 ns of the exact one; presentmon.csv is exact to the picosecond.
-3. latsim compare of the run against itself gives KS distance 0 everywhere;
-   against a capture's process it reads what a hand count gives.
+3. latsim compare of the run against itself gives KS distance 0 on the
+   quantities both sides define alike; against a capture's process it reads
+   what a hand count gives.
 4. A run whose CPU and GPU stages are driven by that presentmon.csv
    (cost.trace, in order) repeats its values frame by frame, and compare
-   finds the driven columns' KS distance within the bound a prefix allows.
+   says those columns are replayed (left out of the verdict), their KS
+   distance within the bound a prefix allows.
 5. Bad input (missing capture, several processes and none chosen, a malformed
    cell): exit 2, one line on stderr, nothing written.
+6. A runtime's own statistics (an OVR Metrics export) against the Quest 2
+   scenario driven by it: one verdict line per quantity, the replayed GPU
+   times left out, early frames said to have no counterpart; a broken row of
+   an export is bad input naming its file and line.
 
 Usage: test_presentmon_out.py LATSIM SOURCE_DIR SCRATCH_DIR
 """
@@ -27,10 +33,6 @@ import subprocess
 import sys
 
 LATSIM, SOURCE, SCRATCH = sys.argv[1], sys.argv[2], sys.argv[3]
-sys.path.insert(0, os.path.join(SOURCE, "analysis"))
-
-import compare  # noqa: E402
-import frame_capture_csv  # noqa: E402
 
 failures = []
 
@@ -40,19 +42,6 @@ def check(condition, message):
         failures.append(message)
         print("FAILED:", message)
 
-
-# --- 1. KS distance and percentiles by hand --------------------------------
-# a = {1, 2, 3}, b = {2, 4}. F_a at 1, 2, 3, 4: 1/3, 2/3, 1, 1; F_b: 0, 1/2,
-# 1/2, 1. |F_a - F_b|: 1/3, 1/6, 1/2, 0: D = 1/2.
-check(abs(compare.ks_distance([1, 2, 3], [2, 4]) - 0.5) < 1e-15, "KS of {1,2,3} and {2,4} is 1/2")
-check(compare.ks_distance([5, 1, 3], [3, 1, 5]) == 0.0, "KS of a sample and itself reordered is 0")
-check(compare.ks_distance([1, 2], [3, 4]) == 1.0, "KS of disjoint samples is 1")
-# Ties across samples: a = {1, 1, 2}, b = {1, 2, 2}: at 1: 2/3 - 1/3; at 2: 0. D = 1/3.
-check(abs(compare.ks_distance([1, 1, 2], [1, 2, 2]) - 1 / 3) < 1e-15, "KS with ties is 1/3")
-# p50 of 1..5 is 3; p99 of 1..5: rank 0.99 * 4 = 3.96, 4 + 0.96 * (5 - 4) = 4.96.
-check(compare.percentile([5, 4, 3, 2, 1], 50) == 3, "p50 of 1..5 is 3")
-check(abs(compare.percentile([1, 2, 3, 4, 5], 99) - 4.96) < 1e-12, "p99 of 1..5 is 4.96")
-check(compare.percentile([7], 99) == 7, "p99 of one value is that value")
 
 # --- 2. presentmon.csv against timeline.csv and frames.csv -----------------
 shutil.rmtree(SCRATCH, ignore_errors=True)
@@ -134,23 +123,32 @@ check(all(row["MsGPUBusy"].split(".")[1].__len__() == 9 for row in pm), "millise
 r = subprocess.run([LATSIM, "compare", os.path.join(run_dir, "presentmon.csv"), run_dir], capture_output=True,
                    text=True)
 check(r.returncode == 0, f"compare of a run with itself exits 0 ({r.stderr.strip()})")
-rows = list(csv.DictReader(open(os.path.join(run_dir, "compare", "compare.csv"))))
-check([x["column"] for x in rows] == ["MsBetweenPresents", "MsCPUBusy", "MsGPUBusy", "MsUntilDisplayed"],
-      "compare.csv has a row per quantity")
-check(all(float(x["ks_distance"]) == 0.0 for x in rows), "a run against itself: KS distance 0")
-for x in rows:
-    check(os.path.exists(os.path.join(run_dir, "compare", f"compare_{x['column']}.png")), f"CDF plot {x['column']}")
-real = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "two_processes.csv")
-# A capture's process beside the run, in-process (the plots were drawn above).
-rows = {r["column"]: r for r in compare.table_rows(frame_capture_csv.read_capture(real, "dwm.exe"),
-                                                      frame_capture_csv.read_capture(os.path.join(run_dir,
-                                                                                                  "presentmon.csv")))}
+rows = {x["quantity"]: x for x in csv.DictReader(open(os.path.join(run_dir, "compare", "compare.csv")))}
+check(list(rows) == ["frame_interval", "cpu_busy", "cpu_wait", "gpu_busy", "until_displayed", "display_change",
+                     "dropped"], f"compare.csv has a row per quantity ({list(rows)})")
+for q in ("frame_interval", "cpu_busy", "gpu_busy", "dropped"):
+    check(float(rows[q]["ks_distance"]) == 0.0, f"a run against itself: KS distance 0 for {q}")
+    check(os.path.exists(os.path.join(run_dir, "compare", f"compare_{q}.png")), f"CDF plot {q}")
+# frame_stages reports the work of its CPU stages alone, PresentMon the time between presents: said, not judged.
+check(rows["cpu_busy"]["standing"] == "differs", "CPU busy: the definitions differ")
+check(rows["cpu_wait"]["standing"] == "no counterpart", "CPU wait: frame_stages's present takes no time")
+verdict = open(os.path.join(run_dir, "compare", "compare.md")).read().split("## Verdict")[1]
+check(sum(1 for line in verdict.splitlines() if line.startswith("- ")) == len(rows), "one verdict line per quantity")
+real = os.path.join(SOURCE, "tests", "results", "data", "two_processes.csv")
+# A capture's process beside the run.
+r = subprocess.run([LATSIM, "compare", real, run_dir, "--application", "dwm.exe", "--out",
+                    os.path.join(SCRATCH, "vs_dwm"), "--no-plots"], capture_output=True, text=True)
+check(r.returncode == 0, f"compare of a capture's process with the run exits 0 ({r.stderr.strip()})")
+rows = {x["quantity"]: x for x in csv.DictReader(open(os.path.join(SCRATCH, "vs_dwm", "compare.csv")))}
 # The capture's dwm.exe rows, by hand: MsGPUBusy 0.6803, 0.6792, NA -> two values, mean 0.67975.
-check(rows["MsGPUBusy"]["capture"]["count"] == 2, "the capture's NA cell is not counted")
-check(abs(rows["MsGPUBusy"]["capture"]["mean"] - 0.67975) < 1e-12, "the capture's mean, by hand")
+check(rows["gpu_busy"]["capture_count"] == "2", "the capture's NA cell is not counted")
+check(abs(float(rows["gpu_busy"]["capture_mean"]) - 0.67975) < 1e-12, "the capture's mean, by hand")
 # Its MsUntilDisplayed: 16.2114, 16.2211, NA: p50 of two values is their mean.
-check(abs(rows["MsUntilDisplayed"]["capture"]["p50"] - 16.21625) < 1e-12, "the capture's p50, by hand")
-check(rows["MsGPUBusy"]["ks"] == 1.0, "a GPU busy of 0.68 ms against one of 9 ms +-30 %: disjoint, KS 1")
+check(abs(float(rows["until_displayed"]["capture_p50"]) - 16.21625) < 1e-12, "the capture's p50, by hand")
+check(float(rows["gpu_busy"]["ks_distance"]) == 1.0, "a GPU busy of 0.68 ms against one of 9 ms +-30 %: disjoint, KS 1")
+check(rows["gpu_busy"]["agrees"] == "0", "so they do not agree")
+# Its dropped share: one of three frames has no display time.
+check(abs(float(rows["dropped"]["capture_mean"]) - 1 / 3) < 1e-9, "the capture's share never displayed, by hand")
 
 # --- 4. a run driven by the first run's presentmon.csv --------------------
 # One CPU stage costing the capture's MsCPUBusy and the GPU stage its
@@ -188,10 +186,12 @@ else:
     bound = (len(pm) - len(replayed)) / len(pm)
     r = subprocess.run([LATSIM, "compare", capture_file, driven_dir], capture_output=True, text=True)
     check(r.returncode == 0, f"compare of a capture and a run driven by it exits 0 ({r.stderr.strip()})")
-    ks = {x["column"]: float(x["ks_distance"]) for x in csv.DictReader(open(os.path.join(driven_dir, "compare",
-                                                                                         "compare.csv")))}
-    for column in ("MsCPUBusy", "MsGPUBusy"):
-        check(ks[column] <= bound + 1e-6, f"driven column {column}: KS {ks[column]} within {bound:.4f}")
+    rows = {x["quantity"]: x for x in csv.DictReader(open(os.path.join(driven_dir, "compare", "compare.csv")))}
+    for q in ("cpu_busy", "gpu_busy"):
+        ks = float(rows[q]["ks_distance"])
+        check(ks <= bound + 1e-6, f"driven quantity {q}: KS {ks} within {bound:.4f}")
+        check(rows[q]["standing"] == "replayed" and rows[q]["agrees"] == "",
+              f"driven quantity {q}: replayed, left out of the verdict")
 
 # --- 5. bad input ----------------------------------------------------------
 def bad(args, what):
@@ -211,8 +211,48 @@ malformed = os.path.join(SCRATCH, "malformed.csv")
 with open(malformed, "w") as f:
     f.write("MsBetweenPresents,MsGPUBusy\n16.6,1.0\n16.7,fast\n")
 err = bad([malformed, run_dir], "a malformed cell")
-check("line 3" in err and "MsGPUBusy" in err and "'fast'" in err, "names line, column and value")
+check(":3:" in err and "MsGPUBusy" in err and "'fast'" in err, "names line, column and value")
 bad([real, os.path.join(SCRATCH, "no_run_here")], "a run directory that does not exist")
+
+# --- 6. a runtime's statistics ---------------------------------------------
+ovr = os.path.join(SOURCE, "scenarios", "measured", "captures", "ovr-metrics", "OGMP_1.csv")
+quest_dir = os.path.join(SCRATCH, "quest")
+r = subprocess.run([LATSIM, "run", os.path.join(SOURCE, "scenarios", "measured", "quest2_ovr_72hz.json"), "--out",
+                    quest_dir, "--quiet", "--set", "/duration_s=3"], capture_output=True, text=True)
+check(r.returncode == 0, f"the Quest 2 run exits 0 ({r.stderr.strip()})")
+r = subprocess.run([LATSIM, "compare", ovr, quest_dir, "--no-plots"], capture_output=True, text=True)
+check(r.returncode == 0, f"compare of an OVR Metrics export with a run exits 0 ({r.stderr.strip()})")
+rows = {x["quantity"]: x for x in csv.DictReader(open(os.path.join(quest_dir, "compare", "compare.csv")))}
+check(list(rows) == ["frame_rate", "refresh", "prediction", "stale", "early", "tears", "app_gpu", "timewarp_gpu"],
+      f"the runtime's quantities ({list(rows)})")
+check(rows["app_gpu"]["standing"] == "replayed" and rows["timewarp_gpu"]["standing"] == "replayed",
+      "the GPU times the run plays from the export are replayed")
+check(rows["prediction"]["standing"] == "predicted" and rows["prediction"]["agrees"] in ("0", "1"),
+      "the prediction time is judged")
+check(rows["early"]["standing"] == "no counterpart" and rows["early"]["agrees"] == "", "early frames: no counterpart")
+check(rows["refresh"]["standing"] == "input", "the refresh rate is the scenario's")
+check(rows["prediction"]["capture_count"] == "104", "the export's 104 whole seconds")
+verdict = open(os.path.join(quest_dir, "compare", "compare.md")).read().split("## Verdict")[1]
+check(sum(1 for line in verdict.splitlines() if line.startswith("- ")) == len(rows), "one verdict line per quantity")
+# The two VrApi lines and a SteamVR frame timing file (written from openvr.h's fields) against the same run.
+for capture, quantities in ((os.path.join(SOURCE, "scenarios", "measured", "captures", "vrapi", "vrapi_stats_lines.txt"),
+                             {"frame_rate", "prediction", "stale", "early", "tears"}),
+                            (os.path.join(SOURCE, "tests", "models", "capture", "data", "steamvr_frame_timing.csv"),
+                             {"frame_interval", "stale", "app_gpu", "timewarp_gpu"})):
+    out = os.path.join(SCRATCH, "vs_" + os.path.basename(capture))
+    r = subprocess.run([LATSIM, "compare", capture, quest_dir, "--no-plots", "--out", out], capture_output=True,
+                       text=True)
+    check(r.returncode == 0, f"compare of {os.path.basename(capture)} with a run exits 0 ({r.stderr.strip()})")
+    got = {x["quantity"]: x for x in csv.DictReader(open(os.path.join(out, "compare.csv")))}
+    check(quantities <= set(got), f"{os.path.basename(capture)}: rows {sorted(got)}")
+broken = os.path.join(SCRATCH, "broken_ovr.csv")
+with open(ovr) as f:
+    lines = f.read().splitlines()
+lines[3] = lines[3].replace(",72,", ",7x2,", 1)
+with open(broken, "w") as f:
+    f.write("\n".join(lines) + "\n")
+err = bad([broken, quest_dir], "a broken row of an OVR Metrics export")
+check("broken_ovr.csv:4:" in err, f"names the file and line ({err.strip()})")
 
 print(f"{'FAILED' if failures else 'ok'}: {len(failures)} failures")
 sys.exit(1 if failures else 0)

@@ -1,6 +1,13 @@
 // Builds small scenarios in code and runs them in-process.
 #pragma once
 
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
 #include <nlohmann/json.hpp>
 
 #include "latsim/run/runner.hpp"
@@ -22,6 +29,25 @@ inline nlohmann::json base_scenario() {
 inline nlohmann::json run(const nlohmann::json& scenario) {
   return run::run_scenario(scenario::ScenarioDocument::from_json(scenario, LATSIM_SOURCE_DIR "/scenarios"),
                                  run::RunOptions{});
+}
+
+/// Every shipped scenario file, sorted: scenarios/ less base files, sweep
+/// files and the sweeps/ folder.
+inline std::vector<std::filesystem::path> shipped_scenarios() {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> found;
+  for (const auto& e : fs::recursive_directory_iterator(LATSIM_SOURCE_DIR "/scenarios")) {
+    const fs::path& p = e.path();
+    if (p.extension() != ".json" || p.filename() == "base.json" || p.string().find("/sweeps/") != std::string::npos)
+      continue;
+    std::ifstream in(p);
+    std::stringstream text;
+    text << in.rdbuf();
+    if (text.str().find("\"axes\":") != std::string::npos) continue;
+    found.push_back(p);
+  }
+  std::sort(found.begin(), found.end());
+  return found;
 }
 
 inline const nlohmann::json& fig(const nlohmann::json& summary, const char* name) {

@@ -63,10 +63,44 @@ RunRecord run_rc(const RcParams& params, WorkloadSource& source, des::Time durat
   des::Simulator sim;
   const des::PeriodicSchedule tracker(des::Time::zero(), kTrackerPeriod);
   auto newest = [tracker](des::Time t) { return tracker.index_at_or_before(t); };
-  RcEngine engine(sim, params, ntsc_timing(), ntsc_grid(), source, recording_hooks(rec, newest));
+  EngineHooks hooks = recording_hooks(rec, newest);
+  hooks.frame_ready = [&rec, &sim](const FrameReady& f) {
+    rec.frames.push_back(f);
+    rec.frame_ready_at.push_back(sim.now());
+  };
+  RcEngine engine(sim, params, ntsc_timing(), ntsc_grid(), source, hooks);
   engine.start(duration);
   sim.run_until(duration);
   rec.utilisation = engine.utilisation(duration);
+  rec.sim_fingerprint = sim.fingerprint();
+  rec.field_ms = ntsc_timing().period_ms();
+  return rec;
+}
+
+namespace {
+
+des::Process tell_samples(des::Simulator& sim, RcEngine& engine, des::PeriodicSchedule tracker, des::Time end) {
+  for (int64_t k = 1; tracker.at(k) < end; ++k) {
+    co_await sim.until(tracker.at(k));
+    engine.sample_visible();
+  }
+}
+
+}  // namespace
+
+RunRecord run_rc_with_tracker(const RcParams& params, const Workload& workload, des::Time duration,
+                              des::RationalSeconds tracker_period) {
+  RunRecord rec;
+  des::Simulator sim;
+  SyntheticWorkload source(workload, ntsc_grid().regions(), des::RandomStream(1, "pxpl5.bins"));
+  const des::PeriodicSchedule tracker(des::Time::zero(), tracker_period);
+  auto newest = [tracker](des::Time t) { return tracker.index_at_or_before(t); };
+  EngineHooks hooks = recording_hooks(rec, newest);
+  hooks.newest_index = newest;
+  RcEngine engine(sim, params, ntsc_timing(), ntsc_grid(), source, hooks);
+  sim.spawn(tell_samples(sim, engine, tracker, duration), sim.kind("test.tracker"));
+  engine.start(duration);
+  sim.run_until(duration);
   rec.sim_fingerprint = sim.fingerprint();
   rec.field_ms = ntsc_timing().period_ms();
   return rec;

@@ -18,6 +18,7 @@ struct RunRecord {
   std::vector<StageInterval> stages;
   std::map<std::string, stats::Distribution> samples;
   std::vector<FrameReady> frames;
+  std::vector<des::Time> frame_ready_at;  ///< when each of `frames` was handed over (RC)
   std::vector<RegionWrite> writes;
   FieldCounts counts;
   Utilisation utilisation;
@@ -38,6 +39,10 @@ RegionGrid ntsc_grid();
 /// A tracker feeding the host a new sample token every tracker period.
 RunRecord run_rc(const RcParams& params, const Workload& workload, des::Time duration, uint64_t seed = 1);
 RunRecord run_rc(const RcParams& params, WorkloadSource& source, des::Time duration);
+/// RC fed by a tracker whose sample k becomes visible to the host at
+/// k x `tracker_period` (the engine told of each), for a host that waits for samples.
+RunRecord run_rc_with_tracker(const RcParams& params, const Workload& workload, des::Time duration,
+                              des::RationalSeconds tracker_period);
 /// Slats on `triangles` synthetic on-screen triangles, or on any workload.
 RunRecord run_slats(const SlatsParams& params, int64_t triangles, des::Time duration);
 RunRecord run_slats(const SlatsParams& params, WorkloadSource& source, des::Time duration);

@@ -95,3 +95,70 @@ TEST_CASE("binning deals the display list round-robin and counts what each proce
   CHECK(w.bins.region_commands(8) == 4);
   CHECK(w.bins.region_commands(0) == 0);
 }
+
+namespace {
+
+std::vector<int> sphere_regions(const WorldSphere& s) {
+  const ViewBinner binner({}, wide());
+  std::vector<int> out;
+  binner.regions_of(s, latsim::tracker::Pose{}, out);
+  return out;
+}
+
+}  // namespace
+
+// A sphere of radius r about (a, d) in one axis is seen between the slopes
+// (a d -+ r sqrt(a^2 + d^2 - r^2)) / (d^2 - r^2) of the planes through the eye
+// that touch it; on the 90 degree screen a slope s is drawn at x = (s + 1) 320
+// and y = (1 - s / 0.75) 240.
+TEST_CASE("a sphere covers the regions of the box its tangent planes cut out", "[pxpl5][view][spheres]") {
+  // r = 0.2 at (0, 0, -2): slopes +-0.2 sqrt(3.96) / 3.96 = +-0.1005, x from
+  // 287.8 to 352.2 (column 2), y from 207.8 to 272.2 (rows 1 and 2).
+  CHECK(sphere_regions({glm::dvec3(0, 0, -2), 0.2}) == std::vector<int>{7, 12});
+  // r = 0.5 at (-2.5, 0, -2): 0.35 m inside the left plane (|-2.5 + 2| / sqrt 2
+  // < 0.5); x slopes (-5 -+ 0.5 sqrt 10) / 3.75 = -1.755 to -0.912, so x from
+  // the left edge to 28.3 (column 0); y slopes +-0.5 sqrt 3.75 / 3.75 = +-0.258,
+  // y from 157.4 to 322.6 (rows 1 and 2).
+  CHECK(sphere_regions({glm::dvec3(-2.5, 0, -2), 0.5}) == std::vector<int>{5, 10});
+}
+
+TEST_CASE("spheres beyond one plane bin nowhere; one reaching the eye covers the screen", "[pxpl5][view][spheres]") {
+  CHECK(sphere_regions({glm::dvec3(0, 0, 2), 0.2}).empty());      // behind the eye
+  CHECK(sphere_regions({glm::dvec3(-5, 0, -2), 0.5}).empty());    // 2.1 m beyond the left plane
+  CHECK(sphere_regions({glm::dvec3(0, 3, -2), 0.5}).empty());     // (3 - 1.5) / 1.25 = 1.2 m above the top plane
+  CHECK(sphere_regions({glm::dvec3(0, 0, -0.1), 0.5}).size() == 20);  // reaches past the near plane
+}
+
+TEST_CASE("spheres follow the triangles in the display list and bin as their own kind", "[pxpl5][view][spheres]") {
+  const std::vector<WorldTriangle> triangles{{glm::dvec3(0, 0, -2), glm::dvec3(0.5, 0, -2), glm::dvec3(0, 0.5, -2)}};
+  const std::vector<WorldSphere> spheres{{glm::dvec3(0, 0, -2), 0.2}, {glm::dvec3(0, 0, 2), 0.2}};
+  const EyeWork w = ViewBinner(triangles, wide(), spheres).bin(latsim::tracker::Pose{}, 3);
+  // List positions 0 (triangle), 1 and 2 (spheres) on processors 0, 1 and 2.
+  CHECK(w.on_screen_count == 1);
+  CHECK(w.spheres_on_screen_count == 1);
+  CHECK(w.bins.spheres(1) == 1);
+  CHECK(w.bins.spheres_on_screen(1) == 1);
+  CHECK(w.bins.spheres(2) == 1);
+  CHECK(w.bins.spheres_on_screen(2) == 0);
+  CHECK(w.bins.sphere_commands(1, 7) == 1);
+  CHECK(w.bins.sphere_commands(1, 12) == 1);
+  CHECK(w.bins.commands(0, 7) == 1);  // the triangle's
+  CHECK(w.bins.sphere_commands(0, 7) == 0);
+  CHECK(w.bins.region_commands(7) == 2);
+  CHECK(w.bins.bin_entries(1) == 2);
+}
+
+TEST_CASE("culling back faces rejects a triangle whose corners turn clockwise as the eye sees them", "[pxpl5][view]") {
+  ViewScreen culling = wide();
+  culling.cull_back_faces = true;
+  const ViewBinner binner({}, culling);
+  std::vector<int> out;
+  // Counter-clockwise seen from the eye (its normal +z points at the eye): kept.
+  binner.regions_of(WorldTriangle{glm::dvec3(0, 0, -2), glm::dvec3(0.5, 0, -2), glm::dvec3(0, 0.5, -2)}, {}, out);
+  CHECK(out == std::vector<int>{7, 8});
+  // The same corners the other way round: its back is turned, rejected.
+  binner.regions_of(WorldTriangle{glm::dvec3(0, 0, -2), glm::dvec3(0, 0.5, -2), glm::dvec3(0.5, 0, -2)}, {}, out);
+  CHECK(out.empty());
+  // Without culling both are binned.
+  CHECK(regions({glm::dvec3(0, 0, -2), glm::dvec3(0, 0.5, -2), glm::dvec3(0.5, 0, -2)}) == std::vector<int>{7, 8});
+}

@@ -33,20 +33,22 @@ double ms(Time t) { return t.to_ms(); }
 
 }  // namespace
 
-TEST_CASE("pacing: Monado's estimates converge from 2 ms as 0.8^n and settle on the hand-derived wake-up") {
+TEST_CASE("pacing: Monado's estimates converge as 0.8^n from 2, 2 and 0 ms and settle on the hand-derived wake-up") {
   // 62.5 Hz (retraces every 16 ms), no compositor: a frame is shown at the
   // first retrace after it is done, so the latch is the retrace itself.
   // C 3 ms, R 2 ms, G 4 ms; one frame in flight, so frame n is planned once
   // frames 0 .. n-1 are measured (n samples). The cpu span is C (woken to R's
-  // start), draw R, gpu G. Each estimate starts at 2 ms and after n samples is
-  //   cpu 3 - 1 * 0.8^n, draw 2, gpu 4 - 2 * 0.8^n  => app_n = 9 - 3 * 0.8^n ms.
+  // start), draw R, gpu G. Monado's pa_create sets the CPU and draw
+  // estimates to 2 ms and leaves the GPU estimate at zero, so after n samples
+  //   cpu 3 - 1 * 0.8^n, draw 2, gpu 4 - 4 * 0.8^n  => app_n = 9 - 5 * 0.8^n ms.
   // Frame n wakes at D_n - 2 (margin) - app_n, runs 9 ms without waiting, so
-  // it is done app error 9 - app_n = 3 * 0.8^n after its prediction and 2 -
-  // 3 * 0.8^n before its latch: frames 0 (3 > 2) and 1 (2.4 > 2) miss, frame 2
-  // (1.92) and all later ones make it. D_0 = 16 (first retrace leaving 6 + 2 ms
-  // after t = 0); each later frame is planned when the previous is done
-  // (D - 2 + error) and needs app_n + 2 > 8 ms: the next retrace, 16 ms on.
-  // So D_n = 16 (n + 1) and wake_n = 16 (n + 1) - 11 + 3 * 0.8^n.
+  // it is done 9 - app_n = 5 * 0.8^n after its prediction and 2 - 5 * 0.8^n
+  // before its latch: frames 0 .. 4 miss (5, 4, 3.2, 2.56, 2.048 > 2), frame
+  // 5 (1.638) and all later ones make it. D_0 = 16 (the first retrace
+  // leaving app_0 + 2 = 6 ms after t = 0); frame n is planned when frame
+  // n - 1 is done, at D_(n-1) - 2 + 5 * 0.8^(n-1), and needs app_n + 2 ms:
+  // D_(n-1) + 9 + 0.8^(n-1) at most 10 ms on, so the next retrace, 16 ms on.
+  // So D_n = 16 (n + 1) and wake_n = 16 (n + 1) - 11 + 5 * 0.8^n.
   Rig rig(three_spans(3, 2, 4, 1));
   rig.run(1.0);
   const AppPacing* pacing = rig.pipeline.app_pacing();
@@ -58,22 +60,24 @@ TEST_CASE("pacing: Monado's estimates converge from 2 ms as 0.8^n and settle on 
     const double decay = std::pow(0.8, static_cast<double>(n));
     const PacedFrame& f = log[n];
     CHECK(f.job == static_cast<int64_t>(n));
-    CHECK(ms(f.sample.gpu_done - f.plan.predicted_done) == Approx(3.0 * decay).margin(1e-6));
+    CHECK(ms(f.sample.gpu_done - f.plan.predicted_done) == Approx(5.0 * decay).margin(1e-6));
     CHECK(ms(f.plan.display) == Approx(16.0 * static_cast<double>(n + 1)).margin(1e-9));
-    CHECK(ms(f.plan.wake_up) == Approx(16.0 * static_cast<double>(n + 1) - 11.0 + 3.0 * decay).margin(1e-6));
-    CHECK(f.sample.missed == (n < 2));
+    CHECK(ms(f.plan.wake_up) == Approx(16.0 * static_cast<double>(n + 1) - 11.0 + 5.0 * decay).margin(1e-6));
+    CHECK(f.sample.missed == (n < 5));
     CHECK(ms(f.sample.cpu) == Approx(3.0).margin(1e-9));
     CHECK(ms(f.sample.draw) == Approx(2.0).margin(1e-9));
     CHECK(ms(f.sample.gpu) == Approx(4.0).margin(1e-9));
   }
-  CHECK(rig.figures["frames_late_to_latch"].get<int64_t>() == 2);
+  CHECK(rig.figures["frames_late_to_latch"].get<int64_t>() == 5);
 }
 
 TEST_CASE("pacing: a step in GPU time past the period misses, steps the frame period up and back as derived") {
   // 62.5 Hz, C 1 ms, R 1 ms, G 4 ms; from frame 50 G takes 20 ms (more than
   // the 16 ms period), from frame 100 4 ms again; one frame in flight.
-  // Before the step the estimates sum to 1 + 1 + 4 = 6 ms from the start
-  // (2 + 2 + 2: the errors +1, +1, -2 cancel), so nothing misses. Frame
+  // Before the step the estimates are 1 + 0.8^n, 1 + 0.8^n and 4 - 4 * 0.8^n
+  // (from 2, 2 and 0 ms): frame n is done 2 * 0.8^n after its prediction,
+  // at most the 2 ms margin (frame 0 exactly at its latch), so nothing
+  // misses. Frame
   // 50 + k (k < 50) is planned with k samples of 20: gpu_est = 20 - 16 * 0.8^k
   // (the pre-step residual, 2 * 0.8^50 < 3e-5 ms, is left out), so it is done
   // 16 * 0.8^k after its prediction and misses its latch while

@@ -1,6 +1,9 @@
 // The keys of a generic renderer's cost ("render" and stage "cost" objects).
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include <nlohmann/json.hpp>
 
 #include "latsim/sections/shared.hpp"
@@ -21,6 +24,11 @@ void bind_trace(scenario::Section& s, renderer::RenderCost::Params& p);
 /// rows read, kept and skipped by reason, and how the replay went (null for
 /// a modelled cost).
 nlohmann::json trace_summary(const renderer::RenderCost& cost);
+
+/// Warnings on a measured cost from a PresentMon capture replayed on a
+/// display of `refresh_hz` (capture::presentmon_warnings: uncapped, composed,
+/// another refresh rate, CPU busy read as work); none for other costs.
+std::vector<std::string> trace_warnings(const renderer::RenderCost& cost, double refresh_hz);
 
 /// The warning of a run ended at `now` because a measured cost with
 /// at_end "stop" played its last value.
