@@ -16,14 +16,12 @@
 
 #include "commands.hpp"
 #include "latsim/scenario/readable.hpp"
-#include "latsim/sweep/parallel_for.hpp"
-#include "latsim/sweep/progress_line.hpp"
 #include "stop_signals.hpp"
 #include "latsim/sweep/common.hpp"
-#include "latsim/sweep/cost.hpp"
 #include "latsim/sweep/mpi.hpp"
 #include "latsim/sweep/shard.hpp"
 #include "latsim/sweep/tables.hpp"
+#include "latsim/sweep/thread_runs.hpp"
 
 namespace latsim::app {
 
@@ -33,36 +31,6 @@ namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// Runs the unfinished runs among `selected` on `jobs` threads, longest expected first.
-SweepTally run_here(const SweepPlan& plan, const std::vector<size_t>& selected, const PointCheck& check,
-                    SweepWorkspace& work, const SweepRequest& request, const std::atomic<bool>* stop) {
-  const unsigned jobs = request.jobs;
-  const KeepPolicy& keep = request.keep;
-  SweepTally tally;
-  std::vector<size_t> pending;
-  for (size_t i : selected) {
-    if (work.store.is_finished(plan.runs()[i].run_id)) ++tally.resumed;
-    else pending.push_back(i);
-  }
-  pending = longest_first(pending, check.cost_of_run);
-  ProgressLine progress("sweep", selected.size(), tally.resumed);
-  std::vector<RunAttempt> attempts(pending.size());
-  // Once a stop signal came or the directory cannot take results, starting more runs only fails more.
-  std::atomic<bool> storage_unusable{false};
-  parallel_for(pending.size(), jobs, [&](size_t i) {
-    if (storage_unusable.load() || (stop != nullptr && stop->load())) {
-      attempts[i].result = RunAttempt::Result::not_started;
-      return;
-    }
-    attempts[i] = work.executor.execute(RunTask::of(plan, plan.runs()[pending[i]], keep));
-    if (attempts[i].storage_unusable) storage_unusable.store(true);
-    progress.advance();
-  });
-  progress.finish();
-  tally.add(plan, pending, attempts);
-  return tally;
 }
 
 // Runs the plan's runs that are in `shard` (all of them without one) on this
@@ -87,7 +55,8 @@ int sweep_here(const SweepRequest& request, const SweepPlan& plan, const std::op
   SweepWorkspace work(stoppable);
   write_file_if_changed(work.store.out_dir() / "plan.json", plan.to_json().dump(2) + "\n");
   const auto runs_start = std::chrono::steady_clock::now();
-  const SweepTally tally = run_here(plan, selected, check, work, request, &signals.flag());
+  const SweepTally tally =
+      run_on_threads(plan, selected, check.cost_of_run, work, request.keep, request.jobs, &signals.flag());
   phases.runs_s = seconds_since(runs_start);
   size_t temporaries = work.executor.temporaries_removed();
   if (signals.requested()) {

@@ -17,9 +17,8 @@
 #include "latsim/scenario/json_text.hpp"
 #include "latsim/scenario/readable.hpp"
 #include "latsim/sweep/common.hpp"
-#include "latsim/sweep/cost.hpp"
-#include "latsim/sweep/parallel_for.hpp"
 #include "latsim/sweep/tables.hpp"
+#include "latsim/sweep/thread_runs.hpp"
 
 namespace latsim::python {
 
@@ -71,24 +70,7 @@ SweepOutcome sweep_into(const SweepCall& call, const std::atomic<bool>& stop) {
 
   // Which runs keep their traces: the sweep file's "keep", else figures only.
   const sweep::KeepPolicy keep = plan.keep().value_or(sweep::KeepPolicy{});
-  sweep::SweepTally tally;
-  std::vector<size_t> pending;
-  for (size_t i : all) {
-    if (work.store.is_finished(plan.runs()[i].run_id)) ++tally.resumed;
-    else pending.push_back(i);
-  }
-  pending = sweep::longest_first(pending, check.cost_of_run);
-  std::vector<sweep::RunAttempt> attempts(pending.size());
-  std::atomic<bool> storage_unusable{false};
-  sweep::parallel_for(pending.size(), call.jobs, [&](size_t i) {
-    if (storage_unusable.load() || stop.load()) {
-      attempts[i].result = sweep::RunAttempt::Result::not_started;
-      return;
-    }
-    attempts[i] = work.executor.execute(sweep::RunTask::of(plan, plan.runs()[pending[i]], keep));
-    if (attempts[i].storage_unusable) storage_unusable.store(true);
-  });
-  tally.add(plan, pending, attempts);
+  const sweep::SweepTally tally = sweep::run_on_threads(plan, all, check.cost_of_run, work, keep, call.jobs, &stop);
   SweepOutcome outcome;
   if (stop.load()) return outcome;  // the caller raises the signal's exception
   if (tally.storage_problem)
