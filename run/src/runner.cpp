@@ -50,8 +50,7 @@ void simulate(Run& run) {
   if (run.sim.interrupted()) throw RunInterrupted(run.sim.now(), run.duration);
   if (run.ctx->ended_early) {
     // The figures cover the time simulated; the warning says why it is short.
-    run.duration = run.sim.now();
-    run.ctx->duration = run.duration;
+    run.duration = run.sim.now();  // the pipeline reads it (RunContext::duration), not a copy
     run.recording->book().warn(*run.ctx->ended_early);
   }
 }

@@ -82,6 +82,7 @@ struct Rig {
   results::FrameRecorder app_frames;
   results::RunFiles files;
   des::RunClocks clocks{1, 0};
+  des::Time duration = des::Time::zero();  // the span run() simulates, read by the pipeline
   std::unique_ptr<pipelines::RunContext> ctx;
   fs::FrameStagesPipeline pipeline;
   std::unique_ptr<results::SmearRecorder> smear;
@@ -121,7 +122,7 @@ struct Rig {
       smear = std::make_unique<results::SmearRecorder>(recording.book().writer("smear"), *motion);
       display.add_listener(smear.get());
     }
-    ctx.reset(new pipelines::RunContext{sim, 1, 0, des::Time::zero(), *motion, tracker_params, link, host, display,
+    ctx.reset(new pipelines::RunContext{sim, 1, 0, duration, *motion, tracker_params, link, host, display,
                                         display_params, nullptr, images, recording.pipeline_figures(), recording.signals(), app_frames, files, clocks, 0.064, false, nullptr,
                                         nullptr});
   }
@@ -129,7 +130,7 @@ struct Rig {
   /// Runs for `seconds` of simulated time and collects the pipeline's figures.
   void run(double seconds) {
     const des::Time end = des::Time::from_seconds(seconds);
-    ctx->duration = end;
+    duration = end;
     host.start(end);
     display.start(end);
     pipeline.start(*ctx);

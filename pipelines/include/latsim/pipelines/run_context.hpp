@@ -43,7 +43,9 @@ struct RunContext {
   des::Simulator& sim;
   uint64_t seed = 1;
   uint64_t replication = 0;
-  des::Time duration;                          ///< simulated time to run
+  /// The span simulated: the scenario's duration, or where the run ended
+  /// early (end_run_early). The run's one value, read here, never copied.
+  const des::Time& duration;
   const tracker::MotionSource& motion;         ///< true head motion
   const tracker::TrackerParams& tracker;       ///< how the head is sampled
   const tracker::Transport& transport;         ///< the link from tracker to host

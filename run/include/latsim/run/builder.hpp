@@ -54,6 +54,8 @@ struct Run {
   std::unique_ptr<pipelines::Pipeline> pipeline;
   std::unique_ptr<pipelines::RunContext> ctx;
   uint64_t seed = 1;
+  /// The span simulated: the scenario's duration_s, until the run ends early
+  /// (then where it ended); the pipeline reads this one value (RunContext::duration).
   des::Time duration;
   EventEstimate estimate;  ///< the events the run is expected to execute
 };
