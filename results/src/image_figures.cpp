@@ -5,17 +5,9 @@
 
 #include "latsim/results/timeline.hpp"
 
+#include "fixed_text.hpp"
+
 namespace latsim::results {
-
-namespace {
-
-std::string fixed(double v, int digits) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-  return buf;
-}
-
-}  // namespace
 
 void ImageFigures::field_started(int64_t field, des::Time retrace) {
   close_field();

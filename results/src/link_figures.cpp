@@ -2,17 +2,9 @@
 
 #include <cstdio>
 
+#include "fixed_text.hpp"
+
 namespace latsim::results {
-
-namespace {
-
-std::string fixed(double v, int digits) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-  return buf;
-}
-
-}  // namespace
 
 void LinkFigures::record_carried(const tracker::TrackerSample& s, const tracker::Carriage& c, bool line) {
   ++records_offered_;

@@ -6,9 +6,13 @@ Each library may include its own headers and those of the libraries below it
 finds each `#include "latsim/<lib>/..."` and fails on an include of a library
 that is not allowed, naming the file and line. A pipeline folder's own
 headers ("frame_stages/spec.hpp") belong to the pipelines library. The Python
-module (python/) is checked like the command line (app/). A new top-level
-folder with sources must be given its place here, or the test fails: the
-layers are declared, not discovered.
+module (python/) is checked like the command line (app/): its C++ by its
+includes, and its Python package (python/latsim/) by its imports, which may
+name the standard library, its own package and its compiled part, and the
+third-party packages in PYTHON_THIRD_PARTY, never analysis/ (which reads only
+result files and the figure registry, and never imports the module back). A
+new top-level folder with sources must be given its place here, or the test
+fails: the layers are declared, not discovered.
 """
 import pathlib
 import re
@@ -49,6 +53,37 @@ FOLDERS = {name: (f"models/{name}" if name in MODELS else name) for name in ALLO
 NOT_LIBRARIES = {"tests", "bench", "analysis", "docs", "scenarios", "scripts", "cmake", "build", "models", "examples"}
 
 INCLUDE = re.compile(r'^\s*#\s*include\s*"latsim/([a-z0-9_]+)/')
+# A Python import's first module name: "import a.b" and "from a.b import c"
+# give "a"; a relative "from . import c" gives "" (the package itself).
+IMPORT = re.compile(r'^\s*(?:import\s+([A-Za-z_][A-Za-z0-9_]*)|from\s+(\.*)([A-Za-z_][A-Za-z0-9_]*)?\s+import\b)')
+# Packages not of the standard library that the Python package may import.
+PYTHON_THIRD_PARTY = {"numpy", "pandas"}
+
+
+def python_import_problems():
+    """The imports of python/latsim/ that reach past its layer, and of analysis/ that reach the module."""
+    problems = []
+    analysis = {p.stem for p in (ROOT / "analysis").glob("*.py")}
+    package = ROOT / "python" / "latsim"
+    stdlib = set(sys.stdlib_module_names)
+    for path in sorted(package.rglob("*.py")):
+        for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+            m = IMPORT.match(line)
+            if not m:
+                continue
+            relative = bool(m.group(2))
+            name = m.group(1) or m.group(3) or ""
+            if relative or name in stdlib or name in PYTHON_THIRD_PARTY or name == "latsim":
+                continue
+            why = "analysis/, which is not below it" if name in analysis else "a module not declared here"
+            problems.append(f"{path.relative_to(ROOT)}:{number}: the Python package imports {name}, {why}")
+    for path in sorted((ROOT / "analysis").glob("*.py")):
+        for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+            m = IMPORT.match(line)
+            if m and not m.group(2) and (m.group(1) or m.group(3)) in {"latsim", "_latsim"}:
+                problems.append(f"{path.relative_to(ROOT)}:{number}: analysis/ imports the Python module, "
+                                "which stands above it")
+    return problems
 
 
 def main() -> int:
@@ -72,15 +107,21 @@ def main() -> int:
                 if m and m.group(1) not in ALLOWED[lib]:
                     problems.append(f"{path.relative_to(ROOT)}:{number}: {lib} includes latsim/{m.group(1)}/, "
                                     f"which is not below it")
+    python_files = len(list((ROOT / "python" / "latsim").rglob("*.py")))
+    problems += python_import_problems()
     for p in problems:
         print(p)
     if problems:
-        print(f"FAIL: {len(problems)} include(s) against the layers")
+        print(f"FAIL: {len(problems)} include(s) or import(s) against the layers")
         return 1
     if files < 100:
         print(f"FAIL: only {files} files read; is {ROOT} the source tree?")
         return 1
-    print(f"ok: {files} files, no include points up")
+    if python_files == 0:
+        print(f"FAIL: no Python file under {ROOT / 'python' / 'latsim'}")
+        return 1
+    print(f"ok: {files} files, no include points up; {python_files} Python files of the module import "
+          "nothing above them")
     return 0
 
 
