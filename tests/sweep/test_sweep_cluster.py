@@ -64,8 +64,11 @@ def write_sweep(name, sweep):
 shutil.rmtree(SCRATCH, ignore_errors=True)
 os.makedirs(SCRATCH)
 
-# Line-level scanout costs 480 times field level (one event per line): those
-# runs are expected longest and start first.
+# A run's expected cost is its event estimate (docs/event-budget.md): per
+# simulated second the tracker's samples, the display's retraces, one render
+# per refresh (this 7.7 ms render fits a refresh: 2 ms + 10,000 x 0.5 us +
+# 640 x 480 x 0.8 x 3 ns), and at line level one event per active line.
+# Line-level runs are expected longest and start first.
 sweep = write_sweep("cluster.json", {
     "base": BASE, "overrides": {"/duration_s": 2}, "replications": 2, "seed": 5,
     "axes": [{"pointer": "/display/refresh_hz", "values": [60, "60000/1001", 72]},
@@ -82,9 +85,11 @@ with open(os.path.join(reference_dir, "plan.json")) as f:
 
 
 def expected_events(values):
-    """Display events of a run: 2 s x fields per second x (480 active lines at line level, else 1)."""
+    """Events of a run: 2 s x (tracker samples + fields x (a retrace, a render, and 480 active lines at line
+    level))."""
     refresh = fractions.Fraction(values[0]) if isinstance(values[0], str) else values[0]
-    return 2 * refresh * (480 if values[2] == "line" else 1)
+    tracker_hz = values[1]
+    return 2 * (tracker_hz + refresh * (2 + (480 if values[2] == "line" else 0)))
 
 
 started = [run for _, event, run in journal_lines(reference_dir) if event == "start"]
