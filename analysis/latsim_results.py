@@ -11,6 +11,8 @@ import math
 import os
 from fractions import Fraction
 
+import sweep_labels
+
 # Headline columns of the latency table: (column name, figure path, unit label).
 HEADLINE = [
     ("mtp_mean_ms", "motion_to_photon_ms.mean", "MTP mean (ms)"),
@@ -123,6 +125,11 @@ class Collection:
         self.axes = axes or []
         self.figures = []  # the report's columns a sweep file chose ("figures")
         self.runs = runs or []  # sweep only: one dict per results.csv line
+        self.value_labels = {}  # sweep only: {axis: {value text: tick or legend label}} (sweep_labels)
+
+    def value_label(self, axis, value):
+        """What a plot calls one swept value: never JSON (sweep_labels.value_labels)."""
+        return self.value_labels.get(axis, {}).get(value, sweep_labels.cut(value))
 
 
 def find_figure(summary, path):
@@ -176,16 +183,9 @@ def axis_label(pointer):
 
 
 def row_name(values, axes):
-    """A sweep point's name from its axis values; values that are whole JSON
-    objects or arrays (a pipeline swapped for another) are left out when some
-    axis has a plain value, such as a label swept along with them."""
-    if not axes:
-        return "base scenario"
-    plain = [a for a in axes if not str(values[a]).lstrip().startswith(("{", "["))]
-    shown = plain or axes
-    if len(shown) == 1 and len(axes) > 1:
-        return str(values[shown[0]])
-    return ", ".join(f"{axis_label(a)}={values[a]}" for a in shown)
+    """A sweep point's name from its axis values alone (sweep_labels.point_labels over one point)."""
+    labels = {a: sweep_labels.value_labels([values[a]], axis_label(a)) for a in axes}
+    return sweep_labels.point_labels([values], axes, axis_label, labels)[0]
 
 
 def load(directory):
@@ -224,15 +224,18 @@ def _load_sweep(directory):
     by_point = {}
     for run in runs:
         by_point.setdefault(int(run["point"]), []).append(run)
-    rows = []
-    for point in sorted(by_point):
-        members = sorted(by_point[point], key=lambda r: int(r["replication"]))
-        dirs = [os.path.join(directory, "runs", r["run_id"]) for r in members]
-        values = {a: members[0][a] for a in axes}
-        name = row_name(values, axes)
-        rows.append(Row(name, dirs, None, values, members))
+    points = [sorted(by_point[p], key=lambda r: int(r["replication"])) for p in sorted(by_point)]
+    values = [{a: members[0][a] for a in axes} for members in points]
+    labels = {}
+    for a in axes:
+        distinct = list(dict.fromkeys(v[a] for v in values))
+        labels[a] = sweep_labels.value_labels(distinct, axis_label(a))
+    names = sweep_labels.point_labels(values, axes, axis_label, labels)
+    rows = [Row(name, [os.path.join(directory, "runs", r["run_id"]) for r in members], None, point_values, members)
+            for name, members, point_values in zip(names, points, values)]
     coll = Collection("sweep", directory, rows, axes, runs)
     coll.figures = figures
+    coll.value_labels = labels
     return coll
 
 
@@ -285,3 +288,34 @@ def mean_ci95(values):
         return mean, 0.0
     var = sum((v - mean) ** 2 for v in values) / (n - 1)
     return mean, t975(n - 1) * math.sqrt(var / n)
+
+
+def quantile_of_buckets(edges, counts, fraction):
+    """The value below which `fraction` of a histogram's mass lies, linear within a bucket."""
+    total = sum(counts)
+    target, below = fraction * total, 0.0
+    for lo, hi, count in zip(edges, edges[1:], counts):
+        if count > 0 and below + count >= target:
+            return lo + (hi - lo) * max(0.0, target - below) / count
+        below += count
+    return edges[-1]
+
+
+# The share of each curve's samples a histogram may leave out at either end.
+TAIL_FRACTION = 0.005
+
+
+def mass_range(histograms):
+    """(low, high, clipped) of the x range a plot of these (edges, counts) shows: every curve's
+    samples but TAIL_FRACTION at each end when that range is under half the full one (a long thin
+    tail squashes the mass against one side); else the full range and clipped False."""
+    shown = [(e, c) for e, c in histograms if e and sum(c) > 0]
+    if not shown:
+        return None
+    full_low, full_high = min(e[0] for e, _ in shown), max(e[-1] for e, _ in shown)
+    low = min(quantile_of_buckets(e, c, TAIL_FRACTION) for e, c in shown)
+    high = max(quantile_of_buckets(e, c, 1.0 - TAIL_FRACTION) for e, c in shown)
+    if high - low >= 0.5 * (full_high - full_low) or high <= low:
+        return full_low, full_high, False
+    pad = 0.05 * (high - low)
+    return max(full_low, low - pad), min(full_high, high + pad), True
