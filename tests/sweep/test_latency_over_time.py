@@ -24,7 +24,7 @@ import struct
 import subprocess
 import sys
 
-LATSIM, SOURCE_DIR, SCRATCH = sys.argv[1], sys.argv[2], sys.argv[3]
+LATSIM, SOURCE_DIR, SCRATCH = sys.argv[1], os.path.abspath(sys.argv[2]), os.path.abspath(sys.argv[3])
 sys.path.insert(0, os.path.join(SOURCE_DIR, "analysis"))
 
 import latency_over_time  # noqa: E402
