@@ -319,3 +319,26 @@ def mass_range(histograms):
         return full_low, full_high, False
     pad = 0.05 * (high - low)
     return max(full_low, low - pad), min(full_high, high + pad), True
+
+
+# A bucket drawn lower than this share of the tallest one is barely visible on a linear axis.
+FAINT_SHARE = 0.05
+# A log density axis is chosen when some curve has more of its mass than this in faint buckets.
+FAINT_MASS = 0.25
+
+
+def needs_log_density(histograms, low=None, high=None):
+    """Whether a linear density axis would hide much of some curve's mass: a spike (a still head's
+    near-zero registration error, say) that dwarfs where the rest of the samples lie. Only buckets
+    within [low, high] count, when given."""
+    densities = []
+    for edges, counts in histograms:
+        total = sum(counts)
+        if total <= 0:
+            continue
+        densities.append([(c / total / max(hi - lo, 1e-12), c / total) for lo, hi, c in zip(edges, edges[1:], counts)
+                          if (low is None or hi > low) and (high is None or lo < high)])
+    tallest = max((d for curve in densities for d, _ in curve), default=0.0)
+    if tallest <= 0:
+        return False
+    return any(sum(m for d, m in curve if d < FAINT_SHARE * tallest) > FAINT_MASS for curve in densities)

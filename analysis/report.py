@@ -150,6 +150,22 @@ def shown_range(histograms):
     return f"{fmt(min(e[0] for e in edges), 4)} to {fmt(max(e[-1] for e in edges), 4)}"
 
 
+def histogram_range(ax, histograms):
+    """Sets a histogram's axes to show its mass (x clipped past thin tails, a log density under a spike)
+    and returns what the title says about it."""
+    shown = lr.mass_range(histograms)
+    notes = []
+    if shown and shown[2]:
+        ax.set_xlim(shown[0], shown[1])
+        share = 100 * lr.TAIL_FRACTION
+        notes.append(f"x clipped to each curve's {share:g}\u2013{100 - share:g} % quantiles, "
+                     f"full range {shown_range(histograms)}")
+    if shown and lr.needs_log_density(histograms, shown[0], shown[1]):
+        ax.set_yscale("log")
+        notes.append("log density: a spike would hide the rest")
+    return "\n(" + "; ".join(notes) + ")" if notes else " (full range, linear)"
+
+
 def plot_distributions(coll):
     """A CDF and a histogram (e.g. mtp_cdf, mtp_histogram) of each distribution in DISTRIBUTIONS that
     a row has, from the histogram buckets of replication 0 of each row."""
@@ -182,14 +198,7 @@ def plot_distributions(coll):
         ax_cdf.set_title(f"{title}, cumulative distribution")
         ax_hist.set_xlabel(xlabel)
         ax_hist.set_ylabel(f"probability density (1/{xlabel.rsplit('(', 1)[-1].rstrip(')')})")
-        shown = lr.mass_range(histograms)
-        if shown and shown[2]:
-            ax_hist.set_xlim(shown[0], shown[1])
-            share = f"{100 * lr.TAIL_FRACTION:g}"
-            ax_hist.set_title(f"{title}, histogram\n(x clipped to each curve's {share}\u2013{100 - float(share):g} % "
-                              f"quantiles; full range {shown_range(histograms)})", fontsize=10)
-        else:
-            ax_hist.set_title(f"{title}, histogram (full range)")
+        ax_hist.set_title(f"{title}, histogram" + histogram_range(ax_hist, histograms), fontsize=10)
         for ax in (ax_cdf, ax_hist):
             ax.legend(fontsize=7, loc="best")
         base = coll.directory

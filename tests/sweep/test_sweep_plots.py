@@ -153,5 +153,14 @@ check(clipped and low == 0 and abs(high - (995 / 997 + 0.05 * span)) < 1e-12, f"
 # An even spread is shown whole.
 check(latsim_results.mass_range([(edges, [10] * 100)]) == (0, 100, False), "an even histogram is not clipped")
 
+# A spike over a spread: 600 samples in [0, 0.1) (density 6 per unit) and 400 in [0.1, 10) (density
+# 0.4 / 9.9 = 0.04, under 5 % of 6): 40 % of the mass would be drawn at under 5 % of the height: log.
+check(latsim_results.needs_log_density([([0, 0.1, 10], [600, 400])]), "a spike over a spread takes a log density")
+# 600 in [0, 5) and 400 in [5, 10): densities 0.12 and 0.08, both visible on a linear axis.
+check(not latsim_results.needs_log_density([([0, 5, 10], [600, 400])]), "an even histogram stays linear")
+registration = [t for t in cart_texts.get("cartesian/mtp_histogram", []) if t.startswith("Motion-to-photon")]
+check(registration and ("full range" in registration[0] or "clipped" in registration[0] or "log" in registration[0]),
+      f"a histogram's title says its range: {registration}")
+
 print(f"sweep plots: {len(checked) - len(failures)} checks passed, {len(failures)} failed")
 sys.exit(1 if failures else 0)
