@@ -63,7 +63,7 @@ def rows_of(coll):
     out = []
     for r in coll.rows:
         rate = refresh_hz(r)
-        out.append((r.name, "" if rate is None else f"{float(rate):g}",
+        out.append((lr.point_name(r, coll), "" if rate is None else f"{float(rate):g}",
                     [cell(r.values(path)) for _, path in COLUMNS], r.replications()))
     return out
 

@@ -126,6 +126,7 @@ class Collection:
         self.figures = []  # the report's columns a sweep file chose ("figures")
         self.runs = runs or []  # sweep only: one dict per results.csv line
         self.value_labels = {}  # sweep only: {axis: {value text: tick or legend label}} (sweep_labels)
+        self._point_names = None  # point_name's names, by row identity, made on first use
 
     def value_label(self, axis, value):
         """What a plot calls one swept value: never JSON (sweep_labels.value_labels)."""
@@ -186,6 +187,20 @@ def row_name(values, axes):
     """A sweep point's name from its axis values alone (sweep_labels.point_labels over one point)."""
     labels = {a: sweep_labels.value_labels([values[a]], axis_label(a)) for a in axes}
     return sweep_labels.point_labels([values], axes, axis_label, labels)[0]
+
+
+def point_name(row, coll):
+    """What tables and plots call a row: a sweep point by its axis values (sweep_labels.point_labels:
+    a /description swept beside whole objects names it alone), anything else by its name."""
+    if coll.kind != "sweep" or not coll.axes or not row.axis_values:
+        return row.name
+    if coll._point_names is None:
+        values = [r.axis_values for r in coll.rows]
+        labels = coll.value_labels or {a: sweep_labels.value_labels(list(dict.fromkeys(v[a] for v in values)),
+                                                                    axis_label(a)) for a in coll.axes}
+        names = sweep_labels.point_labels(values, coll.axes, axis_label, labels)
+        coll._point_names = {id(r): name for r, name in zip(coll.rows, names)}
+    return coll._point_names.get(id(row), row.name)
 
 
 def load(directory):

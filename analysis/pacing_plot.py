@@ -70,7 +70,8 @@ def plot(coll):
         front = pareto_front(pts)
         ax.plot([pts[i][0] for i in front], [pts[i][1] for i in front], color="tab:red", label="Pareto front")
         for (x, y), r in zip(pts, named):
-            ax.annotate(sweep_labels.cut(r.name), (x, y), textcoords="offset points", xytext=(5, 4), fontsize=7)
+            ax.annotate(sweep_labels.cut(lr.point_name(r, coll)), (x, y), textcoords="offset points", xytext=(5, 4),
+                        fontsize=7)
         ax.set_xlabel("missed frames per minute")
         ax.set_ylabel(f"{label} motion-to-photon (ms)")
         ax.legend(fontsize=8)
@@ -89,7 +90,7 @@ def markdown(coll, plot_base):
              "frames done after the compositor's latch (docs/pacing.md).", "",
              "| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     for r in coll.rows:
-        cells = [r.name, lr_fmt(missed_per_minute(r))] + [lr_fmt(r.mean(p)) for _, p in COLUMNS]
+        cells = [lr.point_name(r, coll), lr_fmt(missed_per_minute(r))] + [lr_fmt(r.mean(p)) for _, p in COLUMNS]
         lines.append("| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |")
     lines.append("")
     if plot_base:

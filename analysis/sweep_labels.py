@@ -120,14 +120,15 @@ def is_zip(rows, axes):
 
 def point_labels(values_by_point, axes, label_of_axis, labels_by_axis):
     """A name per point ({axis: value text} each): the plain values of the axes that have them (a
-    /description swept beside whole objects names the point alone), else every axis's label."""
+    /description swept alone or beside whole objects names the point by itself), else every axis's label."""
     if not axes:
         return ["base scenario" for _ in values_by_point]
     plain = [a for a in axes if not any(is_structured(v[a]) for v in values_by_point)]
     shown = plain or axes
     names = []
     for values in values_by_point:
-        if len(shown) == 1 and len(axes) > 1:
+        # A swept /description says what the point is: it needs no "name=" before it.
+        if len(shown) == 1 and (len(axes) > 1 or shown[0] == "/description"):
             names.append(labels_by_axis[shown[0]][values[shown[0]]])
         else:
             names.append(", ".join(f"{label_of_axis(a)}={labels_by_axis[a][values[a]]}" for a in shown))
