@@ -72,7 +72,7 @@ def draw(coll, path, label):
     lines = (len(keys) + cols - 1) // cols
     width = min(MAX_WIDTH_IN, max(5.0, 0.45 * len(xs) + 2.5) * cols)
     # Upright x ticks take room below each panel: about 0.06 in a character at 7 points.
-    x_labels = [coll.value_label(x_axis, v) for v in xs]
+    x_labels = [sweep_labels.cut(coll.value_label(x_axis, v)) for v in xs]
     upright = len(xs) > 8 or max(map(len, x_labels)) > 6
     below_in = 0.06 * max(map(len, x_labels)) if upright else 0.0
     fig, axes = plt.subplots(lines, cols, figsize=(width, (0.4 * len(ys) + 1.8 + below_in) * lines), squeeze=False,
@@ -85,7 +85,7 @@ def draw(coll, path, label):
         ax.set_xticks(range(len(xs)))
         ax.set_xticklabels(x_labels, rotation=90 if upright else 0, fontsize=7)
         ax.set_yticks(range(len(ys)))
-        ax.set_yticklabels([coll.value_label(y_axis, v) for v in ys], fontsize=7)
+        ax.set_yticklabels([sweep_labels.cut(coll.value_label(y_axis, v)) for v in ys], fontsize=7)
         ax.set_xlabel(sweep_labels.cut(lr.axis_label(x_axis), 60))
         if ax in axes[:, 0]:
             ax.set_ylabel(sweep_labels.cut(lr.axis_label(y_axis), 60))

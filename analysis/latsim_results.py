@@ -129,8 +129,12 @@ class Collection:
         self._point_names = None  # point_name's names, by row identity, made on first use
 
     def value_label(self, axis, value):
-        """What a plot calls one swept value: never JSON (sweep_labels.value_labels)."""
-        return self.value_labels.get(axis, {}).get(value, sweep_labels.cut(value))
+        """What a plot calls one swept value: never JSON (sweep_labels.value_labels, made from the
+        rows' values on first use where load() did not)."""
+        if axis not in self.value_labels:
+            distinct = list(dict.fromkeys(r.axis_values[axis] for r in self.rows if axis in r.axis_values))
+            self.value_labels[axis] = sweep_labels.value_labels(distinct, axis_label(axis))
+        return self.value_labels[axis].get(value, value)
 
 
 def find_figure(summary, path):
@@ -196,9 +200,9 @@ def point_name(row, coll):
         return row.name
     if coll._point_names is None:
         values = [r.axis_values for r in coll.rows]
-        labels = coll.value_labels or {a: sweep_labels.value_labels(list(dict.fromkeys(v[a] for v in values)),
-                                                                    axis_label(a)) for a in coll.axes}
-        names = sweep_labels.point_labels(values, coll.axes, axis_label, labels)
+        for a in coll.axes:
+            coll.value_label(a, values[0][a])  # makes the axis's labels where load() did not
+        names = sweep_labels.point_labels(values, coll.axes, axis_label, coll.value_labels)
         coll._point_names = {id(r): name for r, name in zip(coll.rows, names)}
     return coll._point_names.get(id(row), row.name)
 

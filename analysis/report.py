@@ -35,6 +35,7 @@ import pacing_plot  # noqa: E402
 import devices_table  # noqa: E402
 import plotting  # noqa: E402
 import prediction  # noqa: E402
+import sweep_labels  # noqa: E402
 import sweep_plots  # noqa: E402
 from plotting import plt  # noqa: E402
 from progress import Progress  # noqa: E402
@@ -189,9 +190,9 @@ def plot_distributions(coll):
                 cumulative += count
                 xs.append(upper)
                 ys.append(cumulative / total)
-            ax_cdf.plot(xs, ys, color=colour, label=row.name, drawstyle="default")
+            ax_cdf.plot(xs, ys, color=colour, label=sweep_labels.cut(row.name), drawstyle="default")
             density = [c / total / max(hi - lo, 1e-12) for lo, hi, c in zip(edges, edges[1:], counts)]
-            ax_hist.stairs(density, edges, color=colour, label=row.name, linewidth=1.2)
+            ax_hist.stairs(density, edges, color=colour, label=sweep_labels.cut(row.name), linewidth=1.2)
         ax_cdf.set_xlabel(xlabel)
         ax_cdf.set_ylabel("fraction of samples at or below")
         ax_cdf.set_ylim(0, 1.02)

@@ -5,7 +5,8 @@ whole /display or /pipeline): results.csv holds it as JSON text, which is no
 tick label or legend. Such values are named by the keys in which they differ
 from the axis's other values ("lit_ms=0.48, type=global"), cut to LABEL_CHARS;
 failing that, by the axis's name and the value's position ("/pipeline 2").
-No label made here holds a brace or a bracket.
+No label made here for a JSON value holds a brace or a bracket. Plain values
+are kept whole (a table shows them); plots cut what they draw with cut().
 """
 
 import json
@@ -75,7 +76,7 @@ def value_labels(values, axis_name):
     """{value text: label} for one axis's distinct values (results.csv text)."""
     parsed = {v: parse(v) for v in values}
     if not any(isinstance(p, (dict, list)) for p in parsed.values()):
-        return {v: cut(v) for v in values}
+        return {v: v for v in values}  # plain text: tables show it whole, plots cut it
     leaves = {v: _leaves(p) for v, p in parsed.items()}
     paths = sorted({k for leaf in leaves.values() for k in leaf})
     differing = [k for k in paths if len({json.dumps(leaf.get(k), sort_keys=True) for leaf in leaves.values()}) > 1]

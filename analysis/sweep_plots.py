@@ -25,6 +25,7 @@ MAX_TICKS = 30
 
 
 def _categorical_ticks(ax, labels):
+    labels = [sweep_labels.cut(label) for label in labels]
     step = max(1, -(-len(labels) // MAX_TICKS))
     positions = list(range(0, len(labels), step))
     ax.set_xticks(positions)
