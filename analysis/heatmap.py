@@ -91,7 +91,7 @@ def draw(coll, path, label):
             ax.set_ylabel(sweep_labels.cut(lr.axis_label(y_axis), 60))
         ax.grid(False)
         if others:
-            ax.set_title(sweep_labels.cut(", ".join(f"{lr.axis_label(a)}={coll.value_label(a, v)}"
+            ax.set_title(sweep_labels.cut(", ".join(sweep_labels.named(lr.axis_label(a), coll.value_label(a, v), v)
                                                     for a, v in zip(others, key)), 60), fontsize=8)
     for ax in list(axes.flat)[len(keys):]:
         ax.axis("off")

@@ -119,6 +119,11 @@ def is_zip(rows, axes):
     return len(varied) > 1 and not any(crossed(rows, a, b) for i, a in enumerate(varied) for b in varied[i + 1:])
 
 
+def named(axis_name, label, value):
+    """'name=value', or for a JSON value (whose label is itself key=value pairs) 'name (label)'."""
+    return f"{axis_name} ({label})" if is_structured(value) else f"{axis_name}={label}"
+
+
 def point_labels(values_by_point, axes, label_of_axis, labels_by_axis):
     """A name per point ({axis: value text} each): the plain values of the axes that have them (a
     /description swept alone or beside whole objects names the point by itself), else every axis's label."""
@@ -132,5 +137,5 @@ def point_labels(values_by_point, axes, label_of_axis, labels_by_axis):
         if len(shown) == 1 and (len(axes) > 1 or shown[0] == "/description"):
             names.append(labels_by_axis[shown[0]][values[shown[0]]])
         else:
-            names.append(", ".join(f"{label_of_axis(a)}={labels_by_axis[a][values[a]]}" for a in shown))
+            names.append(", ".join(named(label_of_axis(a), labels_by_axis[a][values[a]], values[a]) for a in shown))
     return names

@@ -133,6 +133,10 @@ check(any(t.startswith("persistence (/display/persistence)") for t in persistenc
 transport = cart_texts.get("cartesian/sweep_transport", [])
 check("poll_hz=1000, type=usb_hid" in transport and "poll_hz=absent, type=direct" in transport,
       f"transport ticks by hand: {transport}")
+with open(os.path.join(cart_dir, "report.md")) as f:
+    md = f.read()
+check("| persistence (lit_ms=0.48, response_ms=1, type=global), /transport (poll_hz=1000, type=usb_hid) |" in md,
+      "a point of whole objects is named by each axis's label and its value's differing keys")
 heat = cart_texts.get("cartesian/heatmap", [])
 check(all(label in heat for label in PERSISTENCE_LABELS), f"heat map over the two crossed axes: {heat}")
 import heatmap  # noqa: E402
