@@ -214,8 +214,8 @@ def percentile(sorted_values, q):
 
 
 def windows(xs, ys, count=None):
-    """[(window middle, low percentile, median, high percentile)] over `count` equal windows of x
-    (default: WINDOW_POINTS refreshes a window on average, at most MAX_WINDOWS)."""
+    """[(window start, window end, low percentile, median, high percentile)] over `count` equal windows
+    of x holding points (default: WINDOW_POINTS refreshes a window on average, at most MAX_WINDOWS)."""
     if not xs:
         return []
     count = count or max(1, min(MAX_WINDOWS, len(xs) // WINDOW_POINTS))
@@ -226,8 +226,8 @@ def windows(xs, ys, count=None):
     out = []
     for index in sorted(groups):
         values = sorted(groups[index])
-        out.append((start + (index + 0.5) * width, percentile(values, BAND[0]), percentile(values, 50),
-                    percentile(values, BAND[1])))
+        out.append((start + index * width, start + (index + 1) * width, percentile(values, BAND[0]),
+                    percentile(values, 50), percentile(values, BAND[1])))
     return out
 
 
@@ -235,11 +235,13 @@ def _draw(ax, xs, ys, colour, label):
     if len(xs) <= DENSE_POINTS:
         ax.plot(xs, ys, color=colour, label=label, linewidth=0.9)
         return False
-    ax.plot(xs, ys, color=colour, linewidth=0.3, alpha=0.3)
-    bands = windows(xs, ys)
-    mids = [w[0] for w in bands]
-    ax.fill_between(mids, [w[1] for w in bands], [w[3] for w in bands], color=colour, alpha=0.3, linewidth=0)
-    ax.plot(mids, [w[2] for w in bands], color=colour, label=label, linewidth=1.6)
+    # The raw series thin and light (its rare outliers stay visible), each window's band and median
+    # as steps across the window's whole span.
+    ax.plot(xs, ys, color=colour, linewidth=0.4, alpha=0.45)
+    steps = [x for w in windows(xs, ys) for x in ((w[0],) + w[2:], (w[1],) + w[2:])]
+    edges = [x[0] for x in steps]
+    ax.fill_between(edges, [x[1] for x in steps], [x[3] for x in steps], color=colour, alpha=0.3, linewidth=0)
+    ax.plot(edges, [x[2] for x in steps], color=colour, label=label, linewidth=1.6)
     return True
 
 

@@ -146,7 +146,9 @@ check(len(points) == len(starts) and all(abs(o - want_ms) < 1e-5 for o in offset
 xs = [i * 0.01 for i in range(400)]
 ys = [57.0 if i % 2 == 0 else 140.0 for i in range(400)]
 bands = latency_over_time.windows(xs, ys)
-check(len(bands) == 10 and all(b[1:] == (57.0, 98.5, 140.0) for b in bands), f"windows {bands[:2]}")
+check(len(bands) == 10 and all(b[2:] == (57.0, 98.5, 140.0) for b in bands), f"windows {bands[:2]}")
+# Windows of 3.99 s / 10 = 0.399 s: the first from 0, the last ending at the last refresh.
+check(bands[0][0] == 0.0 and abs(bands[-1][1] - 3.99) < 1e-12, f"window span {bands[0][:2]} .. {bands[-1][:2]}")
 
 # The plot of these runs: drawn, at most 2,000 px wide.
 coll = latsim_results.load(SCRATCH)
