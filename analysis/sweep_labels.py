@@ -93,11 +93,7 @@ def value_labels(values, axis_name):
 
 def distinct(rows, axis):
     """An axis's values in plan order of first appearance."""
-    seen = []
-    for row in rows:
-        if row.axis_values[axis] not in seen:
-            seen.append(row.axis_values[axis])
-    return seen
+    return list(dict.fromkeys(row.axis_values[axis] for row in rows))
 
 
 def crossed(rows, axis_a, axis_b):

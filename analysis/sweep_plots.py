@@ -70,7 +70,8 @@ def plot_axis(coll, axis, figures):
     keys = list(series)  # first-appearance order follows the plan
     axis_values = sweep_labels.distinct(coll.rows, axis)
     numeric = all(lr.as_number(v) is not None for v in axis_values)
-    x_of = (lambda v: lr.as_number(v)) if numeric else (lambda v: float(axis_values.index(v)))
+    position = {v: float(i) for i, v in enumerate(axis_values)}
+    x_of = lr.as_number if numeric else position.__getitem__
     fig, axes = _figure(figures)
     palette = plotting.colours(len(keys))
     for (path, label), ax in zip(figures, axes):
