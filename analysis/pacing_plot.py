@@ -69,12 +69,10 @@ def plot(coll):
         ax.scatter([p[0] for p in pts], [p[1] for p in pts], color="tab:blue", zorder=3)
         front = pareto_front(pts)
         ax.plot([pts[i][0] for i in front], [pts[i][1] for i in front], color="tab:red", label="Pareto front")
-        for (x, y), r in zip(pts, named):
-            ax.annotate(sweep_labels.cut(lr.point_name(r, coll)), (x, y), textcoords="offset points", xytext=(5, 4),
-                        fontsize=7)
         ax.set_xlabel("missed frames per minute")
         ax.set_ylabel(f"{label} motion-to-photon (ms)")
         ax.legend(fontsize=8)
+        plotting.annotate_apart(ax, pts, [sweep_labels.cut(lr.point_name(r, coll)) for r in named])
     fig.suptitle("Latency against missed frames (lower left is better)")
     plotting.save(fig, os.path.join(coll.directory, "pacing_pareto"))
     return "pacing_pareto"
