@@ -42,7 +42,7 @@ def draw(coll, limit):
     drawn = []
     progress = Progress("Gantt charts", len(chosen))
     for row, run_dir in chosen:
-        base = gantt.draw(run_dir, title=f"{sweep_labels.cut(row.name, 80)}: pipeline stages")
+        base = gantt.draw(run_dir, title=f"{sweep_labels.cut(row.name, 100)}: pipeline stages")
         if base:
             drawn.append(os.path.relpath(base, coll.directory))
         progress.advance()

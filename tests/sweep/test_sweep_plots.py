@@ -44,11 +44,16 @@ ZIP = {
              {"pointer": "/display/persistence", "label": "persistence", "values": PERSISTENCE},
              {"pointer": "/tracker", "values": [{"rate_hz": 500, "internal_delay_ms": 0},
                                                 {"rate_hz": 1000, "internal_delay_ms": 0},
-                                                {"rate_hz": 500, "internal_delay_ms": 0}]}],
+                                                {"rate_hz": 500, "internal_delay_ms": 0}]},
+             # Paced points bring the pacing plot; kept traces the Gantt charts and latency over time.
+             {"pointer": "/pipeline/pacing", "values": [{"application": "fixed"}, {"application": "just_in_time"},
+                                                        {"application": "monado"}]}],
 }
 CARTESIAN = {
-    "description": "persistence by transport", "base": BASE, "replications": 2, "seed": 1,
-    "overrides": {"/duration_s": 0.2},
+    # A double buffer keeps a stage timeline: the Gantt chart's title names its point.
+    "description": "persistence by transport", "base": os.path.join(SOURCE_DIR, "scenarios", "hmd_60hz_direct.json"),
+    "replications": 2, "seed": 1,
+    "overrides": {"/duration_s": 0.2, "/display/persistence": PERSISTENCE[0]},
     "axes": [{"pointer": "/display/persistence", "label": "persistence", "values": PERSISTENCE},
              {"pointer": "/transport", "values": [{"type": "usb_hid", "poll_hz": 1000}, {"type": "direct"}]}],
 }
@@ -61,12 +66,12 @@ def check(condition, message):
         print("FAILED:", message)
 
 
-def sweep(name, spec):
+def sweep(name, spec, *options):
     path = os.path.join(SCRATCH, f"{name}.json")
     with open(path, "w") as f:
         json.dump(spec, f)
     out = os.path.join(SCRATCH, name)
-    proc = subprocess.run([LATSIM, "sweep", path, "-o", out], capture_output=True, text=True)
+    proc = subprocess.run([LATSIM, "sweep", path, "-o", out, *options], capture_output=True, text=True)
     check(proc.returncode == 0, f"latsim sweep {name}: {proc.stderr.strip()}")
     return out
 
@@ -87,11 +92,11 @@ def png_width(path):
         return struct.unpack(">II", f.read(24)[16:24])[0]
 
 
-def draw(directory):
+def draw(directory, *options):
     """Runs the report in this process (every module saves through plotting.save)."""
     TEXTS.clear()
     plotting.save = watched_save
-    status = report.main(["report.py", directory])
+    status = report.main(["report.py", directory, *options])
     check(status == 0, f"report {directory} exited {status}")
     return dict(TEXTS)
 
@@ -108,8 +113,8 @@ def judge(name, texts):
 
 shutil.rmtree(SCRATCH, ignore_errors=True)
 os.makedirs(SCRATCH)
-zip_dir = sweep("zip", ZIP)
-cart_dir = sweep("cartesian", CARTESIAN)
+zip_dir = sweep("zip", ZIP, "--keep", "first", "--ledger")
+cart_dir = sweep("cartesian", CARTESIAN, "--keep", "first")
 
 zip_texts = draw(zip_dir)
 judge("zip", zip_texts)
@@ -117,6 +122,9 @@ points = zip_texts.get("zip/sweep_points", [])
 check(all(d in points for d in DEVICES), f"zip: sweep_points ticks name the devices: {points}")
 check(not any(b.startswith("zip/sweep_") and b != "zip/sweep_points" for b in zip_texts),
       f"zip: one plot by point, none per axis: {sorted(zip_texts)}")
+drawn = sorted(b.split("/")[-1] for b in zip_texts)
+check(all(p in drawn for p in ("pacing_pareto", "latency_over_time", "registration_vs_latency")),
+      f"zip: every kind of plot drawn: {drawn}")
 check("zip/heatmap" not in zip_texts and not os.path.exists(os.path.join(zip_dir, "heatmap.png")),
       "a zip sweep has no heat map")
 with open(os.path.join(zip_dir, "report.md")) as f:
@@ -124,8 +132,12 @@ with open(os.path.join(zip_dir, "report.md")) as f:
 check("| Index 90 Hz |" in md and "heatmap" not in md, "zip report.md: rows by device, no heat map")
 check(any(DEVICES[0] in t for t in zip_texts.get("zip/mtp_cdf", [])), "zip: CDF legend names the devices")
 
-cart_texts = draw(cart_dir)
+cart_texts = draw(cart_dir, "--gantt-limit", "1")
 judge("cartesian", cart_texts)
+gantt = [t for b, lines in cart_texts.items() if b.endswith("/gantt") for t in lines if "pipeline stages" in t]
+check(gantt == ["persistence (lit_ms=0.48, response_ms=1, type=global), /transport (poll_hz=1000, type=usb_hid): "
+               "pipeline stages"],
+      f"a Gantt chart titled by its point: {gantt}")
 persistence = cart_texts.get("cartesian/sweep_persistence", [])
 check(all(label in persistence for label in PERSISTENCE_LABELS), f"persistence ticks by hand: {persistence}")
 check(any(t.startswith("persistence (/display/persistence)") for t in persistence), "x axis named by its label")
