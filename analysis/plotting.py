@@ -18,9 +18,11 @@ PNG_METADATA = {"Software": None}
 SVG_METADATA = {"Date": None, "Creator": "latsim analysis"}
 
 
-def save(fig, base_path):
-    """Writes base_path.png and base_path.svg (each atomically) and closes the figure."""
+def save(fig, base_path, formats=("png", "svg")):
+    """Writes base_path.png and base_path.svg (each atomically; `formats` for fewer) and closes the figure."""
     for ext, metadata in (("png", PNG_METADATA), ("svg", SVG_METADATA)):
+        if ext not in formats:
+            continue
         final = f"{base_path}.{ext}"
         temp = f"{final}.tmp.{os.getpid()}"
         try:
