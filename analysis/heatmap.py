@@ -18,10 +18,7 @@ MAX_WIDTH_IN = 14.0
 
 def ordered_values(coll, axis):
     """An axis's values in numeric order when all are numbers, else in plan order."""
-    seen = []
-    for row in coll.rows:
-        if row.axis_values[axis] not in seen:
-            seen.append(row.axis_values[axis])
+    seen = sweep_labels.distinct(coll.rows, axis)
     if all(lr.as_number(v) is not None for v in seen):
         seen.sort(key=lr.as_number)
     return seen
@@ -47,11 +44,12 @@ def grids(coll, x_axis, y_axis, path):
     """{other axes' values: grid[y][x] of means (None where missing)}, in plan order of first appearance."""
     xs, ys = ordered_values(coll, x_axis), ordered_values(coll, y_axis)
     others = [a for a in coll.axes if a not in (x_axis, y_axis)]
+    x_of, y_of = {v: i for i, v in enumerate(xs)}, {v: i for i, v in enumerate(ys)}
     panels = {}
     for row in coll.rows:
         key = tuple(row.axis_values[a] for a in others)
         grid = panels.setdefault(key, [[None] * len(xs) for _ in ys])
-        grid[ys.index(row.axis_values[y_axis])][xs.index(row.axis_values[x_axis])] = row.mean(path)
+        grid[y_of[row.axis_values[y_axis]]][x_of[row.axis_values[x_axis]]] = row.mean(path)
     return others, panels
 
 
