@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "latsim/run/prepared_run.hpp"
 #include "latsim/run/runner.hpp"
 #include "latsim/scenario/config.hpp"
 #include "latsim/scenario/readable.hpp"
@@ -34,8 +35,11 @@ int command_validate(int argc, char** argv) {
         continue;
       }
       const auto doc = run::load_scenario(file, sets);
-      print_warnings(file, run::validate_scenario(doc, max_events));
-      if (resolved) std::printf("%s\n", doc.resolved().dump(2, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
+      run::RunOptions options;
+      options.max_events = max_events;
+      const run::PreparedRun prepared(doc, options);  // built once: its warnings and its resolved scenario
+      print_warnings(file, prepared.warnings());
+      if (resolved) std::printf("%s\n", prepared.resolved().dump(2, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
       else std::printf("%s: ok\n", name.c_str());
     } catch (const scenario::ScenarioError& e) {
       rc = bad_input(file, e);

@@ -16,6 +16,7 @@ using namespace results;
 using pipelines::PipelineFactory;
 using pipelines::PipelineRegistry;
 using pipelines::RunContext;
+using Json = nlohmann::json;
 
 namespace {
 
@@ -286,8 +287,14 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
         stereo, timeline, run.frames.get()});
     run.pipeline->start(*run.ctx);
   });
-  // The phases used, drawn or fixed, make the resolved scenario reproduce this run.
-  for (const auto& [pointer, ms] : run.clocks->phases_ms()) doc.resolve(pointer, ms);
+}
+
+Json resolved_scenario(const Run& run, const scenario::ScenarioDocument& doc) {
+  Json resolved = doc.resolved();
+  // The phases used, drawn or fixed, make the resolved scenario reproduce this
+  // run: read from the run's clocks, where they were decided.
+  for (const auto& [pointer, ms] : run.clocks->phases_ms()) resolved[Json::json_pointer(pointer)] = ms;
+  return resolved;
 }
 
 }  // namespace latsim::run

@@ -62,7 +62,7 @@ std::string dump(const Json& j, bool compact) {
 // The resolved scenario with the defaults that are not single values: the
 // probe points used when the scenario names none (the ring around the start).
 Json resolved_with_defaults(const Run& run, const scenario::ScenarioDocument& doc) {
-  Json resolved = doc.resolved();
+  Json resolved = resolved_scenario(run, doc);
   if (!resolved.contains("probes")) {
     Json points = Json::array();
     for (const glm::dvec3& p : probes_of(run).points_m) points.push_back({p.x, p.y, p.z});

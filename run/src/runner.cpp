@@ -111,8 +111,7 @@ Json resolve_defaults(const Json& scenario, const std::filesystem::path& base_di
   const auto doc = scenario::ScenarioDocument::from_json(scenario, base_dir);
   RunOptions options;
   options.max_events = 0.0;  // the budget is judged where the run's own limit is known
-  (void)PreparedRun(doc, options);
-  return doc.resolved();
+  return PreparedRun(doc, options).resolved();
 }
 
 Json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& options) {
@@ -133,6 +132,8 @@ PreparedRun::~PreparedRun() = default;
 const std::vector<std::string>& PreparedRun::warnings() const { return run_->recording->book().warnings(); }
 
 const EventEstimate& PreparedRun::estimate() const { return run_->estimate; }
+
+Json PreparedRun::resolved() const { return resolved_scenario(*run_, doc_); }
 
 Json PreparedRun::run() {
   if (ran_) throw std::logic_error("a prepared run runs once");

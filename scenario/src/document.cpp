@@ -255,10 +255,6 @@ ScenarioDocument ScenarioDocument::from_json(Json doc, fs::path base_dir) {
 
 ConfigNode ScenarioDocument::root() const { return ConfigNode(&doc_, "", log_); }
 
-void ScenarioDocument::resolve(const std::string& pointer, Json value) const {
-  log_->resolved[Json::json_pointer(pointer)] = std::move(value);
-}
-
 void ScenarioDocument::check_unknown_keys(const ObjectSchema* schema, std::vector<std::string>* warnings) const {
   // Depth-first in document order, so the first problem reported is stable.
   std::vector<std::pair<const Json*, std::string>> stack{{&doc_, ""}};

@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "fuzz_inputs.hpp"
+#include "latsim/run/prepared_run.hpp"
 #include "latsim/run/runner.hpp"
 #include "latsim/scenario/config.hpp"
 #include "latsim/scenario/json_text.hpp"
@@ -19,8 +20,7 @@ using Json = nlohmann::json;
 // As the sweep command resolves a point: the runner's resolved scenario.
 Json resolve(const Json& scenario, const std::filesystem::path& base_dir) {
   auto doc = latsim::scenario::ScenarioDocument::from_json(scenario, base_dir);
-  (void)latsim::run::validate_scenario(doc);
-  return doc.resolved();
+  return latsim::run::PreparedRun(doc, latsim::run::RunOptions{}).resolved();
 }
 
 }  // namespace

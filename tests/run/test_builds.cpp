@@ -58,3 +58,28 @@ TEST_CASE("bad input is refused by the one build, before anything runs", "[run][
           CHECK_THROWS_AS(run::PreparedRun(doc, run::RunOptions{}), scenario::ScenarioError);
         }) == 0);
 }
+
+TEST_CASE("a run's drawn phases are read from its clocks; the document stays as read", "[run][builds][clocks]") {
+  nlohmann::json s = testing::base_scenario();
+  s["tracker"].erase("phase_ms");
+  s["display"].erase("phase_ms");
+  const auto doc = doc_of(s);
+  run::PreparedRun prepared(doc, run::RunOptions{});
+  const nlohmann::json resolved = prepared.resolved();
+  const double period_ms = 1000.0 / 60.0;  // both clocks tick at 60 Hz: a phase is drawn within one period
+  for (const char* clock : {"/tracker/phase_ms", "/display/phase_ms"}) {
+    INFO(clock);
+    const nlohmann::json::json_pointer p(clock);
+    REQUIRE(resolved.contains(p));
+    CHECK(resolved[p].get<double>() >= 0.0);
+    CHECK(resolved[p].get<double>() < period_ms);
+    // None was given, and the run writes none back into the document it read.
+    CHECK_FALSE(doc.resolved().contains(p));
+  }
+  // summary.json's scenario holds the same phases.
+  const nlohmann::json summary = prepared.run();
+  for (const char* clock : {"/tracker/phase_ms", "/display/phase_ms"}) {
+    const nlohmann::json::json_pointer p(clock);
+    CHECK(summary.at("scenario")[p] == resolved[p]);
+  }
+}

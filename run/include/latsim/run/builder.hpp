@@ -67,6 +67,10 @@ struct Run {
 /// whatever could not be built.
 void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& options);
 
+/// The scenario as built run `run` takes it: `doc` resolved, with the phase
+/// of every clock the run decided (drawn or fixed), read from its clocks.
+nlohmann::json resolved_scenario(const Run& run, const scenario::ScenarioDocument& doc);
+
 /// The declaration of every key of a scenario whose pipelines are `registry`'s.
 scenario::ObjectSchema schema_of(const pipelines::PipelineRegistry& registry);
 

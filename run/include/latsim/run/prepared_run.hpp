@@ -31,6 +31,10 @@ class PreparedRun {
   PreparedRun(const PreparedRun&) = delete;
   PreparedRun& operator=(const PreparedRun&) = delete;
 
+  /// The scenario as this run takes it: every default applied and the
+  /// phase of every clock, drawn or fixed (summary.json's "scenario" less
+  /// the default probe ring).
+  nlohmann::json resolved() const;
   /// Legal but doubtful input, as the run will report it.
   const std::vector<std::string>& warnings() const;
   /// The events the run is expected to execute (docs/event-budget.md): the

@@ -125,11 +125,9 @@ class ScenarioDocument {
   /// read. A key `schema` declares for its place (read in another mode of
   /// its object) is not an error: it gets a line in `warnings` instead.
   void check_unknown_keys(const ObjectSchema* schema = nullptr, std::vector<std::string>* warnings = nullptr) const;
-  /// The scenario as run: input plus every default applied.
+  /// The scenario as read: input plus every default applied (a run adds
+  /// the clock phases it drew: run::PreparedRun::resolved()).
   const nlohmann::json& resolved() const { return log_->resolved; }
-  /// Records a value the run chose where the scenario left it open (a clock
-  /// phase drawn for this replication), so the resolved scenario reproduces the run.
-  void resolve(const std::string& pointer, nlohmann::json value) const;
 
  private:
   nlohmann::json doc_;
