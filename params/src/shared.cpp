@@ -119,6 +119,7 @@ void bind(Section& s, SharedParams& p) {
                                {.required = true,
                                 .doc = "the controller's true motion: the types of /motion (whose texts speak of the "
                                        "head)"});
+                      bind_controller_chain(c, v);
                     },
                     {.doc = "a tracked handheld controller drawn by the pipeline (none when absent)"});
   s.object("tracker", p.tracker, [](Section& t, tracker::TrackerParams& v) { bind(t, v); },
