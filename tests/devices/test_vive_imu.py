@@ -15,6 +15,8 @@ profile gives).
   filter correlates neighbouring readings.)
 - Residual bias: the mean rate of each axis at rest after libsurvive's
   calibration; the profile's per-axis deviation is their root mean square.
+- Range: the calibrated rate over the raw count (their deviations' ratio)
+  is the gyro's scale; 2^15 counts of it are the range.
 - Readings per report: 3, the Vive's IMU report layout (libsurvive,
   src/driver_vive.c, three samples per report); the sequence numbers are
   unique, so the host dedups the overlap.
@@ -99,6 +101,15 @@ def main():
     low = min(delays)
     extra_ms = (sum(d - low for d in delays) / len(delays)) * 1e3 - 0.5
 
+    raw = [[float(x) for x in line.split()[8:11]] for line in open(RECORDING.replace("calibrated_I", "raw_i"),
+                                                                     encoding="utf-8")]
+    def sd(v):
+        m = sum(v) / len(v)
+        return math.sqrt(sum((x - m) ** 2 for x in v) / len(v))
+    all_rows = rows()
+    scale = sd([r[2][0] for r in all_rows]) / sd([r[0] for r in raw])  # rad/s per count
+    range_deg = 32768 * scale * 180 / math.pi
+
     profile = json.load(open(PROFILE, encoding="utf-8"))
     imu = profile["tracker"]["imu"]
     check(round(rate_error_ppm) == profile["tracker"]["rate_error_ppm"],
@@ -109,6 +120,7 @@ def main():
     check(abs(imu["gyro_bias_deg_s"] - bias_rms) <= 0.005,
           f"residual bias {bias_rms:.3f} deg/s rms (axes {', '.join(f'{b:.3f}' for b in bias)}) against {imu['gyro_bias_deg_s']}")
     check(imu["samples_per_report"] == 3, "three readings per report")
+    check(abs(imu["range_deg_s"] - range_deg) <= 5, f"range {range_deg:.0f} deg/s against {imu['range_deg_s']}")
     check(abs(imu["report_loss_probability"] - loss) <= 0.005,
           f"report loss {loss:.3f} ({len(bursts)} reports in {slots} slots) against {imu['report_loss_probability']}")
     link = profile["transport"]
