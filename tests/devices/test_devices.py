@@ -111,19 +111,19 @@ def period_ms(scenario):
 def periods_of_pacing(scenario):
     """Refresh periods between the pose drawn being read and the retrace its image is shown from.
 
-    SteamVR's running start reads the pose a fixed 3 ms before retrace V and shows
-    the image from retrace V + (1 + h) T, h the stages handed over to the next frame
-    (an engine's render thread): 1 + h periods plus a constant. Phase Sync wakes the
-    application a measured frame time plus margins before the compositor's latch: the
-    frame time holds a period for every hand-over after the stage whose pose is drawn
-    (the last that samples it: a late-latching GPU stage reads after them all)."""
+    Both runtimes wake the game thread a whole number of periods before the retrace
+    its frame is shown from: SteamVR's running start reads the pose 3 ms before
+    retrace V and shows the frame from V + (1 + h) T, h the stages handed over to the
+    next frame (an engine's render thread); Phase Sync wakes it the frame time plus
+    margins before the latch, and the frame time holds the h periods of the hand-overs
+    besides work shorter than a period, so it is shown from the (1 + h)-th retrace
+    after the wake-up. A pose read after hb of the hand-overs (a late-latching GPU)
+    is hb periods younger: 1 + h - hb periods, plus constants (the running start,
+    or the work after the read and the margins)."""
     stages = scenario["pipeline"]["stages"]
     handovers = [i for i, st in enumerate(stages) if st.get("start") == "next_frame"]
-    pacing = scenario["pipeline"].get("pacing", {}).get("application", "fixed")
-    if pacing == "steamvr":
-        return 1 + len(handovers)
     drawn = max(i for i, st in enumerate(stages) if st.get("samples_pose"))
-    return sum(1 for i in handovers if i > drawn)
+    return 1 + len(handovers) - sum(1 for i in handovers if i <= drawn)
 
 
 def periods_of_illumination(scenario):
