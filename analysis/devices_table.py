@@ -22,6 +22,7 @@ COLUMNS = [
     ("apparent, start (ms)", "apparent_latency_ms_start.mean"),
     ("apparent, onset (ms)", "apparent_latency_ms_onset.mean"),
     ("apparent, steady (ms)", "apparent_latency_ms_steady.mean"),
+    ("catch-up (ms)", "prediction_catch_up_ms.mean"),
     ("controller, start (ms)", "controller_apparent_latency_ms_start.mean"),
     ("camera, frame counting (ms)", "measured_latency_ms.mean"),
 ]
@@ -104,7 +105,8 @@ def markdown(coll):
     lines = ["## Devices: what a headset measurement sees", "",
              "Each cell is the mean over replications ± their standard deviation. Apparent latency is the "
              "time shift between the shown and the true head motion at the centre pixel, at the start of a "
-             "movement, in its first 100 ms and in steady motion; the controller's is the start of its flick; "
+             "movement, in its first 100 ms and in steady motion, and the time from a movement's start until "
+             "prediction has caught up; the controller's is the start of its flick; "
              "the camera column is the simulated rig's estimate per flick, beside every public measurement of "
              "the device (docs/figures.md, docs/devices.md, docs/validation.md).", "",
              "| " + " | ".join(header) + " |", "|" + "---|" * len(header)]

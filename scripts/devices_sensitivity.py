@@ -7,7 +7,7 @@ For every profile and assumption it runs the profile at the assumption's low
 and high value (and the profile as it is), each over the replications of the
 devices sweep, and prints a Markdown table of the camera figure's mean
 (measured_latency_ms, frame counting) at both ends and the change from the
-profile's own figure. Runs go two at a time:
+profile's own figure. Runs go two at a time; a run whose results are already in OUT_DIR is not run again:
 
     python3 scripts/devices_sensitivity.py build/latsim [OUT_DIR]
 """
@@ -47,7 +47,10 @@ ASSUMPTIONS = [
       "/controller/transport/os_jitter_ms=1.83", "/controller/transport/os_jitter=exponential"]),
     ("controller reports 1000 / 125 Hz (250)", ["/controller/tracker/rate_hz=1000"], ["/controller/tracker/rate_hz=125"]),
     ("controller radio 1 / 4 ms (2)", ["/controller/transport/os_delay_ms=1"], ["/controller/transport/os_delay_ms=4"]),
-    ("flick 0.1 / 0.3 s (0.15)", ["/controller/motion/duration_s=0.1"], ["/controller/motion/duration_s=0.3"]),
+    # The flick keeps its place in the head's rests: the rest makes up the head's period, the delay its start.
+    ("flick 0.1 / 0.3 s (0.15)",
+     ["/controller/motion/duration_s=0.1", "/controller/motion/rest_s=0.9137", "/controller/motion/delay_s=0.3"],
+     ["/controller/motion/duration_s=0.3", "/controller/motion/rest_s=0.7137", "/controller/motion/delay_s=0.5"]),
     ("flick 20 / 60 deg (40)", ["/controller/motion/amplitude_deg=20"], ["/controller/motion/amplitude_deg=60"]),
     ("object seen moving at 0.2 / 2 deg (0.5)", ["/measurement/threshold_deg=0.2"], ["/measurement/threshold_deg=2"]),
     ("camera 240 / 120 fps", ["/measurement/fps=240", "/measurement/readout_ms=3.5"],
@@ -82,9 +85,11 @@ def run(job):
     args = [latsim, "run", os.path.join(DEVICES, name), "--out", out, "-q", "--replication", str(rep)]
     for s in sets:
         args += ["--set", s]
-    proc = subprocess.run(args, capture_output=True, text=True)
-    if proc.returncode != 0:
-        return None
+    # A run already in OUT_DIR is kept (delete it to run it again).
+    if not os.path.exists(os.path.join(out, "figures.json")):
+        proc = subprocess.run(args, capture_output=True, text=True)
+        if proc.returncode != 0:
+            return None
     f = json.load(open(os.path.join(out, "figures.json"), encoding="utf-8"))["figures"]
     m = f.get("measured_latency_ms")
     return m["mean"] if isinstance(m, dict) and m.get("count", 0) > 0 else None

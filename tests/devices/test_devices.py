@@ -197,9 +197,9 @@ rows = [lr.Row("a", ["a0", "a1"], [summary(90, 1), summary(90, 3)], {"/descripti
         lr.Row("v", ["v0"], [summary(90, 80)], {"/description": "HTC Vive 90 Hz"})]
 coll = lr.Collection("sweep", SCRATCH, rows, axes=["/description"])
 table = "\n".join(devices_table.markdown(coll))
-check("| A 90 Hz | 90 | 2.00 ± 1.41 |  | 0.20 ± 0.14 | 0.50 ± 0.00 |  | 1.00 ± 0.71 |  | 2 |" in table,
+check("| A 90 Hz | 90 | 2.00 ± 1.41 |  | 0.20 ± 0.14 | 0.50 ± 0.00 |  |  | 1.00 ± 0.71 |  | 2 |" in table,
       f"row A: means and standard deviations over two replications:\n{table}")
-check("| B | 59.9401 | 20.00 |  | 2.00 | 0.50 |  | 10.00 |  | 1 |" in table, "row B: one replication, no spread; 60000/1001 Hz")
+check("| B | 59.9401 | 20.00 |  | 2.00 | 0.50 |  |  | 10.00 |  | 1 |" in table, "row B: one replication, no spread; 60000/1001 Hz")
 # A device with public measurements: each beside the camera figure, with the difference (40 - 43.3 = -3.3).
 check("43.3 ± 2.0 (-3.3): controller flick" in table and "30.8 (+9.2): controller movement onset" in table,
       f"the Vive's row sets the published measurements beside its camera figure:\n{table}")
