@@ -115,8 +115,9 @@ void bind(Section& s, tracker::MotionPhaseParams& p) {
               .doc = "interval over which angular speed is measured"});
   s.number("rest_deg_s", p.rest_deg_s,
            {.unit = "deg/s", .min = 0.0, .max = 1e6,
-            .doc = "at or below this the head is at rest: a movement that starts from rest starts where the head "
-                   "left it (the end of the last interval at rest), not where it passes threshold_deg_s"});
+            .doc = "at or below this the head is at rest: a movement that starts from rest (at least window_ms of "
+                   "it) starts where the head left it (the end of the last interval at rest), not where it passes "
+                   "threshold_deg_s"});
 }
 
 }  // namespace latsim::params

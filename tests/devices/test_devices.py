@@ -30,26 +30,9 @@ def check(condition, message):
         print("FAILED:", message)
 
 
-def merge(base, over):
-    """As the scenario reader merges includes: objects key by key, an object whose type changes replaces."""
-    for key, value in over.items():
-        if key in base and isinstance(base[key], dict) and isinstance(value, dict) and \
-                value.get("type", base[key].get("type")) == base[key].get("type"):
-            merge(base[key], value)
-        else:
-            base[key] = value
-
-
-def load(path):
-    doc = json.load(open(path, encoding="utf-8"))
-    include = doc.pop("include", None)
-    if include is None:
-        return doc
-    merged = {}
-    for name in include if isinstance(include, list) else [include]:
-        merge(merged, load(os.path.join(os.path.dirname(path), name)))
-    merge(merged, doc)
-    return merged
+# The device files as the scenario reader merges their includes (one definition, the sweep writer's).
+sys.path.insert(0, os.path.join(SOURCE_DIR, "scripts"))
+from devices_sweep import load  # noqa: E402
 
 
 FAMILIES = {

@@ -43,19 +43,27 @@ void MotionPhaseClassifier::extend_to(int64_t k) {
     grid_end_ = motion_.pose_at(des::Time::zero()).orientation;
     const double speed = speed_of_next_interval();
     initial_moving_ = last_moving_ = speed > threshold_rad_s_;
-    if (speed <= rest_rad_s_) last_rest_end_ = params_.step;
+    if (speed <= rest_rad_s_) {
+      rest_run_start_ = des::Time::zero();
+      last_rest_end_ = params_.step;
+    }
   }
   while (evaluated_ < k) {
     const double speed = speed_of_next_interval();
     const bool moving = speed > threshold_rad_s_;
     if (moving != last_moving_) {
       des::Time at = params_.step * evaluated_;
-      // A start from rest is dated where the head left rest.
+      // A start from rest (at least a window of it) is dated where the head
+      // left rest; a head that only turns round is not at rest.
       const des::Time previous = transitions_.empty() ? des::Time::zero() : transitions_.back().at;
-      if (moving && last_rest_end_ >= previous && last_rest_end_ < at) at = last_rest_end_;
+      const bool rested = last_rest_end_ - rest_run_start_ >= params_.window;
+      if (moving && rested && last_rest_end_ >= previous && last_rest_end_ < at) at = last_rest_end_;
       transitions_.push_back(Transition{at, moving});
     }
-    if (speed <= rest_rad_s_) last_rest_end_ = params_.step * (evaluated_ + 1);
+    if (speed <= rest_rad_s_) {
+      if (last_rest_end_ != params_.step * evaluated_) rest_run_start_ = params_.step * evaluated_;
+      last_rest_end_ = params_.step * (evaluated_ + 1);
+    }
     last_moving_ = moving;
   }
 }

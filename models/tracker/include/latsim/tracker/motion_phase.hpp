@@ -31,8 +31,9 @@ struct MotionPhaseParams {
   des::Time step = des::Time::ms(5);
   /// A movement starts where the head leaves rest, not where it passes the
   /// threshold: a start is moved back to the end of the last interval whose
-  /// speed was at most this (at rest) since the previous stop, when there is
-  /// one (a movement out of slow drift keeps the threshold crossing).
+  /// speed was at most this (at rest, for at least `window` in a row) since
+  /// the previous stop, when there is one (a movement out of slow drift, or a
+  /// head that only turns round, keeps the threshold crossing).
   double rest_deg_s = 0.5;
 };
 
@@ -42,9 +43,9 @@ struct MotionPhaseParams {
 /// rotation angle between the poses at its ends over its length; a movement
 /// is a rise of that speed above the threshold from one interval to the
 /// next, and it starts where the head left rest (the end of the last
-/// interval at or below rest_deg_s since the previous stop; the threshold
-/// crossing itself when there is none); the head stops where the speed
-/// falls to or below the threshold. A movement whose speed takes longer than
+/// interval at or below rest_deg_s, after at least `window` of them, since
+/// the previous stop; the threshold crossing itself when there is none); the
+/// head stops where the speed falls to or below the threshold. A movement whose speed takes longer than
 /// `window` from leaving rest to the threshold is dated at most a window back
 /// from any instant asked about (the grid is evaluated a window ahead). Its state
 /// at time zero is not a transition. The grid is evaluated lazily as later
@@ -79,6 +80,7 @@ class MotionPhaseClassifier {
   double threshold_rad_s_;
   double rest_rad_s_;
   des::Time last_rest_end_ = des::Time::ps(-1);  ///< end of the newest interval at rest
+  des::Time rest_run_start_ = des::Time::ps(-1); ///< start of the run of intervals at rest it ends
   bool initial_moving_ = false;
   int64_t evaluated_ = -1;  ///< last grid interval classified
   glm::dquat grid_end_{1.0, 0.0, 0.0, 0.0};  ///< orientation at the end of interval evaluated_
