@@ -4,7 +4,7 @@
 The devices sweep runs every device profile side by side (zip mode): the
 i-th value of each axis is the i-th device file's own section, its includes
 merged as the scenario reader merges them, so that each point of the sweep
-is exactly that file (tests/devices/test_devices.py checks it). Run it after
+is exactly that file (tests/scenarios/devices/test_devices.py checks it). Run it after
 adding or changing a device file:
 
     python3 scripts/devices_sweep.py            # rewrites the sweep
@@ -80,7 +80,7 @@ def sweep():
     return {
         "description": "Every device profile of scenarios/devices/ side by side, in zip mode (a /description label axis "
                        "beside the whole sections each device file sets; written by scripts/devices_sweep.py, checked "
-                       "by tests/devices): latsim report writes the devices table of docs/devices.md and "
+                       "by tests/scenarios/devices): latsim report writes the devices table of docs/devices.md and "
                        "docs/validation.md, each figure over " + str(REPLICATIONS) + " replications",
         "base": PROFILES[1][0],
         "mode": "zip",

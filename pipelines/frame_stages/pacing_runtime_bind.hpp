@@ -2,7 +2,7 @@
 #pragma once
 
 #include "frame_stages/pacing.hpp"
-#include "latsim/scenario/params.hpp"
+#include "latsim/scenario/section.hpp"
 
 namespace latsim::pipelines::frame_stages {
 

@@ -12,7 +12,7 @@ double paced_per_s(double period_s, double cap_hz) {
   return std::min(cap_hz, 1.0 / period_s);
 }
 
-std::vector<EventRate> shared_event_rates(const params::SharedParams& p) {
+std::vector<EventRate> shared_event_rates(const sections::SharedParams& p) {
   std::vector<EventRate> rates;
   // An IMU chain sends a report (an event) every report_every readings.
   const int head_step = p.tracker.imu ? p.tracker.imu->report_every : 1;

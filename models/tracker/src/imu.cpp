@@ -1,16 +1,14 @@
 #include "latsim/tracker/imu.hpp"
+#include "latsim/units/units.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 
 namespace latsim::tracker {
 
 namespace {
-
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 void check_finite_non_negative(double v, const char* what) {
   if (!std::isfinite(v) || v < 0.0)
@@ -39,9 +37,9 @@ Imu::Imu(ImuParams params, des::PeriodicSchedule schedule, const MotionSource& m
     throw std::invalid_argument("IMU bias correlation time must be positive");
   // Nothing is drawn unless the scenario asks for it: a noise-free IMU
   // leaves both streams untouched.
-  if (params_.gyro_bias_deg_s > 0.0) turn_on_bias_rad_s_ = normal3(bias_stream_, params_.gyro_bias_deg_s * kDegToRad);
+  if (params_.gyro_bias_deg_s > 0.0) turn_on_bias_rad_s_ = normal3(bias_stream_, params_.gyro_bias_deg_s * units::kRadPerDeg);
   if (params_.bias_instability_deg_s > 0.0)
-    wander_rad_s_ = normal3(bias_stream_, params_.bias_instability_deg_s * kDegToRad);
+    wander_rad_s_ = normal3(bias_stream_, params_.bias_instability_deg_s * units::kRadPerDeg);
 }
 
 glm::dvec3 Imu::bias_at(int64_t k) {
@@ -50,7 +48,7 @@ glm::dvec3 Imu::bias_at(int64_t k) {
     // b <- b a^n + sigma sqrt(1 - a^2n) N(0, 1), exact for any gap.
     const double dt = (schedule_.at(k) - schedule_.at(last_index_)).to_seconds();
     const double a = std::exp(-dt / params_.bias_correlation.to_seconds());
-    const double sigma = params_.bias_instability_deg_s * kDegToRad * std::sqrt(std::max(0.0, 1.0 - a * a));
+    const double sigma = params_.bias_instability_deg_s * units::kRadPerDeg * std::sqrt(std::max(0.0, 1.0 - a * a));
     wander_rad_s_ = wander_rad_s_ * a + normal3(bias_stream_, sigma);
   }
   return turn_on_bias_rad_s_ + wander_rad_s_;
@@ -67,10 +65,10 @@ ImuReading Imu::read(int64_t k) {
   glm::dvec3 rate = rotation_vector_of(glm::inverse(q0) * q1) / (t - before).to_seconds();
   rate += bias_at(k);
   if (params_.gyro_noise_density_deg_s_rthz > 0.0) {
-    const double per_reading = params_.gyro_noise_density_deg_s_rthz * kDegToRad / std::sqrt((t - before).to_seconds());
+    const double per_reading = params_.gyro_noise_density_deg_s_rthz * units::kRadPerDeg / std::sqrt((t - before).to_seconds());
     rate += normal3(noise_stream_, per_reading);
   }
-  const double range = params_.range_deg_s * kDegToRad;
+  const double range = params_.range_deg_s * units::kRadPerDeg;
   rate = glm::clamp(rate, glm::dvec3(-range), glm::dvec3(range));
   ImuReading r;
   r.index = k;

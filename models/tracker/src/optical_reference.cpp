@@ -1,7 +1,7 @@
 #include "latsim/tracker/optical_reference.hpp"
+#include "latsim/units/units.hpp"
 
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 namespace latsim::tracker {
@@ -24,7 +24,7 @@ ReferenceFix OpticalReference::fix(int64_t k) {
   f.available_at = f.measured_at + params_.latency;
   f.pose = motion_.pose_at(f.measured_at);
   if (params_.orientation_stddev_deg > 0.0) {
-    const double s = params_.orientation_stddev_deg * std::numbers::pi / 180.0;
+    const double s = units::deg_to_rad(params_.orientation_stddev_deg);
     const double x = noise_.normal(0.0, s), y = noise_.normal(0.0, s), z = noise_.normal(0.0, s);
     f.pose.orientation = glm::normalize(quat_from_rotation_vector({x, y, z}) * f.pose.orientation);
   }
