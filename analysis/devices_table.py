@@ -75,21 +75,13 @@ def refresh_hz(row):
     return value
 
 
-def label_of(row, coll):
-    if "/description" in coll.axes:
-        return str(row.axis_values["/description"])
-    if coll.axes:
-        return ", ".join(f"{lr.axis_label(a)}={row.axis_values[a]}" for a in coll.axes)
-    return row.name
-
-
 def rows_of(coll):
     """(label, rate, [cells], replications) per row, cells as 'mean ± sd' over
     replications, the last cell the published measurements with the differences."""
     out = []
     for r in coll.rows:
         rate = refresh_hz(r)
-        label = label_of(r, coll)
+        label = lr.point_name(r, coll)
         camera, _ = mean_sd(r.values(CAMERA))
         cells = [cell(r.values(path)) for _, path in COLUMNS] + [published_cell(label, camera)]
         out.append((label, "" if rate is None else f"{float(rate):g}", cells, r.replications()))
