@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -112,27 +114,39 @@ std::string quoted_identifier(const std::string& name) {
   return q + "\"";
 }
 
-// Distribution statistics and histogram buckets are most of a sweep's rows
-// (about 700 a run): they are stored once per row as integers (the run's plan
-// index, the name's id in `names`) and read through the views `distributions`
-// and `histograms`, which give the run id and the names as text.
+// The statistics every distribution figure has, one column each.
+constexpr const char* kStats[] = {"count", "mean", "stddev", "min", "p50", "p90", "p99", "p999", "max"};
+
+// A few tens of rows a run, each of integers and reals: the names are stored
+// once (names) and the run by its plan index (runs.plan_index), and each
+// distribution is one row of its statistics; the views give run ids and names
+// as text, and the statistics as rows.
 void create_tables(Database& db, const std::vector<std::string>& axis_pointers) {
   std::string runs = "CREATE TABLE runs (run_id TEXT PRIMARY KEY, plan_index INTEGER UNIQUE, point INTEGER, "
                      "seed INTEGER, replication INTEGER, events INTEGER, wall_s REAL, peak_rss_mb REAL, fingerprint TEXT";
   for (const auto& pointer : axis_pointers) runs += ", " + quoted_identifier(pointer);
   db.exec(runs + ");");
+  std::string columns, unpivot;
+  for (const char* stat : kStats) {
+    columns += std::string(", ") + stat + " REAL";
+    unpivot += std::string(unpivot.empty() ? "" : " UNION ALL ") + "SELECT r.run_id, n.name, '" + stat + "', d." +
+               stat + " FROM distribution_values d JOIN runs r USING (plan_index) JOIN names n ON n.name_id = "
+               "d.name_id WHERE d." + stat + " IS NOT NULL";
+  }
   db.exec("CREATE TABLE axes (axis INTEGER, pointer TEXT);"
-          "CREATE TABLE figures (run_id TEXT, name TEXT, value REAL);"
           "CREATE TABLE names (name_id INTEGER PRIMARY KEY, name TEXT UNIQUE);"
-          "CREATE TABLE distribution_stats (plan_index INTEGER, name_id INTEGER, stat_id INTEGER, value REAL);"
-          "CREATE TABLE histogram_buckets (plan_index INTEGER, name_id INTEGER, bucket INTEGER, edge REAL, "
-          "count REAL);"
-          "CREATE TABLE models (run_id TEXT, model TEXT, events INTEGER, wall_s REAL);"
-          "CREATE VIEW distributions (run_id, name, stat, value) AS SELECT r.run_id, n.name, s.name, d.value "
-          "FROM distribution_stats d JOIN runs r USING (plan_index) JOIN names n ON n.name_id = d.name_id "
-          "JOIN names s ON s.name_id = d.stat_id;"
-          "CREATE VIEW histograms (run_id, name, bucket, edge, count) AS SELECT r.run_id, n.name, h.bucket, h.edge, "
-          "h.count FROM histogram_buckets h JOIN runs r USING (plan_index) JOIN names n ON n.name_id = h.name_id;");
+          "CREATE TABLE figure_values (plan_index INTEGER, name_id INTEGER, value REAL);"
+          "CREATE TABLE distribution_values (plan_index INTEGER, name_id INTEGER" + columns + ");"
+          // Statistics beyond the usual nine (none today), so that nothing is lost.
+          "CREATE TABLE distribution_extras (plan_index INTEGER, name_id INTEGER, stat_id INTEGER, value REAL);"
+          "CREATE TABLE model_values (plan_index INTEGER, model_id INTEGER, events INTEGER, wall_s REAL);"
+          "CREATE VIEW figures (run_id, name, value) AS SELECT r.run_id, n.name, f.value FROM figure_values f "
+          "JOIN runs r USING (plan_index) JOIN names n ON n.name_id = f.name_id;"
+          "CREATE VIEW distributions (run_id, name, stat, value) AS " + unpivot +
+          " UNION ALL SELECT r.run_id, n.name, s.name, d.value FROM distribution_extras d JOIN runs r USING "
+          "(plan_index) JOIN names n ON n.name_id = d.name_id JOIN names s ON s.name_id = d.stat_id;"
+          "CREATE VIEW models (run_id, model, events, wall_s) AS SELECT r.run_id, n.name, m.events, m.wall_s FROM "
+          "model_values m JOIN runs r USING (plan_index) JOIN names n ON n.name_id = m.model_id;");
 }
 
 /// Ids of the names in `names`, given out in order of first use.
@@ -150,34 +164,69 @@ class NameIds {
   std::map<std::string, int64_t> ids_;
 };
 
+/// The prepared inserts of every table a run has rows in.
+struct RunInserts {
+  explicit RunInserts(Database& db, size_t axes)
+      : run(db, "INSERT INTO runs VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?" + repeat(", ?", axes) + ");"),
+        figure(db, "INSERT INTO figure_values VALUES (?, ?, ?);"),
+        distribution(db, "INSERT INTO distribution_values VALUES (?, ?" + repeat(", ?", std::size(kStats)) + ");"),
+        extra(db, "INSERT INTO distribution_extras VALUES (?, ?, ?, ?);"),
+        model(db, "INSERT INTO model_values VALUES (?, ?, ?, ?);"),
+        names(db) {}
+  static std::string repeat(const char* text, size_t n) {
+    std::string out;
+    for (size_t i = 0; i < n; ++i) out += text;
+    return out;
+  }
+  Insert run, figure, distribution, extra, model;
+  NameIds names;
+};
+
+void insert_distribution(RunInserts& in, int64_t index, const Json& node, const std::string& name) {
+  const int64_t name_id = in.names.of(name);
+  in.distribution.integer(index).integer(name_id);
+  for (const char* stat : kStats) in.distribution.optional_number(node, stat);
+  in.distribution.run();
+  for (auto it = node.begin(); it != node.end(); ++it) {
+    if (!it.value().is_number() || std::find(std::begin(kStats), std::end(kStats), it.key()) != std::end(kStats))
+      continue;
+    in.extra.integer(index).integer(name_id).integer(in.names.of(it.key())).real(it.value().get<double>()).run();
+  }
+}
+
+bool is_distribution(const Json& node) { return node.is_object() && node.contains("count") && node.contains("mean"); }
+
+// Every number under `node`: scalars (booleans as 0 and 1) and distributions.
+void insert_figures(RunInserts& in, int64_t index, const Json& node, const std::string& name) {
+  if (node.is_number() || node.is_boolean()) {
+    const double v = node.is_boolean() ? (node.get<bool>() ? 1.0 : 0.0) : node.get<double>();
+    in.figure.integer(index).integer(in.names.of(name)).real(v).run();
+  } else if (is_distribution(node)) {
+    insert_distribution(in, index, node, name);
+  } else if (node.is_object()) {
+    for (auto it = node.begin(); it != node.end(); ++it)
+      insert_figures(in, index, it.value(), name.empty() ? it.key() : name + "." + it.key());
+  }
+}
+
 void insert_records(Database& db, const std::vector<std::string>& axis_pointers, const std::vector<RunRecord>& records) {
-  std::string sql = "INSERT INTO runs VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?";
-  for (size_t a = 0; a < axis_pointers.size(); ++a) sql += ", ?";
-  Insert run(db, sql + ");");
-  Insert figure(db, "INSERT INTO figures VALUES (?, ?, ?);");
-  Insert stat(db, "INSERT INTO distribution_stats VALUES (?, ?, ?, ?);");
-  Insert bucket(db, "INSERT INTO histogram_buckets VALUES (?, ?, ?, ?, ?);");
-  Insert model(db, "INSERT INTO models VALUES (?, ?, ?, ?);");
-  NameIds names(db);
+  RunInserts in(db, axis_pointers.size());
   for (size_t i = 0; i < records.size(); ++i) {
     const RunRecord& r = records[i];
     const Json& s = r.summary;
     const auto index = static_cast<int64_t>(i);
-    run.text(r.run_id).integer(index).integer(static_cast<int64_t>(r.point));
-    run.integer(static_cast<int64_t>(r.seed)).integer(static_cast<int64_t>(r.replication));
-    run.optional_number(s, "events").optional_number(s, "wall_s").optional_number(s, "peak_rss_mb");
-    if (s.contains("fingerprint") && s["fingerprint"].is_string()) run.text(s["fingerprint"].get_ref<const std::string&>());
-    else run.null();
-    for (const auto& v : r.values) run.value(v);
-    run.run();
-    const FlatFigures flat = flatten_figures(s.value("figures", Json::object()));
-    for (const auto& f : flat.scalars) figure.text(r.run_id).text(f.name).real(f.value).run();
-    for (const auto& d : flat.stats) stat.integer(index).integer(names.of(d.name)).integer(names.of(d.stat)).real(d.value).run();
-    for (const auto& b : flat.buckets)
-      bucket.integer(index).integer(names.of(b.name)).integer(static_cast<int64_t>(b.bucket)).real(b.edge).real(b.count).run();
-    if (s.contains("models") && s["models"].is_object())
-      for (auto it = s["models"].begin(); it != s["models"].end(); ++it)
-        model.text(r.run_id).text(it.key()).optional_number(it.value(), "events").optional_number(it.value(), "wall_s").run();
+    in.run.text(r.run_id).integer(index).integer(static_cast<int64_t>(r.point));
+    in.run.integer(static_cast<int64_t>(r.seed)).integer(static_cast<int64_t>(r.replication));
+    in.run.optional_number(s, "events").optional_number(s, "wall_s").optional_number(s, "peak_rss_mb");
+    if (s.contains("fingerprint") && s["fingerprint"].is_string()) in.run.text(s["fingerprint"].get_ref<const std::string&>());
+    else in.run.null();
+    for (const auto& v : r.values) in.run.value(v);
+    in.run.run();
+    if (const auto f = s.find("figures"); f != s.end()) insert_figures(in, index, *f, "");
+    if (const auto m = s.find("models"); m != s.end() && m->is_object())
+      for (auto it = m->begin(); it != m->end(); ++it)
+        in.model.integer(index).integer(in.names.of(it.key())).optional_number(it.value(), "events")
+            .optional_number(it.value(), "wall_s").run();
   }
 }
 

@@ -1,4 +1,3 @@
-#include "latsim/results/run_files.hpp"
 #include "latsim/sweep/tables.hpp"
 
 #include <fcntl.h>
@@ -9,12 +8,15 @@
 #include <cstdio>
 #include <cstring>
 #include <optional>
+#include <set>
 #include <stdexcept>
 
-#include "latsim/run/runner.hpp"
+#include "latsim/results/run_files.hpp"
 #include "latsim/sweep/parallel_for.hpp"
+#include "latsim/sweep/record.hpp"
 #include "latsim/sweep/results_db.hpp"
 #include "latsim/sweep/run_table.hpp"
+#include "latsim/sweep/segment.hpp"
 
 namespace latsim::sweep {
 
@@ -24,14 +26,14 @@ namespace {
 
 // Claim files of finished runs: left by a process killed between writing a
 // summary and removing its claim. Claim names start with the run id.
-void remove_finished_claims(const SweepStore& store) {
+void remove_finished_claims(const SweepStore& store, const std::set<std::string>& finished) {
   std::error_code ec;
   std::vector<fs::path> leftovers;
   for (fs::directory_iterator it(store.claims_dir(), ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
     const auto dot = name.find('.');
     if (dot == 0 || dot == std::string::npos) continue;  // .clock files belong to live processes
-    if (store.is_finished(name.substr(0, dot))) leftovers.push_back(it->path());
+    if (finished.count(name.substr(0, dot))) leftovers.push_back(it->path());
   }
   for (const auto& file : leftovers) fs::remove(file, ec);
 }
@@ -63,15 +65,28 @@ class TablesLock {
 
 size_t write_tables(const SweepPlan& plan, const SweepStore& store, unsigned threads, size_t& temporaries_removed) {
   const TablesLock lock(store.out_dir());
-  // Parsing the summaries is most of the reading, and independent per run.
+  // A record without its mark (its writer was killed in between) is of a run
+  // that runs again: the tables take the finished runs only.
+  const std::set<std::string> finished = store.finished_runs();
+  const StoreIndex index(store.store_dir());
+  // Inflating and parsing the records is most of the reading, and independent per run.
   const auto& runs = plan.runs();
   std::vector<std::optional<nlohmann::json>> summaries(runs.size());
   std::vector<std::string> errors(runs.size());
   parallel_for(runs.size(), threads, [&](size_t i) {
+    if (!finished.count(runs[i].run_id)) return;
+    const auto spot = index.find(runs[i].run_id);
+    if (!spot) {
+      errors[i] = store.store_dir().string() + ": run " + runs[i].run_id + " is marked finished but has no record; " +
+                  "delete " + (store.out_dir() / "done" / runs[i].run_id).string() + " to run it again";
+      return;
+    }
     try {
-      summaries[i] = store.load_summary(runs[i].run_id);
+      summaries[i] = decode_record(index.read(*spot), RecordRead::tables);
     } catch (const std::exception& e) {
-      errors[i] = e.what();
+      // Written with a CRC, so this is damage from outside latsim; say so rather than guess.
+      errors[i] = (store.store_dir()).string() + ": the record of run " + runs[i].run_id + " is unreadable (" +
+                  e.what() + "); delete the sweep's store to run it again";
     }
   });
   for (const auto& error : errors)
@@ -81,7 +96,7 @@ size_t write_tables(const SweepPlan& plan, const SweepStore& store, unsigned thr
     auto& summary = summaries[run.index];
     if (!summary) continue;
     RunRecord record{run.run_id, run.point, run.seed, run.replication, {}, std::move(*summary)};
-    for (size_t a = 0; a < plan.axes().size(); ++a) record.values.push_back(plan.axes()[a].values[run.value_indices[a]]);
+    for (size_t a = 0; a < plan.axes().size(); ++a) record.values.push_back(plan.value(run, a));
     records.push_back(std::move(record));
   }
   std::vector<std::string> pointers;
@@ -89,14 +104,15 @@ size_t write_tables(const SweepPlan& plan, const SweepStore& store, unsigned thr
   temporaries_removed += store.remove_table_temporaries();
   results::write_file_atomically(store.out_dir() / "results.csv", results_csv(pointers, records));
   write_results_db(store.out_dir() / "results.sqlite", pointers, records);
-  remove_finished_claims(store);
+  remove_finished_claims(store, finished);
   return records.size();
 }
 
 std::vector<std::string> missing_runs(const SweepPlan& plan, const SweepStore& store, RunClaims& claims) {
+  const std::set<std::string> finished = store.finished_runs();
   std::vector<std::string> lines;
   for (const auto& run : plan.runs()) {
-    if (store.is_finished(run.run_id)) continue;
+    if (finished.count(run.run_id)) continue;
     std::string line = run.run_id + " (" + plan.describe(run) + ")";
     if (const auto holder = claims.holder_of(run.run_id)) line += ": running in " + holder->name();
     lines.push_back(std::move(line));

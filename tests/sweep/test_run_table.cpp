@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -110,8 +111,13 @@ TEST_CASE("results.sqlite holds runs, figures, distributions, histograms and mod
   CHECK(count_rows(db, "SELECT COUNT(*) FROM runs WHERE \"/display/refresh_hz\" = '60000/1001'") == 1);
   CHECK(count_rows(db, "SELECT COUNT(*) FROM figures WHERE name = 'pxpl5.gp_utilisation' AND value = 0.75") == 2);
   CHECK(count_rows(db, "SELECT COUNT(*) FROM distributions WHERE name = 'motion_to_photon_ms' AND stat = 'p99'") == 2);
-  CHECK(count_rows(db, "SELECT COUNT(*) FROM histograms WHERE name = 'motion_to_photon_ms'") == 4);
+  CHECK(count_rows(db, "SELECT COUNT(*) FROM distributions WHERE run_id = '00000000000000bb' AND name = "
+                       "'motion_to_photon_ms' AND stat = 'mean' AND value = 26.0") == 1);
+  // The summaries give five statistics of the distribution (no stddev, min, p90 or p999): five rows a run.
+  CHECK(count_rows(db, "SELECT COUNT(*) FROM distributions") == 10);
   CHECK(count_rows(db, "SELECT COUNT(*) FROM models WHERE model = 'tracker' AND events = 600") == 2);
+  // Histograms stay in the results store, where the report reads them.
+  CHECK(count_rows(db, "SELECT COUNT(*) FROM sqlite_master WHERE name = 'histograms'") == 0);
   sqlite3_close(db);
   // Writing again replaces the file whole.
   latsim::sweep::write_results_db(file, {"/display/refresh_hz"}, {two_records()[0]});
@@ -130,34 +136,41 @@ TEST_CASE("temporary file names are recognised", "[sweep]") {
   CHECK_FALSE(is_temporary_name(".tmp"));
 }
 
-TEST_CASE("a sweep directory: finished means summary.json exists, stray temporaries are removed per run", "[sweep]") {
+TEST_CASE("a sweep directory: finished means marked done, stray temporaries are removed per run", "[sweep]") {
   const fs::path dir = scratch_dir("latsim_sweep_store");
   SweepStore store(dir);
-  fs::create_directories(store.run_dir("r1"));
+  const fs::path mark = store.new_mark("test");
+  CHECK(store.mark_finished("r1", mark));
+  CHECK(store.mark_finished("r1", mark));  // a second mark of the same run is no error
   fs::create_directories(store.run_dir("r2") / "frames");
-  std::ofstream(store.summary_file("r1")) << R"({"events": 5})";
-  // r2 was killed while writing its summary: only the temporary file exists.
+  // r2 was killed while writing its kept files: only temporary files and its staging directory.
   std::ofstream(store.run_dir("r2") / "summary.json.tmp.4242") << R"({"eve)";
   std::ofstream(store.run_dir("r2") / "frames" / "f0.png.tmp.4242") << "png";
   std::ofstream(store.run_dir("r2") / "timeline.csv") << "stage,frame,eye,unit,start_ms,end_ms\n";
+  fs::create_directories(store.staging_dir("r2"));
+  fs::create_directories(store.run_dir("r1"));
   std::ofstream(store.run_dir("r1") / "figures.json.tmp.77") << "{";
   std::ofstream(dir / "results.csv.tmp.4242") << "run_id";
   std::ofstream(dir / "plan.json.tmp.4242") << "{";
   std::ofstream(dir / "notes.txt.tmp") << "someone else's file";
   CHECK(store.is_finished("r1"));
   CHECK_FALSE(store.is_finished("r2"));
-  CHECK(store.load_summary("r1")->at("events") == 5);
-  CHECK_FALSE(store.load_summary("r2"));
+  // The marks are names of one empty file: no file of their own, no data.
+  CHECK(fs::hard_link_count(mark) == 2);
+  CHECK(fs::file_size(dir / "done" / "r1") == 0);
+  CHECK(store.finished_runs() == std::set<std::string>{"r1"});
+  CHECK(latsim::sweep::finished_runs_in(dir) == std::set<std::string>{"r1"});
+  CHECK(latsim::sweep::finished_runs_in(dir / "nowhere").empty());
   // Two processes may share the directory: opening it again is fine.
   CHECK_NOTHROW(SweepStore(dir));
   // Only the named run's temporaries go (another process may be writing r1's).
-  CHECK(store.remove_run_temporaries("r2") == 2);
+  CHECK(store.remove_run_temporaries("r2") == 3);
   CHECK_FALSE(fs::exists(store.run_dir("r2") / "summary.json.tmp.4242"));
+  CHECK_FALSE(fs::exists(store.staging_dir("r2")));
   CHECK(fs::exists(store.run_dir("r2") / "timeline.csv"));
   CHECK(fs::exists(store.run_dir("r1") / "figures.json.tmp.77"));
   CHECK(store.remove_run_temporaries("no_such_run") == 0);
   CHECK(store.remove_table_temporaries() == 2);
-  CHECK(fs::exists(store.summary_file("r1")));
   CHECK(fs::exists(dir / "notes.txt.tmp"));
   fs::remove_all(dir);
 }

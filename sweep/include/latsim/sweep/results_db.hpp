@@ -12,11 +12,13 @@ namespace latsim::sweep {
 /// Writes `file` atomically (a temporary database, then rename) with tables
 ///   axes(axis, pointer)
 ///   runs(run_id, plan_index, point, seed, replication, events, wall_s, peak_rss_mb, fingerprint, "<axis pointer>"...)
+/// and views over compact tables of integer ids (names; figure_values,
+/// distribution_values with one row per distribution, model_values):
 ///   figures(run_id, name, value)                 scalar figures by dotted name
-///   models(run_id, model, events, wall_s)
-/// and views (over compact tables of integer ids: names, distribution_stats, histogram_buckets)
 ///   distributions(run_id, name, stat, value)     count, mean, p99, ... of each distribution
-///   histograms(run_id, name, bucket, edge, count)
+///   models(run_id, model, events, wall_s)
+/// Histograms are not in it: each run's are in its record in the results
+/// store (and its summary.json when kept), where the report reads them.
 /// Throws std::runtime_error naming the file on any SQLite failure.
 void write_results_db(const std::filesystem::path& file, const std::vector<std::string>& axis_pointers,
                       const std::vector<RunRecord>& records);
