@@ -3,14 +3,17 @@
 The format (sweep/include/latsim/sweep/segment.hpp and record.hpp): a segment
 is b"LSSEG1\\n\\0" and then frames of a 20-byte header (b"LSRF", the payload's
 length and CRC-32, the run id as a little-endian 64-bit number) and the
-payload, the run's record deflated (raw) with the segment's first record as
-its preset dictionary (the first record without one). A frame cut short or
-damaged ends its segment. A record is one line of JSON (the summary without
-its scenario; a histogram whose edges are min + (max - min) / n * b keeps its
-counts alone as "histogram_counts") and then the scenario. Where a run has two
-records, the first segment in name order, then its first frame, is read.
+payload, the run's record deflated (raw) with the first line of the
+segment's first record as its preset dictionary (the first record without
+one). A frame cut short or damaged ends its segment. A record is one line of
+JSON (the summary without its scenario; a histogram whose edges are min +
+(max - min) / n * b keeps its counts alone as "histogram_counts") and then the
+scenario: whole in a segment's first record, otherwise as what it changes in
+that one's, a list of ["=", pointer, value] and ["-", pointer]. Where a run
+has two records, the first segment in name order, then its first frame, is read.
 """
 
+import copy
 import json
 import mmap
 import os
@@ -41,12 +44,36 @@ def expand_histograms(node):
         expand_histograms(child)
 
 
-def decode_record(text):
-    """The summary of a record's text, as summary.json holds it."""
+def pointer_keys(pointer):
+    return [p.replace("~1", "/").replace("~0", "~") for p in pointer.split("/")[1:]]
+
+
+def patched(base, ops):
+    """`base` with the changes of a scenario line's patch."""
+    doc = copy.deepcopy(base)
+    for op in ops:
+        keys = pointer_keys(op[1])
+        if not keys:
+            doc = copy.deepcopy(op[2])
+            continue
+        parent = doc
+        for key in keys[:-1]:
+            parent = parent[int(key)] if isinstance(parent, list) else parent.setdefault(key, {})
+        if op[0] == "=":
+            parent[keys[-1]] = copy.deepcopy(op[2])
+        else:
+            del parent[keys[-1]]
+    return doc
+
+
+def decode_record(text, base=None):
+    """The summary of a record's text, as summary.json holds it; `base` is the
+    scenario of its segment's first record, which a later one's patches."""
     head, _, scenario = text.partition(b"\n")
     summary = json.loads(head)
     expand_histograms(summary.get("figures"))
-    summary["scenario"] = json.loads(scenario)
+    scenario = json.loads(scenario)
+    summary["scenario"] = patched(base, scenario) if isinstance(scenario, list) else scenario
     return summary
 
 
@@ -54,7 +81,7 @@ class SweepStore:
     """Every record of DIR/store, found by run id; segments are mapped, records inflated when read."""
 
     def __init__(self, directory):
-        self.segments = []  # (mapped bytes, first record's text)
+        self.segments = []  # (mapped bytes, first record's text, its scenario)
         self.spots = {}     # run id -> (segment, offset, length)
         store = os.path.join(directory, "store")
         names = sorted(n for n in os.listdir(store) if n.endswith(".seg")) if os.path.isdir(store) else []
@@ -81,7 +108,8 @@ class SweepStore:
                 first = inflate(payload, None)
             self.spots.setdefault(f"{run:016x}", (segment, at + HEADER, length))
             at += HEADER + length
-        self.segments.append((data, first))
+        base = json.loads(first.partition(b"\n")[2]) if first is not None else None
+        self.segments.append((data, first, base))
 
     def __contains__(self, run_id):
         return run_id in self.spots
@@ -92,6 +120,7 @@ class SweepStore:
         if spot is None:
             return None
         segment, offset, length = spot
-        data, first = self.segments[segment]
-        text = first if offset == len(SEGMENT_MAGIC) + HEADER else inflate(data[offset:offset + length], first)
-        return decode_record(text)
+        data, first, base = self.segments[segment]
+        dictionary = first.partition(b"\n")[0]
+        text = first if offset == len(SEGMENT_MAGIC) + HEADER else inflate(data[offset:offset + length], dictionary)
+        return decode_record(text, base)

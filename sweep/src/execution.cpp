@@ -167,7 +167,11 @@ RunAttempt RunExecutor::run_claimed(const RunTask& task, unsigned worker) {
     attempt.simulate_s = summary.value("wall_s", 0.0);
     t0 = Clock::now();
     Worker& w = *workers_.at(worker);
-    w.segment.append(task.run_id, encode_record(std::move(summary)));
+    // The scenario as a patch of the one of its segment's first record, which is written whole.
+    const bool first = w.segment.starts_segment();
+    EncodedRecord record = encode_record(std::move(summary), first ? nullptr : &w.base_scenario);
+    w.segment.append(task.run_id, record.text);
+    if (first) w.base_scenario = std::move(record.scenario);
     mark_finished(task.run_id, w);
     attempt.record_s = seconds_since(t0);
     attempt.result = RunAttempt::Result::ran;

@@ -2,10 +2,9 @@
 
 #include <unistd.h>
 
-#include <algorithm>
-#include <iterator>
-#include <map>
 #include <memory>
+#include <optional>
+#include <unordered_map>
 #include <stdexcept>
 
 #include <sqlite3.h>
@@ -92,9 +91,7 @@ class Insert {
     if (v.is_null()) return null();
     return text_copy(v.dump());
   }
-  Insert& optional_number(const Json& object, const char* key) {
-    return object.contains(key) && object[key].is_number() ? value(object[key]) : null();
-  }
+  Insert& optional_real(const std::optional<double>& v) { return v ? real(*v) : null(); }
   void run() {
     if (sqlite3_step(stmt_) != SQLITE_DONE) db_.fail(sqlite3_errmsg(db_.handle()));
     // Every row binds every parameter again, so the old bindings need no clearing.
@@ -114,9 +111,6 @@ std::string quoted_identifier(const std::string& name) {
   return q + "\"";
 }
 
-// The statistics every distribution figure has, one column each.
-constexpr const char* kStats[] = {"count", "mean", "stddev", "min", "p50", "p90", "p99", "p999", "max"};
-
 // A few tens of rows a run, each of integers and reals: the names are stored
 // once (names) and the run by its plan index (runs.plan_index), and each
 // distribution is one row of its statistics; the views give run ids and names
@@ -127,7 +121,7 @@ void create_tables(Database& db, const std::vector<std::string>& axis_pointers) 
   for (const auto& pointer : axis_pointers) runs += ", " + quoted_identifier(pointer);
   db.exec(runs + ");");
   std::string columns, unpivot;
-  for (const char* stat : kStats) {
+  for (const char* stat : kDistributionStats) {
     columns += std::string(", ") + stat + " REAL";
     unpivot += std::string(unpivot.empty() ? "" : " UNION ALL ") + "SELECT r.run_id, n.name, '" + stat + "', d." +
                stat + " FROM distribution_values d JOIN runs r USING (plan_index) JOIN names n ON n.name_id = "
@@ -161,7 +155,7 @@ class NameIds {
 
  private:
   Insert insert_;
-  std::map<std::string, int64_t> ids_;
+  std::unordered_map<std::string, int64_t> ids_;
 };
 
 /// The prepared inserts of every table a run has rows in.
@@ -169,7 +163,7 @@ struct RunInserts {
   explicit RunInserts(Database& db, size_t axes)
       : run(db, "INSERT INTO runs VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?" + repeat(", ?", axes) + ");"),
         figure(db, "INSERT INTO figure_values VALUES (?, ?, ?);"),
-        distribution(db, "INSERT INTO distribution_values VALUES (?, ?" + repeat(", ?", std::size(kStats)) + ");"),
+        distribution(db, "INSERT INTO distribution_values VALUES (?, ?" + repeat(", ?", kDistributionStats.size()) + ");"),
         extra(db, "INSERT INTO distribution_extras VALUES (?, ?, ?, ?);"),
         model(db, "INSERT INTO model_values VALUES (?, ?, ?, ?);"),
         names(db) {}
@@ -182,77 +176,77 @@ struct RunInserts {
   NameIds names;
 };
 
-void insert_distribution(RunInserts& in, int64_t index, const Json& node, const std::string& name) {
-  const int64_t name_id = in.names.of(name);
-  in.distribution.integer(index).integer(name_id);
-  for (const char* stat : kStats) in.distribution.optional_number(node, stat);
-  in.distribution.run();
-  for (auto it = node.begin(); it != node.end(); ++it) {
-    if (!it.value().is_number() || std::find(std::begin(kStats), std::end(kStats), it.key()) != std::end(kStats))
-      continue;
-    in.extra.integer(index).integer(name_id).integer(in.names.of(it.key())).real(it.value().get<double>()).run();
+void insert_row(RunInserts& in, int64_t index, const RunRow& r) {
+  // A count bound as a real reads back as the integer: the columns' affinity converts it exactly.
+  in.run.text(r.run_id).integer(index).integer(static_cast<int64_t>(r.point));
+  in.run.integer(static_cast<int64_t>(r.seed)).integer(static_cast<int64_t>(r.replication));
+  in.run.optional_real(r.events).optional_real(r.wall_s).optional_real(r.peak_rss_mb);
+  if (r.fingerprint) in.run.text(*r.fingerprint);
+  else in.run.null();
+  for (const auto& v : r.values) in.run.value(v);
+  in.run.run();
+  for (const auto& f : r.scalars) in.figure.integer(index).integer(in.names.of(f.name)).real(f.value).run();
+  for (const auto& d : r.distributions) {
+    const int64_t name_id = in.names.of(d.name);
+    in.distribution.integer(index).integer(name_id);
+    for (const auto& stat : d.stats) in.distribution.optional_real(stat);
+    in.distribution.run();
+    for (const auto& [stat, v] : d.extra) in.extra.integer(index).integer(name_id).integer(in.names.of(stat)).real(v).run();
   }
-}
-
-bool is_distribution(const Json& node) { return node.is_object() && node.contains("count") && node.contains("mean"); }
-
-// Every number under `node`: scalars (booleans as 0 and 1) and distributions.
-void insert_figures(RunInserts& in, int64_t index, const Json& node, const std::string& name) {
-  if (node.is_number() || node.is_boolean()) {
-    const double v = node.is_boolean() ? (node.get<bool>() ? 1.0 : 0.0) : node.get<double>();
-    in.figure.integer(index).integer(in.names.of(name)).real(v).run();
-  } else if (is_distribution(node)) {
-    insert_distribution(in, index, node, name);
-  } else if (node.is_object()) {
-    for (auto it = node.begin(); it != node.end(); ++it)
-      insert_figures(in, index, it.value(), name.empty() ? it.key() : name + "." + it.key());
-  }
-}
-
-void insert_records(Database& db, const std::vector<std::string>& axis_pointers, const std::vector<RunRecord>& records) {
-  RunInserts in(db, axis_pointers.size());
-  for (size_t i = 0; i < records.size(); ++i) {
-    const RunRecord& r = records[i];
-    const Json& s = r.summary;
-    const auto index = static_cast<int64_t>(i);
-    in.run.text(r.run_id).integer(index).integer(static_cast<int64_t>(r.point));
-    in.run.integer(static_cast<int64_t>(r.seed)).integer(static_cast<int64_t>(r.replication));
-    in.run.optional_number(s, "events").optional_number(s, "wall_s").optional_number(s, "peak_rss_mb");
-    if (s.contains("fingerprint") && s["fingerprint"].is_string()) in.run.text(s["fingerprint"].get_ref<const std::string&>());
-    else in.run.null();
-    for (const auto& v : r.values) in.run.value(v);
-    in.run.run();
-    if (const auto f = s.find("figures"); f != s.end()) insert_figures(in, index, *f, "");
-    if (const auto m = s.find("models"); m != s.end() && m->is_object())
-      for (auto it = m->begin(); it != m->end(); ++it)
-        in.model.integer(index).integer(in.names.of(it.key())).optional_number(it.value(), "events")
-            .optional_number(it.value(), "wall_s").run();
-  }
+  for (const auto& m : r.models)
+    in.model.integer(index).integer(in.names.of(m.name)).optional_real(m.events).optional_real(m.wall_s).run();
 }
 
 }  // namespace
 
-void write_results_db(const fs::path& file, const std::vector<std::string>& axis_pointers,
-                      const std::vector<RunRecord>& records) {
-  const fs::path temp = file.string() + ".tmp." + std::to_string(::getpid());
+/// The database being written, private to its writer until it is renamed into place.
+struct ResultsDbWriter::Open {
+  Open(const fs::path& file, const std::vector<std::string>& axis_pointers) : db(file) {
+    // The file is private until renamed, so no journal is needed for atomicity.
+    db.exec("PRAGMA journal_mode=OFF; PRAGMA synchronous=OFF; BEGIN;");
+    create_tables(db, axis_pointers);
+    Insert axis(db, "INSERT INTO axes VALUES (?, ?);");
+    for (size_t a = 0; a < axis_pointers.size(); ++a) axis.integer(static_cast<int64_t>(a)).text(axis_pointers[a]).run();
+    inserts = std::make_unique<RunInserts>(db, axis_pointers.size());
+  }
+  Database db;
+  std::unique_ptr<RunInserts> inserts;  // finalized before the database closes
+  int64_t rows = 0;
+};
+
+ResultsDbWriter::ResultsDbWriter(fs::path file, const std::vector<std::string>& axis_pointers)
+    : file_(std::move(file)), temp_(file_.string() + ".tmp." + std::to_string(::getpid())) {
   std::error_code ignored;
-  fs::remove(temp, ignored);
+  fs::remove(temp_, ignored);
   try {
-    {
-      Database db(temp);
-      // The file is private until renamed, so no journal is needed for atomicity.
-      db.exec("PRAGMA journal_mode=OFF; PRAGMA synchronous=OFF; BEGIN;");
-      create_tables(db, axis_pointers);
-      Insert axis(db, "INSERT INTO axes VALUES (?, ?);");
-      for (size_t a = 0; a < axis_pointers.size(); ++a) axis.integer(static_cast<int64_t>(a)).text(axis_pointers[a]).run();
-      insert_records(db, axis_pointers, records);
-      db.exec("COMMIT;");
-    }
-    fs::rename(temp, file);
+    open_ = std::make_unique<Open>(temp_, axis_pointers);
   } catch (...) {
-    fs::remove(temp, ignored);
+    fs::remove(temp_, ignored);
     throw;
   }
+}
+
+ResultsDbWriter::~ResultsDbWriter() {
+  if (!open_) return;
+  open_.reset();
+  std::error_code ignored;
+  fs::remove(temp_, ignored);
+}
+
+void ResultsDbWriter::add(const RunRow& row) { insert_row(*open_->inserts, open_->rows++, row); }
+
+void ResultsDbWriter::commit() {
+  open_->inserts.reset();
+  open_->db.exec("COMMIT;");
+  open_.reset();
+  fs::rename(temp_, file_);
+}
+
+void write_results_db(const fs::path& file, const std::vector<std::string>& axis_pointers,
+                      const std::vector<RunRow>& rows) {
+  ResultsDbWriter db(file, axis_pointers);
+  for (const auto& row : rows) db.add(row);
+  db.commit();
 }
 
 }  // namespace latsim::sweep

@@ -61,24 +61,36 @@ class Inflater {
   Inflater(const Inflater&) = delete;
   Inflater& operator=(const Inflater&) = delete;
 
-  std::string inflate(const unsigned char* data, size_t n, const std::string& dictionary) {
+  /// The text, whole or (`line_only`) up to its first line break, excluded.
+  std::string inflate(const unsigned char* data, size_t n, const std::string& dictionary, bool line_only = false) {
     inflateReset(&z_);
     if (!dictionary.empty() &&
         inflateSetDictionary(&z_, reinterpret_cast<const Bytef*>(dictionary.data()), static_cast<uInt>(dictionary.size())) != Z_OK)
       throw std::runtime_error("store: a record's dictionary was refused");
-    std::string out(std::max<size_t>(4 * n, 4096), '\0');
+    // Line by line: a slice at a time, so that a first line stops early.
+    constexpr size_t kSlice = 4096;
+    std::string out(std::max<size_t>(4 * n, kSlice), '\0');
     z_.next_in = const_cast<Bytef*>(data);
     z_.avail_in = static_cast<uInt>(n);
     size_t produced = 0;
     while (true) {
+      const size_t room = std::min(out.size() - produced, line_only ? kSlice : out.size() - produced);
       z_.next_out = reinterpret_cast<Bytef*>(out.data() + produced);
-      z_.avail_out = static_cast<uInt>(out.size() - produced);
-      const int rc = ::inflate(&z_, Z_FINISH);
-      produced = out.size() - z_.avail_out;
+      z_.avail_out = static_cast<uInt>(room);
+      const int rc = ::inflate(&z_, line_only ? Z_NO_FLUSH : Z_FINISH);
+      const size_t before = produced;
+      produced += room - z_.avail_out;
+      if (line_only) {
+        const size_t eol = out.find('\n', before);
+        if (eol < produced) {
+          out.resize(eol);
+          return out;
+        }
+      }
       if (rc == Z_STREAM_END) break;
       if (rc != Z_BUF_ERROR && rc != Z_OK) throw std::runtime_error("store: a damaged record (inflate failed)");
       if (z_.avail_in == 0 && z_.avail_out != 0) throw std::runtime_error("store: a record cut short");
-      out.resize(out.size() * 2);
+      if (produced == out.size()) out.resize(out.size() * 2);
     }
     out.resize(produced);
     return out;
@@ -166,14 +178,15 @@ void SegmentWriter::append(const std::string& run_id, std::string_view record) {
     fd_ = -1;
     throw;
   }
-  if (dictionary_.empty()) dictionary_.assign(record);
+  if (dictionary_.empty()) dictionary_.assign(record.substr(0, record.find('\n')));
 }
 
-/// One segment file, mapped, with its first record (the others' dictionary).
+/// One segment file, mapped, with its first record (whose first line is the others' dictionary).
 struct StoreIndex::Segment {
   fs::path file;
   const unsigned char* bytes = nullptr;
   size_t size = 0;
+  std::string first;
   std::string dictionary;
 
   ~Segment() {
@@ -217,7 +230,10 @@ StoreIndex::StoreIndex(const fs::path& store_dir) {
           crc_of(h + kHeaderBytes, length) != get32(h + 8))
         break;
       const RecordSpot spot{index, at + kHeaderBytes, length};
-      if (seg->dictionary.empty()) seg->dictionary = thread_inflater().inflate(seg->bytes + spot.offset, length, {});
+      if (seg->first.empty()) {
+        seg->first = thread_inflater().inflate(seg->bytes + spot.offset, length, {});
+        seg->dictionary = seg->first.substr(0, seg->first.find('\n'));
+      }
       spots_.emplace(get64(h + 12), spot);  // the first record of a run stays
       at += kHeaderBytes + length;
     }
@@ -227,6 +243,16 @@ StoreIndex::StoreIndex(const fs::path& store_dir) {
 }
 
 StoreIndex::~StoreIndex() = default;
+
+std::string StoreIndex::read_first_line(const RecordSpot& spot) const {
+  const Segment& seg = *segments_[spot.segment];
+  if (spot.offset == sizeof kSegmentMagic + kHeaderBytes) return seg.dictionary;
+  return thread_inflater().inflate(seg.bytes + spot.offset, spot.length, seg.dictionary, true);
+}
+
+const std::string& StoreIndex::segment_first_record(const RecordSpot& spot) const {
+  return segments_[spot.segment]->first;
+}
 
 std::optional<RecordSpot> StoreIndex::find(const std::string& run_id) const {
   const auto id = run_id_bits(run_id);
@@ -239,7 +265,7 @@ std::optional<RecordSpot> StoreIndex::find(const std::string& run_id) const {
 std::string StoreIndex::read(const RecordSpot& spot) const {
   const Segment& seg = *segments_[spot.segment];
   // The first record of a segment is its own text, and the others' dictionary.
-  if (spot.offset == sizeof kSegmentMagic + kHeaderBytes) return seg.dictionary;
+  if (spot.offset == sizeof kSegmentMagic + kHeaderBytes) return seg.first;
   return thread_inflater().inflate(seg.bytes + spot.offset, spot.length, seg.dictionary);
 }
 

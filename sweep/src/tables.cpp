@@ -7,13 +7,13 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <algorithm>
 #include <optional>
 #include <set>
 #include <stdexcept>
 
 #include "latsim/results/run_files.hpp"
 #include "latsim/sweep/parallel_for.hpp"
-#include "latsim/sweep/record.hpp"
 #include "latsim/sweep/results_db.hpp"
 #include "latsim/sweep/run_table.hpp"
 #include "latsim/sweep/segment.hpp"
@@ -69,43 +69,56 @@ size_t write_tables(const SweepPlan& plan, const SweepStore& store, unsigned thr
   // that runs again: the tables take the finished runs only.
   const std::set<std::string> finished = store.finished_runs();
   const StoreIndex index(store.store_dir());
-  // Inflating and parsing the records is most of the reading, and independent per run.
-  const auto& runs = plan.runs();
-  std::vector<std::optional<nlohmann::json>> summaries(runs.size());
-  std::vector<std::string> errors(runs.size());
-  parallel_for(runs.size(), threads, [&](size_t i) {
-    if (!finished.count(runs[i].run_id)) return;
-    const auto spot = index.find(runs[i].run_id);
-    if (!spot) {
-      errors[i] = store.store_dir().string() + ": run " + runs[i].run_id + " is marked finished but has no record; " +
-                  "delete " + (store.out_dir() / "done" / runs[i].run_id).string() + " to run it again";
-      return;
-    }
-    try {
-      summaries[i] = decode_record(index.read(*spot), RecordRead::tables);
-    } catch (const std::exception& e) {
-      // Written with a CRC, so this is damage from outside latsim; say so rather than guess.
-      errors[i] = (store.store_dir()).string() + ": the record of run " + runs[i].run_id + " is unreadable (" +
-                  e.what() + "); delete the sweep's store to run it again";
-    }
-  });
-  for (const auto& error : errors)
-    if (!error.empty()) throw std::runtime_error(error);
-  std::vector<RunRecord> records;
-  for (const auto& run : runs) {
-    auto& summary = summaries[run.index];
-    if (!summary) continue;
-    RunRecord record{run.run_id, run.point, run.seed, run.replication, {}, std::move(*summary)};
-    for (size_t a = 0; a < plan.axes().size(); ++a) record.values.push_back(plan.value(run, a));
-    records.push_back(std::move(record));
-  }
   std::vector<std::string> pointers;
   for (const auto& axis : plan.axes()) pointers.push_back(axis.pointer);
   temporaries_removed += store.remove_table_temporaries();
-  results::write_file_atomically(store.out_dir() / "results.csv", results_csv(pointers, records));
-  write_results_db(store.out_dir() / "results.sqlite", pointers, records);
+  std::string csv = results_csv_header(pointers);
+  ResultsDbWriter db(store.out_dir() / "results.sqlite", pointers);
+  // A chunk of runs at a time: inflated and read on every thread, then
+  // written in plan order; memory holds one chunk, whatever the sweep's size.
+  constexpr size_t kChunk = 2048;
+  const auto& runs = plan.runs();
+  size_t tabled = 0;
+  std::vector<std::optional<RunRow>> rows;
+  std::vector<std::string> errors;
+  for (size_t begin = 0; begin < runs.size(); begin += kChunk) {
+    const size_t n = std::min(kChunk, runs.size() - begin);
+    rows.assign(n, std::nullopt);
+    errors.assign(n, {});
+    parallel_for(n, threads, [&](size_t k) {
+      const SweepRun& run = runs[begin + k];
+      if (!finished.count(run.run_id)) return;
+      const auto spot = index.find(run.run_id);
+      if (!spot) {
+        errors[k] = store.store_dir().string() + ": run " + run.run_id + " is marked finished but has no record; " +
+                    "delete " + (store.out_dir() / "done" / run.run_id).string() + " to run it again";
+        return;
+      }
+      try {
+        RunRow row{run.run_id, run.point, run.seed, run.replication, {}};
+        // The record's first line is the summary but its scenario.
+        scan_summary(index.read_first_line(*spot), row);
+        for (size_t a = 0; a < plan.axes().size(); ++a) row.values.push_back(plan.value(run, a));
+        rows[k] = std::move(row);
+      } catch (const std::exception& e) {
+        // Written with a CRC, so this is damage from outside latsim; say so rather than guess.
+        errors[k] = store.store_dir().string() + ": the record of run " + run.run_id + " is unreadable (" + e.what() +
+                    "); delete its mark " + (store.out_dir() / "done" / run.run_id).string() + " to run it again";
+      }
+    });
+    for (const auto& error : errors)
+      if (!error.empty()) throw std::runtime_error(error);
+    for (const auto& row : rows) {
+      if (!row) continue;
+      append_results_csv_row(csv, *row);
+      db.add(*row);
+      ++tabled;
+    }
+  }
+  results::write_file_atomically(store.out_dir() / "results.csv", csv);
+  db.commit();
   remove_finished_claims(store, finished);
-  return records.size();
+  return tabled;
 }
 
 std::vector<std::string> missing_runs(const SweepPlan& plan, const SweepStore& store, RunClaims& claims) {

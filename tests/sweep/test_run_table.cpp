@@ -5,6 +5,7 @@
 #include <sqlite3.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -23,7 +24,7 @@ using latsim::sweep::find_figure;
 using latsim::sweep::format_number;
 using latsim::sweep::is_temporary_name;
 using latsim::sweep::results_csv;
-using latsim::sweep::RunRecord;
+using latsim::sweep::RunRow;
 using latsim::sweep::SweepStore;
 using latsim::test::scratch_dir;
 using Json = nlohmann::json;
@@ -46,9 +47,15 @@ Json summary_with(double mtp_mean_ms) {
           {"models", {{"tracker", {{"events", 600}, {"wall_s", 0.01}}}}}};
 }
 
-std::vector<RunRecord> two_records() {
-  return {RunRecord{"00000000000000aa", 0, 1, 0, {Json(60)}, summary_with(25.25)},
-          RunRecord{"00000000000000bb", 1, 1, 0, {Json("60000/1001")}, summary_with(26.0)}};
+RunRow row_of(std::string run_id, size_t point, Json value, const Json& summary) {
+  RunRow row{std::move(run_id), point, 1, 0, {std::move(value)}};
+  latsim::sweep::scan_summary_json(summary, row);
+  return row;
+}
+
+std::vector<RunRow> two_records() {
+  return {row_of("00000000000000aa", 0, 60, summary_with(25.25)),
+          row_of("00000000000000bb", 1, "60000/1001", summary_with(26.0))};
 }
 
 int64_t count_rows(sqlite3* db, const std::string& sql) {
@@ -70,6 +77,30 @@ TEST_CASE("find_figure looks under figures, then at the root, and a bare distrib
   CHECK(*find_figure(s, "pxpl5.gp_utilisation") == 0.75);
   CHECK_FALSE(find_figure(s, "registration_error_arcmin.mean"));
   CHECK_FALSE(find_figure(s, "fingerprint"));
+}
+
+TEST_CASE("a run's row, read from its summary's text, finds every figure find_figure finds", "[sweep]") {
+  Json s = summary_with(25.25);
+  s["figures"]["flags"] = {{"torn", true}, {"mean_like", {{"mean", 4.5}}}};
+  s["figures"]["names"] = "not a number";
+  s["figures"]["list"] = {1, 2};
+  s["figures"]["odd \"key\"\n"] = 7;
+  RunRow row;
+  latsim::sweep::scan_summary(std::string_view(s.dump(2)), row);  // indented text reads the same
+  for (const std::string path : {"motion_to_photon_ms.p99", "motion_to_photon_ms", "motion_to_photon_ms.count",
+                                 "events", "wall_s", "pxpl5.gp_utilisation", "registration_error_arcmin.mean",
+                                 "fingerprint", "flags.torn", "flags.mean_like", "names", "list", "odd \"key\"\n",
+                                 "render_latency_ms", "missed_refreshes", "no_such_figure"}) {
+    INFO(path);
+    CHECK(row.figure(path) == find_figure(s, path));
+  }
+  CHECK(row.fingerprint == "abc");
+  REQUIRE(row.models.size() == 1);
+  CHECK(row.models[0].events == 600.0);
+  // The booleans are in the database as 1 and 0, as before.
+  CHECK(std::count_if(row.scalars.begin(), row.scalars.end(), [](const auto& x) { return x.boolean && x.value == 1.0; }) == 1);
+  CHECK_THROWS(latsim::sweep::scan_summary(std::string_view("[1, 2]"), row));
+  CHECK_THROWS(latsim::sweep::scan_summary(std::string_view("{\"figures\": {\"x\": 1"), row));
 }
 
 TEST_CASE("numbers print in their shortest exact form and CSV fields are quoted when needed", "[sweep]") {

@@ -14,6 +14,7 @@
 
 using latsim::sweep::decode_record;
 using latsim::sweep::encode_record;
+using latsim::sweep::record_scenario;
 using latsim::sweep::RecordRead;
 using latsim::sweep::SegmentWriter;
 using latsim::sweep::StoreIndex;
@@ -64,21 +65,47 @@ std::string text_of(const fs::path& file) {
 TEST_CASE("a run's record reads back to the same summary, and the tables read it without the scenario",
           "[sweep][store]") {
   const Json original = summary(1.0);
-  const std::string record = encode_record(Json(original));
-  CHECK(decode_record(record) == original);
+  const auto encoded = encode_record(Json(original));
+  const std::string& record = encoded.text;
+  CHECK(encoded.scenario == original["scenario"]);
+  const Json back = decode_record(record);
+  CHECK(back == original);
+  // Written as nlohmann::json writes it, value for value: the text reads back to the same text.
+  CHECK(back.dump() == original.dump());
   // The regular histograms are their counts alone, the others whole.
   CHECK(record.find("histogram_counts") != std::string::npos);
-  CHECK(record.find("[0.5,1]") != std::string::npos);
-  const Json tables = decode_record(record, RecordRead::tables);
+  CHECK(record.find("[[0.5,1],[1.75,1]]") != std::string::npos);
+  const Json tables = decode_record(record, nullptr, RecordRead::tables);
   CHECK_FALSE(tables.contains("scenario"));
   CHECK(tables["figures"]["motion_to_photon_ms"]["mean"] == original["figures"]["motion_to_photon_ms"]["mean"]);
   CHECK(tables["figures"]["motion_to_photon_ms"]["histogram_counts"].size() == 50);
   CHECK_THROWS(decode_record("{}"));
 }
 
+TEST_CASE("a later record's scenario is what it changes in its segment's first one", "[sweep][store]") {
+  const Json base = summary(1.0)["scenario"];
+  Json later = summary(2.0);
+  later["scenario"]["display"]["interlaced"] = true;  // added
+  later["scenario"]["tracker"] = {{"rate_hz", 120}};  // added as a whole object
+  Json gone = summary(3.0);
+  gone["scenario"].erase("display");                  // removed
+  for (const Json& original : {later, gone}) {
+    const auto encoded = encode_record(Json(original), &base);
+    const std::string line = encoded.text.substr(encoded.text.find('\n') + 1);
+    CHECK(line.front() == '[');
+    CHECK(line.size() < 100);
+    CHECK(decode_record(encoded.text, &base) == original);
+    CHECK(record_scenario(encoded.text, &base) == original["scenario"]);
+    CHECK_THROWS(decode_record(encoded.text));  // a patch without what it patches
+  }
+  // The same scenario: an empty patch.
+  CHECK(encode_record(summary(1.0), &base).text.substr(encode_record(summary(1.0), &base).text.find('\n') + 1) == "[]");
+}
+
 TEST_CASE("segments keep every whole record, drop one cut short, and a run's first record wins", "[sweep][store]") {
   const fs::path dir = scratch_dir("latsim_sweep_segments");
-  const std::string a = encode_record(summary(1.0)), b = encode_record(summary(2.0)), c = encode_record(summary(3.0));
+  const std::string a = encode_record(summary(1.0)).text, b = encode_record(summary(2.0)).text,
+                    c = encode_record(summary(3.0)).text;
   uintmax_t first_bytes = 0, both_bytes = 0;
   {
     SegmentWriter one(dir, "host.1.0-0"), two(dir, "host.1.0-1");
@@ -96,6 +123,10 @@ TEST_CASE("segments keep every whole record, drop one cut short, and a run's fir
     CHECK(index.read(*index.find("00000000000000aa")) == a);
     CHECK(index.read(*index.find("00000000000000bb")) == b);
     CHECK(index.read(*index.find("00000000000000cc")) == c);
+    CHECK(index.segment_first_record(*index.find("00000000000000bb")) == a);
+    // The tables read the first line alone: the first record of a segment, and a later one.
+    CHECK(index.read_first_line(*index.find("00000000000000aa")) == a.substr(0, a.find('\n')));
+    CHECK(index.read_first_line(*index.find("00000000000000bb")) == b.substr(0, b.find('\n')));
     CHECK_FALSE(index.find("00000000000000dd"));
     CHECK(index.damaged_bytes() == 0);
   }

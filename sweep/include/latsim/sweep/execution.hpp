@@ -93,6 +93,7 @@ class RunExecutor {
   struct Worker {
     Worker(const SweepStore& store, const std::string& stem) : segment(store.store_dir(), stem), stem(stem) {}
     SegmentWriter segment;
+    nlohmann::json base_scenario;  ///< the scenario of its segment's first record
     std::string stem;
     std::filesystem::path mark;  ///< empty until the first mark
     int marks_made = 0;

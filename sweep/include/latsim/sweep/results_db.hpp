@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,26 @@ namespace latsim::sweep {
 /// store (and its summary.json when kept), where the report reads them.
 /// Throws std::runtime_error naming the file on any SQLite failure.
 void write_results_db(const std::filesystem::path& file, const std::vector<std::string>& axis_pointers,
-                      const std::vector<RunRecord>& records);
+                      const std::vector<RunRow>& rows);
+
+/// write_results_db one run at a time, so that a sweep of any size is
+/// written with its runs in memory a chunk at a time: add() in plan order,
+/// then commit() renames the database into place. Destroyed uncommitted, it
+/// leaves nothing.
+class ResultsDbWriter {
+ public:
+  ResultsDbWriter(std::filesystem::path file, const std::vector<std::string>& axis_pointers);
+  ~ResultsDbWriter();
+  ResultsDbWriter(const ResultsDbWriter&) = delete;
+  ResultsDbWriter& operator=(const ResultsDbWriter&) = delete;
+
+  void add(const RunRow& row);
+  void commit();
+
+ private:
+  struct Open;
+  std::filesystem::path file_, temp_;
+  std::unique_ptr<Open> open_;
+};
 
 }  // namespace latsim::sweep

@@ -17,8 +17,9 @@ namespace latsim::sweep {
 /// A segment is "LSSEG1\n\0" and then frames: a 20-byte header (the magic
 /// "LSRF", the payload's length and CRC-32, the run id as 8 bytes) and the
 /// record deflated (raw, RFC 1951), the first record of the segment alone and
-/// every later one with the first as its preset dictionary: a run's record
-/// is about a tenth of its text, and each can be read by itself. A frame is
+/// every later one with the first one's first line (its summary) as preset
+/// dictionary: a run's record is a fraction of its text, and each can be read
+/// by itself. A frame is
 /// written with one write(); a frame cut short (the writer was killed) or
 /// damaged fails its length or CRC, and a reader stops there. The file is
 /// made on the first record; after a failed write (a full disk) the next
@@ -34,6 +35,8 @@ class SegmentWriter {
 
   /// Appends the record of `run_id` (16 hex digits); throws results::WriteError.
   void append(const std::string& run_id, std::string_view record);
+  /// Whether the next record will be the first of a segment (written whole).
+  bool starts_segment() const { return fd_ < 0; }
 
  private:
   void open_next();
@@ -43,7 +46,7 @@ class SegmentWriter {
   int generation_ = 0;
   std::filesystem::path file_;
   int fd_ = -1;
-  std::string dictionary_;  // the first record
+  std::string dictionary_;  // the first record's first line
   struct Deflater;
   std::unique_ptr<Deflater> deflater_;
   std::string frame_;  // reused between records
@@ -72,6 +75,11 @@ class StoreIndex {
   size_t size() const { return spots_.size(); }
   /// The record's text; thread-safe (each call inflates on its own).
   std::string read(const RecordSpot& spot) const;
+  /// Its first line alone (the summary but its scenario, what the tables
+  /// read), inflated no further than that.
+  std::string read_first_line(const RecordSpot& spot) const;
+  /// The first record of the spot's segment (whose scenario the others' patch).
+  const std::string& segment_first_record(const RecordSpot& spot) const;
   /// Bytes of frames cut short or damaged at the end of segments (writers killed midway).
   uint64_t damaged_bytes() const { return damaged_bytes_; }
 
