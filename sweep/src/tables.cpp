@@ -80,10 +80,12 @@ size_t write_tables(const SweepPlan& plan, const SweepStore& store, unsigned thr
   const auto& runs = plan.runs();
   size_t tabled = 0;
   std::vector<std::optional<RunRow>> rows;
+  std::vector<std::string> lines;  // each row's results.csv line, made on the threads too
   std::vector<std::string> errors;
   for (size_t begin = 0; begin < runs.size(); begin += kChunk) {
     const size_t n = std::min(kChunk, runs.size() - begin);
     rows.assign(n, std::nullopt);
+    lines.assign(n, {});
     errors.assign(n, {});
     parallel_for(n, threads, [&](size_t k) {
       const SweepRun& run = runs[begin + k];
@@ -99,6 +101,7 @@ size_t write_tables(const SweepPlan& plan, const SweepStore& store, unsigned thr
         // The record's first line is the summary but its scenario.
         scan_summary(index.read_first_line(*spot), row);
         for (size_t a = 0; a < plan.axes().size(); ++a) row.values.push_back(plan.value(run, a));
+        append_results_csv_row(lines[k], row);
         rows[k] = std::move(row);
       } catch (const std::exception& e) {
         // Written with a CRC, so this is damage from outside latsim; say so rather than guess.
@@ -108,10 +111,10 @@ size_t write_tables(const SweepPlan& plan, const SweepStore& store, unsigned thr
     });
     for (const auto& error : errors)
       if (!error.empty()) throw std::runtime_error(error);
-    for (const auto& row : rows) {
-      if (!row) continue;
-      append_results_csv_row(csv, *row);
-      db.add(*row);
+    for (size_t k = 0; k < n; ++k) {
+      if (!rows[k]) continue;
+      csv += lines[k];
+      db.add(*rows[k]);
       ++tabled;
     }
   }
