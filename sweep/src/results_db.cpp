@@ -2,12 +2,15 @@
 
 #include <unistd.h>
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <unordered_map>
 #include <stdexcept>
 
 #include <sqlite3.h>
+
+#include "latsim/des/random.hpp"
 
 namespace latsim::sweep {
 
@@ -115,7 +118,7 @@ std::string quoted_identifier(const std::string& name) {
 // once (names) and the run by its plan index (runs.plan_index), and each
 // distribution is one row of its statistics; the views give run ids and names
 // as text, and the statistics as rows.
-void create_tables(Database& db, const std::vector<std::string>& axis_pointers) {
+void create_tables(Database& db, const std::vector<std::string>& axis_pointers, bool views) {
   std::string runs = "CREATE TABLE runs (run_id TEXT PRIMARY KEY, plan_index INTEGER UNIQUE, point INTEGER, "
                      "seed INTEGER, replication INTEGER, events INTEGER, wall_s REAL, peak_rss_mb REAL, fingerprint TEXT";
   for (const auto& pointer : axis_pointers) runs += ", " + quoted_identifier(pointer);
@@ -133,8 +136,9 @@ void create_tables(Database& db, const std::vector<std::string>& axis_pointers) 
           "CREATE TABLE distribution_values (plan_index INTEGER, name_id INTEGER" + columns + ");"
           // Statistics beyond the usual nine (none today), so that nothing is lost.
           "CREATE TABLE distribution_extras (plan_index INTEGER, name_id INTEGER, stat_id INTEGER, value REAL);"
-          "CREATE TABLE model_values (plan_index INTEGER, model_id INTEGER, events INTEGER, wall_s REAL);"
-          "CREATE VIEW figures (run_id, name, value) AS SELECT r.run_id, n.name, f.value FROM figure_values f "
+          "CREATE TABLE model_values (plan_index INTEGER, model_id INTEGER, events INTEGER, wall_s REAL);");
+  if (!views) return;
+  db.exec("CREATE VIEW figures (run_id, name, value) AS SELECT r.run_id, n.name, f.value FROM figure_values f "
           "JOIN runs r USING (plan_index) JOIN names n ON n.name_id = f.name_id;"
           "CREATE VIEW distributions (run_id, name, stat, value) AS " + unpivot +
           " UNION ALL SELECT r.run_id, n.name, s.name, d.value FROM distribution_extras d JOIN runs r USING "
@@ -143,14 +147,20 @@ void create_tables(Database& db, const std::vector<std::string>& axis_pointers) 
           "model_values m JOIN runs r USING (plan_index) JOIN names n ON n.name_id = m.model_id;");
 }
 
-/// Ids of the names in `names`, given out in order of first use.
+/// Ids of the names in `names`: each name's 64-bit hash, so that parts of the
+/// database written apart agree on them without asking each other.
 class NameIds {
  public:
-  explicit NameIds(Database& db) : insert_(db, "INSERT INTO names VALUES (?, ?);") {}
+  explicit NameIds(Database& db) : insert_(db, "INSERT OR IGNORE INTO names VALUES (?, ?);") {}
   int64_t of(const std::string& name) {
-    const auto [it, fresh] = ids_.emplace(name, static_cast<int64_t>(ids_.size()));
-    if (fresh) insert_.integer(it->second).text(it->first).run();
-    return it->second;
+    const auto it = ids_.find(name);
+    if (it != ids_.end()) return it->second;
+    const auto id = static_cast<int64_t>(des::fnv1a64(name));
+    for (const auto& [other, other_id] : ids_)
+      if (other_id == id) throw std::runtime_error("results.sqlite: names \"" + name + "\" and \"" + other + "\" hash alike");
+    ids_.emplace(name, id);
+    insert_.integer(id).text(name).run();
+    return id;
   }
 
  private:
@@ -199,45 +209,115 @@ void insert_row(RunInserts& in, int64_t index, const RunRow& r) {
 
 }  // namespace
 
-/// The database being written, private to its writer until it is renamed into place.
-struct ResultsDbWriter::Open {
-  Open(const fs::path& file, const std::vector<std::string>& axis_pointers) : db(file) {
-    // The file is private until renamed, so no journal is needed for atomicity.
-    db.exec("PRAGMA journal_mode=OFF; PRAGMA synchronous=OFF; BEGIN;");
-    create_tables(db, axis_pointers);
-    Insert axis(db, "INSERT INTO axes VALUES (?, ?);");
-    for (size_t a = 0; a < axis_pointers.size(); ++a) axis.integer(static_cast<int64_t>(a)).text(axis_pointers[a]).run();
+// The tables a run has rows in, in the order they are merged.
+constexpr const char* kRunTables[] = {"runs", "figure_values", "distribution_values", "distribution_extras",
+                                      "model_values"};
+
+/// A database of the tables alone (a part, or the whole before its views).
+struct Tables {
+  Tables(const fs::path& file, const std::vector<std::string>& axis_pointers, bool views) : db(file) {
+    // Private until renamed (or removed), so no journal is needed for atomicity;
+    // a cache of 64 MB keeps a large sweep's pages in memory until the end.
+    db.exec("PRAGMA journal_mode=OFF; PRAGMA synchronous=OFF; PRAGMA cache_size=-65536; BEGIN;");
+    create_tables(db, axis_pointers, views);
     inserts = std::make_unique<RunInserts>(db, axis_pointers.size());
   }
   Database db;
   std::unique_ptr<RunInserts> inserts;  // finalized before the database closes
-  int64_t rows = 0;
 };
 
-ResultsDbWriter::ResultsDbWriter(fs::path file, const std::vector<std::string>& axis_pointers)
+/// The database being written, private to its writer until it is renamed
+/// into place, and its parts: one per thread that adds runs, each a
+/// database of its own beside it, merged into it in order.
+struct ResultsDbWriter::Open {
+  Open(const fs::path& file, const std::vector<std::string>& axis_pointers, unsigned part_count,
+       const std::function<fs::path(unsigned)>& part_file)
+      : whole(file, axis_pointers, true) {
+    {
+      Insert axis(whole.db, "INSERT INTO axes VALUES (?, ?);");
+      for (size_t a = 0; a < axis_pointers.size(); ++a) axis.integer(static_cast<int64_t>(a)).text(axis_pointers[a]).run();
+    }
+    // Attached outside a transaction; the database's transaction then stays
+    // open except while merging, and never holds a part between merges.
+    whole.db.exec("COMMIT;");
+    for (unsigned k = 0; k < part_count; ++k) {
+      part_files.push_back(part_file(k));
+      parts.push_back(std::make_unique<Tables>(part_files.back(), axis_pointers, false));
+      parts.back()->db.exec("COMMIT;");
+      whole.db.exec("ATTACH DATABASE '" + part_files.back().string() + "' AS part" + std::to_string(k) + ";");
+    }
+    whole.db.exec("BEGIN;");
+  }
+  Tables whole;
+  std::vector<fs::path> part_files;
+  std::vector<std::unique_ptr<Tables>> parts;
+};
+
+ResultsDbWriter::ResultsDbWriter(fs::path file, const std::vector<std::string>& axis_pointers, unsigned parts)
     : file_(std::move(file)), temp_(file_.string() + ".tmp." + std::to_string(::getpid())) {
-  std::error_code ignored;
-  fs::remove(temp_, ignored);
+  remove_files();
   try {
-    open_ = std::make_unique<Open>(temp_, axis_pointers);
+    open_ = std::make_unique<Open>(temp_, axis_pointers, parts, [this](unsigned k) { return part_file(k); });
   } catch (...) {
-    fs::remove(temp_, ignored);
+    open_.reset();
+    remove_files();
     throw;
   }
+}
+
+fs::path ResultsDbWriter::part_file(unsigned k) const {
+  // A temporary name (results.*.tmp.<pid>): what a killed writer leaves is cleared with the others.
+  return file_.string() + ".part" + std::to_string(k) + ".tmp." + std::to_string(::getpid());
+}
+
+void ResultsDbWriter::remove_files() {
+  std::error_code ignored;
+  fs::remove(temp_, ignored);
+  for (unsigned k = 0;; ++k)
+    if (!fs::remove(part_file(k), ignored)) break;
 }
 
 ResultsDbWriter::~ResultsDbWriter() {
   if (!open_) return;
   open_.reset();
-  std::error_code ignored;
-  fs::remove(temp_, ignored);
+  remove_files();
 }
 
-void ResultsDbWriter::add(const RunRow& row) { insert_row(*open_->inserts, open_->rows++, row); }
+void ResultsDbWriter::add(const RunRow& row, int64_t position) {
+  insert_row(*open_->whole.inserts, position, row);
+}
+
+void ResultsDbWriter::begin_part(unsigned part) { open_->parts.at(part)->db.exec("BEGIN;"); }
+
+void ResultsDbWriter::add_to_part(unsigned part, const RunRow& row, int64_t position) {
+  insert_row(*open_->parts.at(part)->inserts, position, row);
+}
+
+void ResultsDbWriter::end_part(unsigned part) { open_->parts.at(part)->db.exec("COMMIT;"); }
+
+void ResultsDbWriter::merge_parts() {
+  Database& db = open_->whole.db;
+  std::string sql;
+  for (size_t k = 0; k < open_->parts.size(); ++k) {
+    const std::string part = "part" + std::to_string(k);
+    sql += "INSERT OR IGNORE INTO names SELECT * FROM " + part + ".names;";
+    for (const char* table : kRunTables)
+      sql += std::string("INSERT INTO ") + table + " SELECT * FROM " + part + "." + table + ";";
+    // Emptied for the next chunk; committed at once, so that the parts' own
+    // connections may write them again.
+    sql += "DELETE FROM " + part + ".names;";
+    for (const char* table : kRunTables) sql += std::string("DELETE FROM ") + part + "." + table + ";";
+  }
+  db.exec(sql + "COMMIT; BEGIN;");
+}
 
 void ResultsDbWriter::commit() {
-  open_->inserts.reset();
-  open_->db.exec("COMMIT;");
+  Database& db = open_->whole.db;
+  open_->whole.inserts.reset();
+  db.exec("COMMIT;");
+  for (size_t k = 0; k < open_->parts.size(); ++k) db.exec("DETACH DATABASE part" + std::to_string(k) + ";");
+  open_->parts.clear();
+  for (const auto& file : open_->part_files) fs::remove(file);
   open_.reset();
   fs::rename(temp_, file_);
 }
@@ -245,7 +325,7 @@ void ResultsDbWriter::commit() {
 void write_results_db(const fs::path& file, const std::vector<std::string>& axis_pointers,
                       const std::vector<RunRow>& rows) {
   ResultsDbWriter db(file, axis_pointers);
-  for (const auto& row : rows) db.add(row);
+  for (size_t i = 0; i < rows.size(); ++i) db.add(rows[i], static_cast<int64_t>(i));
   db.commit();
 }
 

@@ -61,6 +61,30 @@ class TablesLock {
   int fd_ = -1;
 };
 
+// A finished run's row, read from its record; nothing, and `error` set, when
+// the record is missing or unreadable.
+std::optional<RunRow> table_row(const SweepPlan& plan, const SweepStore& store, const StoreIndex& index,
+                                const SweepRun& run, std::string& error) {
+  const auto spot = index.find(run.run_id);
+  if (!spot) {
+    error = store.store_dir().string() + ": run " + run.run_id + " is marked finished but has no record; delete " +
+            (store.out_dir() / "done" / run.run_id).string() + " to run it again";
+    return std::nullopt;
+  }
+  try {
+    RunRow row{run.run_id, run.point, run.seed, run.replication, {}};
+    // The record's first line is the summary but its scenario.
+    scan_summary(index.read_first_line(*spot), row);
+    for (size_t a = 0; a < plan.axes().size(); ++a) row.values.push_back(plan.value(run, a));
+    return row;
+  } catch (const std::exception& e) {
+    // Written with a CRC, so this is damage from outside latsim; say so rather than guess.
+    error = store.store_dir().string() + ": the record of run " + run.run_id + " is unreadable (" + e.what() +
+            "); delete its mark " + (store.out_dir() / "done" / run.run_id).string() + " to run it again";
+    return std::nullopt;
+  }
+}
+
 }  // namespace
 
 size_t write_tables(const SweepPlan& plan, const SweepStore& store, unsigned threads, size_t& temporaries_removed) {
@@ -73,50 +97,49 @@ size_t write_tables(const SweepPlan& plan, const SweepStore& store, unsigned thr
   for (const auto& axis : plan.axes()) pointers.push_back(axis.pointer);
   temporaries_removed += store.remove_table_temporaries();
   std::string csv = results_csv_header(pointers);
-  ResultsDbWriter db(store.out_dir() / "results.sqlite", pointers);
-  // A chunk of runs at a time: inflated and read on every thread, then
-  // written in plan order; memory holds one chunk, whatever the sweep's size.
-  constexpr size_t kChunk = 2048;
+  threads = std::max(1u, threads);
+  ResultsDbWriter db(store.out_dir() / "results.sqlite", pointers, threads);
+  // A chunk of runs at a time, each thread reading a slice of it (inflating
+  // the records, scanning them, making their results.csv lines and adding
+  // their rows to its part of the database), then the parts merged in plan
+  // order: memory holds one chunk whatever the sweep's size, and the
+  // database's rows are made on every thread.
+  constexpr size_t kChunk = 4096;
   const auto& runs = plan.runs();
   size_t tabled = 0;
-  std::vector<std::optional<RunRow>> rows;
-  std::vector<std::string> lines;  // each row's results.csv line, made on the threads too
+  std::vector<std::string> lines;  // each run's results.csv line (empty: not finished)
   std::vector<std::string> errors;
+  std::vector<int64_t> positions;  // each run's place in the tables
+  std::vector<std::string> part_errors(threads);
   for (size_t begin = 0; begin < runs.size(); begin += kChunk) {
     const size_t n = std::min(kChunk, runs.size() - begin);
-    rows.assign(n, std::nullopt);
     lines.assign(n, {});
     errors.assign(n, {});
-    parallel_for(n, threads, [&](size_t k) {
-      const SweepRun& run = runs[begin + k];
-      if (!finished.count(run.run_id)) return;
-      const auto spot = index.find(run.run_id);
-      if (!spot) {
-        errors[k] = store.store_dir().string() + ": run " + run.run_id + " is marked finished but has no record; " +
-                    "delete " + (store.out_dir() / "done" / run.run_id).string() + " to run it again";
-        return;
-      }
+    positions.assign(n, -1);
+    for (size_t k = 0; k < n; ++k)
+      if (finished.count(runs[begin + k].run_id)) positions[k] = static_cast<int64_t>(tabled++);
+    parallel_for(threads, threads, [&](size_t part) {
+      const auto t = static_cast<unsigned>(part);
+      const size_t first = part * n / threads;
       try {
-        RunRow row{run.run_id, run.point, run.seed, run.replication, {}};
-        // The record's first line is the summary but its scenario.
-        scan_summary(index.read_first_line(*spot), row);
-        for (size_t a = 0; a < plan.axes().size(); ++a) row.values.push_back(plan.value(run, a));
-        append_results_csv_row(lines[k], row);
-        rows[k] = std::move(row);
+        db.begin_part(t);
+        for (size_t k = first; k < (part + 1) * n / threads; ++k) {
+          if (positions[k] < 0) continue;
+          const auto row = table_row(plan, store, index, runs[begin + k], errors[k]);
+          if (!row) break;
+          append_results_csv_row(lines[k], *row);
+          db.add_to_part(t, *row, positions[k]);
+        }
+        db.end_part(t);
       } catch (const std::exception& e) {
-        // Written with a CRC, so this is damage from outside latsim; say so rather than guess.
-        errors[k] = store.store_dir().string() + ": the record of run " + run.run_id + " is unreadable (" + e.what() +
-                    "); delete its mark " + (store.out_dir() / "done" / run.run_id).string() + " to run it again";
+        part_errors[part] = e.what();  // the database failed (a full disk)
       }
     });
-    for (const auto& error : errors)
-      if (!error.empty()) throw std::runtime_error(error);
-    for (size_t k = 0; k < n; ++k) {
-      if (!rows[k]) continue;
-      csv += lines[k];
-      db.add(*rows[k]);
-      ++tabled;
-    }
+    for (const auto* list : {&errors, &part_errors})
+      for (const auto& error : *list)
+        if (!error.empty()) throw std::runtime_error(error);
+    db.merge_parts();
+    for (const auto& line : lines) csv += line;
   }
   results::write_file_atomically(store.out_dir() / "results.csv", csv);
   db.commit();

@@ -24,22 +24,35 @@ namespace latsim::sweep {
 void write_results_db(const std::filesystem::path& file, const std::vector<std::string>& axis_pointers,
                       const std::vector<RunRow>& rows);
 
-/// write_results_db one run at a time, so that a sweep of any size is
-/// written with its runs in memory a chunk at a time: add() in plan order,
-/// then commit() renames the database into place. Destroyed uncommitted, it
+/// write_results_db a chunk of runs at a time, so that a sweep of any size is
+/// written with only a chunk in memory, and by many threads: each thread adds
+/// its runs to a part of its own (a database beside the file, written apart),
+/// and merge_parts() moves the parts' rows into the database, part 0 first,
+/// in SQLite's own bulk copy. Positions are the runs' places in the tables.
+/// commit() renames the database into place; destroyed uncommitted, it
 /// leaves nothing.
 class ResultsDbWriter {
  public:
-  ResultsDbWriter(std::filesystem::path file, const std::vector<std::string>& axis_pointers);
+  ResultsDbWriter(std::filesystem::path file, const std::vector<std::string>& axis_pointers, unsigned parts = 0);
   ~ResultsDbWriter();
   ResultsDbWriter(const ResultsDbWriter&) = delete;
   ResultsDbWriter& operator=(const ResultsDbWriter&) = delete;
 
-  void add(const RunRow& row);
+  /// Adds a run to the database itself (one thread).
+  void add(const RunRow& row, int64_t position);
+  /// A part's rows between begin_part and end_part, from one thread per part.
+  void begin_part(unsigned part);
+  void add_to_part(unsigned part, const RunRow& row, int64_t position);
+  void end_part(unsigned part);
+  /// Moves every part's rows into the database (no part may be between begin and end).
+  void merge_parts();
   void commit();
 
  private:
   struct Open;
+  std::filesystem::path part_file(unsigned k) const;
+  void remove_files();
+
   std::filesystem::path file_, temp_;
   std::unique_ptr<Open> open_;
 };
