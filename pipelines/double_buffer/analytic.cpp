@@ -10,18 +10,9 @@
 
 namespace latsim::pipelines {
 
-namespace {
+namespace analytic {
 
 using i128 = __int128;
-using analytic::PhaseGrid;
-using analytic::PhaseSet;
-
-/// The link's fixed delay after a sample is ready, and its poll timer.
-struct Link {
-  std::string name = "direct";
-  des::Time delay;  // internal delay (+ transmit time on a serial line)
-  std::optional<des::RationalSeconds> poll;
-};
 
 std::optional<Link> link_of(const AnalyticInputs& in) {
   Link l;
@@ -45,6 +36,8 @@ std::optional<Link> link_of(const AnalyticInputs& in) {
   return l;
 }
 
+namespace {
+
 // Least common multiple of two positive rationals (reduced), if it fits.
 std::optional<des::RationalSeconds> rational_lcm(des::RationalSeconds x, des::RationalSeconds y) {
   auto reduce = [](des::RationalSeconds r) {
@@ -60,10 +53,10 @@ std::optional<des::RationalSeconds> rational_lcm(des::RationalSeconds x, des::Ra
   return des::RationalSeconds{static_cast<int64_t>(num), den};
 }
 
-/// Fields in one repeat cycle of the display (frames of m fields), the
-/// tracker and the poll timer, or nothing when it does not fit 64 bits.
+}  // namespace
+
 std::optional<int64_t> cycle_fields(des::RationalSeconds field, int64_t m, std::optional<des::RationalSeconds> tracker,
-                                    std::optional<des::RationalSeconds> poll, double& cycle_s) {
+                                    std::optional<des::RationalSeconds> poll, int64_t max_frames, double& cycle_s) {
   std::optional<des::RationalSeconds> h = des::RationalSeconds{field.num * m, field.den};
   if (tracker) h = rational_lcm(*h, *tracker);
   if (h && poll) h = rational_lcm(*h, *poll);
@@ -72,8 +65,21 @@ std::optional<int64_t> cycle_fields(des::RationalSeconds field, int64_t m, std::
   // hyper / field, exact: the cycle is a whole number of fields.
   const i128 n = static_cast<i128>(h->num) * field.den;
   const i128 d = static_cast<i128>(h->den) * field.num;
-  if (n % d != 0 || n / d > analytic::kMaxFrames * 64) return std::nullopt;
+  if (n % d != 0 || n / d > max_frames * 64) return std::nullopt;
   return static_cast<int64_t>(n / d);
+}
+
+}  // namespace analytic
+
+namespace {
+
+using analytic::Link;
+using analytic::PhaseGrid;
+using analytic::PhaseSet;
+
+std::optional<int64_t> cycle_fields(des::RationalSeconds field, int64_t m, std::optional<des::RationalSeconds> tracker,
+                                    std::optional<des::RationalSeconds> poll, double& cycle_s) {
+  return analytic::cycle_fields(field, m, tracker, poll, analytic::kMaxFrames, cycle_s);
 }
 
 void set_latency(AnalyticLatency& a, const analytic::GridTally& tally) {
@@ -146,7 +152,7 @@ std::optional<AnalyticLatency> integrate(const AnalyticInputs& in, const Link& l
 
 std::optional<AnalyticLatency> analytic_double_buffer(const AnalyticInputs& in) {
   if (in.tracker_jitter > des::Time::zero() || in.transport == nullptr) return std::nullopt;
-  const auto link = link_of(in);
+  const auto link = analytic::link_of(in);
   if (!link) return std::nullopt;
   const bool integrated = in.integrate_tracker || (link->poll && in.integrate_poll);
   auto a = integrated ? integrate(in, *link) : enumerate_fixed(in, *link);

@@ -58,6 +58,27 @@ struct AnalyticLatency {
 /// records queueing on the serial line, interrupt handler costs).
 std::optional<AnalyticLatency> analytic_double_buffer(const AnalyticInputs& in);
 
+namespace analytic {
+
+/// The link's fixed delay after a sample is ready, and its poll timer.
+struct Link {
+  std::string name = "direct";
+  des::Time delay;  ///< internal delay (+ transmit time on a serial line)
+  std::optional<des::RationalSeconds> poll;
+};
+
+/// The link as the calculation takes it, or nothing where it needs the
+/// event model (records queueing on a serial line, interrupt handler costs).
+std::optional<Link> link_of(const AnalyticInputs& in);
+
+/// Fields in one repeat cycle of the display (frames of m fields), the
+/// tracker and the poll timer (each when given), or nothing when it does not
+/// fit 64 bits or holds more than 64 x `max_frames` fields; `cycle_s` its length.
+std::optional<int64_t> cycle_fields(des::RationalSeconds field, int64_t m, std::optional<des::RationalSeconds> tracker,
+                                    std::optional<des::RationalSeconds> poll, int64_t max_frames, double& cycle_s);
+
+}  // namespace analytic
+
 /// A run's clocks as the analytic calculation sees them: nominal periods, the
 /// phases used, which relative phases vary from run to run, and as many fields
 /// as the run scans out (within bounds), for a renderer taking `render_time`.

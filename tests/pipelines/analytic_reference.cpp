@@ -1,7 +1,8 @@
 // The analytic figure of double buffering as it was first computed: every
 // phase point of the grid and every frame enumerated one by one. Kept for
 // tests only, as the reference that analytic_double_buffer() (which counts
-// the tracker's phase points in blocks) must equal to the last bit.
+// the tracker's phase points in blocks) must equal to the last bit; the link
+// and the repeat cycle are the product's own (analytic::link_of, cycle_fields).
 #include "analytic_reference.hpp"
 
 #include <algorithm>
@@ -16,34 +17,8 @@ using i128 = __int128;
 
 constexpr int64_t kMaxFrames = 2'000'000;  // frames enumerated at most, over all phase points
 
-/// The link's fixed delay after a sample is ready, and its poll timer.
-struct Link {
-  std::string name = "direct";
-  des::Time delay;  // internal delay (+ transmit time on a serial line)
-  std::optional<des::RationalSeconds> poll;
-};
-
-std::optional<Link> link_of(const AnalyticInputs& in) {
-  Link l;
-  l.delay = in.tracker_delay;
-  if (const auto* serial = dynamic_cast<const tracker::SerialLink*>(in.transport)) {
-    const auto& sp = serial->params();
-    // Records that queue on the line or handlers that back up need the event model.
-    if (serial->transmit_time() > des::PeriodicSchedule(des::Time::zero(), in.tracker_period).nominal_period())
-      return std::nullopt;
-    if (sp.host_mode == tracker::SerialLinkParams::Interrupt && sp.per_char_interrupt_cost > des::Time::zero())
-      return std::nullopt;
-    l.delay = l.delay + serial->transmit_time();
-    l.name = "serial interrupt";
-    if (sp.host_mode == tracker::SerialLinkParams::Poll) {
-      l.name = "serial poll";
-      l.poll = tracker::exact_period(sp.poll_interval);
-    }
-  } else if (!dynamic_cast<const tracker::DirectLink*>(in.transport)) {
-    return std::nullopt;
-  }
-  return l;
-}
+using analytic::Link;
+using analytic::link_of;
 
 /// Newest sample visible at time r under one phase configuration: ready at
 /// t_k + delay; polled: the last poll at or before r delivers what is ready then.
@@ -61,21 +36,6 @@ struct Visibility {
     return samples.at(k);
   }
 };
-
-// Least common multiple of two positive rationals (reduced), if it fits.
-std::optional<des::RationalSeconds> rational_lcm(des::RationalSeconds x, des::RationalSeconds y) {
-  auto reduce = [](des::RationalSeconds r) {
-    const int64_t g = std::gcd(r.num, r.den);
-    return des::RationalSeconds{r.num / g, r.den / g};
-  };
-  x = reduce(x);
-  y = reduce(y);
-  // lcm(a/b, c/d) = lcm(a, c) / gcd(b, d) for reduced fractions.
-  const i128 num = static_cast<i128>(x.num / std::gcd(x.num, y.num)) * y.num;
-  const int64_t den = std::gcd(x.den, y.den);
-  if (num > std::numeric_limits<int64_t>::max()) return std::nullopt;
-  return des::RationalSeconds{static_cast<int64_t>(num), den};
-}
 
 /// Per-line latencies summed exactly in picoseconds. Every field has the
 /// same photon offsets of its lines from its retrace (the middle of each
@@ -152,20 +112,9 @@ struct Frames {
   }
 };
 
-/// Fields in one repeat cycle of the display (frames of m fields), the
-/// tracker and the poll timer, or nothing when it does not fit 64 bits.
 std::optional<int64_t> cycle_fields(des::RationalSeconds field, int64_t m, std::optional<des::RationalSeconds> tracker,
                                     std::optional<des::RationalSeconds> poll, double& cycle_s) {
-  std::optional<des::RationalSeconds> h = des::RationalSeconds{field.num * m, field.den};
-  if (tracker) h = rational_lcm(*h, *tracker);
-  if (h && poll) h = rational_lcm(*h, *poll);
-  if (!h) return std::nullopt;
-  cycle_s = h->to_seconds();
-  // hyper / field, exact: the cycle is a whole number of fields.
-  const i128 n = static_cast<i128>(h->num) * field.den;
-  const i128 d = static_cast<i128>(h->den) * field.num;
-  if (n % d != 0 || n / d > kMaxFrames * 64) return std::nullopt;
-  return static_cast<int64_t>(n / d);
+  return analytic::cycle_fields(field, m, tracker, poll, kMaxFrames, cycle_s);
 }
 
 // Fixed phases: one repeat cycle of the run's own phases, frame after frame.
