@@ -32,19 +32,9 @@ runs=$((200 * replications))
 cpus=$(nproc)
 [ -x "$latsim" ] || { echo "sweep_scaling: no latsim at $latsim (build it first, or set LATSIM)" >&2; exit 2; }
 
-cat > "$work/shape.json" <<EOF
-{
-  "description": "refresh x poll interval, 1 s runs of the polled serial HMD, $replications replications",
-  "base": "$root/scenarios/hmd_60hz_serial_poll.json",
-  "overrides": {"/duration_s": 1},
-  "axes": [
-    {"pointer": "/display/refresh_hz", "range": {"from": 50, "to": 95, "step": 5}},
-    {"pointer": "/transport/poll_interval_ms", "range": {"from": 1, "to": 20, "step": 1}}
-  ],
-  "replications": $replications,
-  "seed": 1
-}
-EOF
+# shellcheck source=bench/sweep_shape.sh
+. "$here/sweep_shape.sh"
+write_sweep_shape "$work/shape.json" "$replications"
 
 # Runs a command; sets wall, cpu (user + sys, children included).
 TIMEFORMAT='%R %U %S'

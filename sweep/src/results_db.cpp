@@ -108,6 +108,32 @@ class Insert {
   int param_ = 0;
 };
 
+/// A query whose rows are read one by one.
+class Statement {
+ public:
+  Statement(Database& db, const std::string& sql) : db_(db) {
+    if (sqlite3_prepare_v2(db.handle(), sql.c_str(), -1, &stmt_, nullptr) != SQLITE_OK)
+      db.fail(sqlite3_errmsg(db.handle()));
+  }
+  Statement(const Statement&) = delete;
+  Statement& operator=(const Statement&) = delete;
+  ~Statement() { sqlite3_finalize(stmt_); }
+  /// Moves to the next row; false when there is none.
+  bool step() {
+    const int rc = sqlite3_step(stmt_);
+    if (rc != SQLITE_ROW && rc != SQLITE_DONE) db_.fail(sqlite3_errmsg(db_.handle()));
+    return rc == SQLITE_ROW;
+  }
+  std::string text(int column) const {
+    const auto* t = reinterpret_cast<const char*>(sqlite3_column_text(stmt_, column));
+    return t ? t : "";
+  }
+
+ private:
+  Database& db_;
+  sqlite3_stmt* stmt_ = nullptr;
+};
+
 std::string quoted_identifier(const std::string& name) {
   std::string q = "\"";
   for (char c : name) q += c == '"' ? std::string("\"\"") : std::string(1, c);
@@ -147,15 +173,18 @@ void create_tables(Database& db, const std::vector<std::string>& axis_pointers, 
           "model_values m JOIN runs r USING (plan_index) JOIN names n ON n.name_id = m.model_id;");
 }
 
-/// Ids of the names in `names`: each name's 64-bit hash, so that parts of the
-/// database written apart agree on them without asking each other.
+/// Ids of the names in `names`: each name's hash, so that parts of the
+/// database written apart agree on them without asking each other; 31 bits,
+/// which SQLite stores in 4 bytes (every run repeats them in tens of rows),
+/// and two names alike are refused rather than confused (merge_parts checks
+/// across parts: one in a million sweeps of 300 names).
 class NameIds {
  public:
   explicit NameIds(Database& db) : insert_(db, "INSERT OR IGNORE INTO names VALUES (?, ?);") {}
   int64_t of(const std::string& name) {
     const auto it = ids_.find(name);
     if (it != ids_.end()) return it->second;
-    const auto id = static_cast<int64_t>(des::fnv1a64(name));
+    const auto id = static_cast<int64_t>(des::mix64(des::fnv1a64(name)) & 0x7fffffff);
     for (const auto& [other, other_id] : ids_)
       if (other_id == id) throw std::runtime_error("results.sqlite: names \"" + name + "\" and \"" + other + "\" hash alike");
     ids_.emplace(name, id);
@@ -300,6 +329,10 @@ void ResultsDbWriter::merge_parts() {
   std::string sql;
   for (size_t k = 0; k < open_->parts.size(); ++k) {
     const std::string part = "part" + std::to_string(k);
+    Statement clash(db, "SELECT p.name, m.name FROM " + part + ".names p JOIN names m ON m.name_id = p.name_id AND "
+                        "m.name <> p.name LIMIT 1;");
+    if (clash.step())
+      db.fail("names \"" + clash.text(0) + "\" and \"" + clash.text(1) + "\" hash alike; rename a figure");
     sql += "INSERT OR IGNORE INTO names SELECT * FROM " + part + ".names;";
     for (const char* table : kRunTables)
       sql += std::string("INSERT INTO ") + table + " SELECT * FROM " + part + "." + table + ";";
