@@ -266,16 +266,11 @@ struct ResultsDbWriter::Open {
       Insert axis(whole.db, "INSERT INTO axes VALUES (?, ?);");
       for (size_t a = 0; a < axis_pointers.size(); ++a) axis.integer(static_cast<int64_t>(a)).text(axis_pointers[a]).run();
     }
-    // Attached outside a transaction; the database's transaction then stays
-    // open except while merging, and never holds a part between merges.
-    whole.db.exec("COMMIT;");
     for (unsigned k = 0; k < part_count; ++k) {
       part_files.push_back(part_file(k));
       parts.push_back(std::make_unique<Tables>(part_files.back(), axis_pointers, false));
       parts.back()->db.exec("COMMIT;");
-      whole.db.exec("ATTACH DATABASE '" + part_files.back().string() + "' AS part" + std::to_string(k) + ";");
     }
-    whole.db.exec("BEGIN;");
   }
   Tables whole;
   std::vector<fs::path> part_files;
@@ -326,29 +321,31 @@ void ResultsDbWriter::end_part(unsigned part) { open_->parts.at(part)->db.exec("
 
 void ResultsDbWriter::merge_parts() {
   Database& db = open_->whole.db;
-  std::string sql;
-  for (size_t k = 0; k < open_->parts.size(); ++k) {
-    const std::string part = "part" + std::to_string(k);
-    Statement clash(db, "SELECT p.name, m.name FROM " + part + ".names p JOIN names m ON m.name_id = p.name_id AND "
-                        "m.name <> p.name LIMIT 1;");
-    if (clash.step())
-      db.fail("names \"" + clash.text(0) + "\" and \"" + clash.text(1) + "\" hash alike; rename a figure");
-    sql += "INSERT OR IGNORE INTO names SELECT * FROM " + part + ".names;";
-    for (const char* table : kRunTables)
-      sql += std::string("INSERT INTO ") + table + " SELECT * FROM " + part + "." + table + ";";
-    // Emptied for the next chunk; committed at once, so that the parts' own
-    // connections may write them again.
-    sql += "DELETE FROM " + part + ".names;";
-    for (const char* table : kRunTables) sql += std::string("DELETE FROM ") + part + "." + table + ";";
+  // One part attached at a time (SQLite attaches ten at most), outside a
+  // transaction; emptied for the next chunk and committed before it is
+  // detached, so that its own connection may write it again.
+  db.exec("COMMIT;");
+  for (const auto& file : open_->part_files) {
+    db.exec("ATTACH DATABASE '" + file.string() + "' AS part; BEGIN;");
+    {
+      Statement clash(db, "SELECT p.name, m.name FROM part.names p JOIN names m ON m.name_id = p.name_id AND "
+                          "m.name <> p.name LIMIT 1;");
+      if (clash.step())
+        db.fail("names \"" + clash.text(0) + "\" and \"" + clash.text(1) + "\" hash alike; rename a figure");
+    }
+    std::string sql = "INSERT OR IGNORE INTO names SELECT * FROM part.names;";
+    for (const char* table : kRunTables) sql += std::string("INSERT INTO ") + table + " SELECT * FROM part." + table + ";";
+    sql += "DELETE FROM part.names;";
+    for (const char* table : kRunTables) sql += std::string("DELETE FROM part.") + table + ";";
+    db.exec(sql + "COMMIT; DETACH DATABASE part;");
   }
-  db.exec(sql + "COMMIT; BEGIN;");
+  db.exec("BEGIN;");
 }
 
 void ResultsDbWriter::commit() {
   Database& db = open_->whole.db;
   open_->whole.inserts.reset();
   db.exec("COMMIT;");
-  for (size_t k = 0; k < open_->parts.size(); ++k) db.exec("DETACH DATABASE part" + std::to_string(k) + ";");
   open_->parts.clear();
   for (const auto& file : open_->part_files) fs::remove(file);
   open_.reset();

@@ -158,6 +158,38 @@ TEST_CASE("results.sqlite holds runs, figures, distributions, histograms and mod
   fs::remove_all(dir);
 }
 
+TEST_CASE("results.sqlite written in more parts than SQLite attaches at once holds every run in order", "[sweep]") {
+  const fs::path dir = scratch_dir("latsim_results_db_parts");
+  const fs::path file = dir / "results.sqlite";
+  constexpr unsigned kParts = 12;  // SQLite attaches at most ten databases to one connection
+  {
+    latsim::sweep::ResultsDbWriter db(file, {"/display/refresh_hz"}, kParts);
+    int64_t position = 0;
+    for (int chunk = 0; chunk < 2; ++chunk) {
+      for (unsigned k = 0; k < kParts; ++k) {
+        db.begin_part(k);
+        const std::string id = "00000000000000" + std::to_string(10 + chunk * kParts + k);
+        db.add_to_part(k, row_of(id, position, 60, summary_with(static_cast<double>(position))), position);
+        ++position;
+        db.end_part(k);
+      }
+      db.merge_parts();
+    }
+    db.commit();
+  }
+  for (const auto& entry : fs::directory_iterator(dir)) CHECK(entry.path().filename() == "results.sqlite");
+  sqlite3* db = nullptr;
+  REQUIRE(sqlite3_open_v2(file.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK);
+  CHECK(count_rows(db, "SELECT COUNT(*) FROM runs") == 2 * kParts);
+  // In the order the parts were merged, part 0 first, chunk after chunk.
+  CHECK(count_rows(db, "SELECT COUNT(*) FROM runs WHERE plan_index = rowid - 1") == 2 * kParts);
+  CHECK(count_rows(db, "SELECT COUNT(*) FROM distributions d JOIN runs r USING (run_id) WHERE d.name = "
+                       "'motion_to_photon_ms' AND d.stat = 'mean' AND d.value = r.plan_index") == 2 * kParts);
+  CHECK(count_rows(db, "SELECT COUNT(*) FROM names WHERE name = 'motion_to_photon_ms'") == 1);
+  sqlite3_close(db);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("temporary file names are recognised", "[sweep]") {
   CHECK(is_temporary_name("summary.json.tmp.12345"));
   CHECK(is_temporary_name("results.csv.tmp"));
