@@ -100,11 +100,6 @@ class Inflater {
   z_stream z_{};
 };
 
-Inflater& thread_inflater() {
-  thread_local Inflater inflater;
-  return inflater;
-}
-
 }  // namespace
 
 std::optional<uint64_t> run_id_bits(const std::string& run_id) {
@@ -200,6 +195,7 @@ StoreIndex::StoreIndex(const fs::path& store_dir) {
   for (fs::directory_iterator it(store_dir, ec), end; !ec && it != end; it.increment(ec))
     if (it->path().extension() == ".seg") files.push_back(it->path());
   std::sort(files.begin(), files.end());
+  Inflater first_inflater;
   for (const fs::path& file : files) {
     auto seg = std::make_unique<Segment>();
     seg->file = file;
@@ -231,7 +227,7 @@ StoreIndex::StoreIndex(const fs::path& store_dir) {
         break;
       const RecordSpot spot{index, at + kHeaderBytes, length};
       if (seg->first.empty()) {
-        seg->first = thread_inflater().inflate(seg->bytes + spot.offset, length, {});
+        seg->first = first_inflater.inflate(seg->bytes + spot.offset, length, {});
         seg->dictionary = seg->first.substr(0, seg->first.find('\n'));
       }
       spots_.emplace(get64(h + 12), spot);  // the first record of a run stays
@@ -243,12 +239,6 @@ StoreIndex::StoreIndex(const fs::path& store_dir) {
 }
 
 StoreIndex::~StoreIndex() = default;
-
-std::string StoreIndex::read_first_line(const RecordSpot& spot) const {
-  const Segment& seg = *segments_[spot.segment];
-  if (spot.offset == sizeof kSegmentMagic + kHeaderBytes) return seg.dictionary;
-  return thread_inflater().inflate(seg.bytes + spot.offset, spot.length, seg.dictionary, true);
-}
 
 const std::string& StoreIndex::segment_first_record(const RecordSpot& spot) const {
   return segments_[spot.segment]->first;
@@ -262,11 +252,25 @@ std::optional<RecordSpot> StoreIndex::find(const std::string& run_id) const {
   return it->second;
 }
 
-std::string StoreIndex::read(const RecordSpot& spot) const {
-  const Segment& seg = *segments_[spot.segment];
+struct StoreIndex::Reader::Inflating {
+  Inflater inflater;
+};
+
+StoreIndex::Reader::Reader(const StoreIndex& index) : index_(index), inflating_(std::make_unique<Inflating>()) {}
+
+StoreIndex::Reader::~Reader() = default;
+
+std::string StoreIndex::Reader::read(const RecordSpot& spot) {
+  const Segment& seg = *index_.segments_[spot.segment];
   // The first record of a segment is its own text, and the others' dictionary.
   if (spot.offset == sizeof kSegmentMagic + kHeaderBytes) return seg.first;
-  return thread_inflater().inflate(seg.bytes + spot.offset, spot.length, seg.dictionary);
+  return inflating_->inflater.inflate(seg.bytes + spot.offset, spot.length, seg.dictionary);
+}
+
+std::string StoreIndex::Reader::read_first_line(const RecordSpot& spot) {
+  const Segment& seg = *index_.segments_[spot.segment];
+  if (spot.offset == sizeof kSegmentMagic + kHeaderBytes) return seg.dictionary;
+  return inflating_->inflater.inflate(seg.bytes + spot.offset, spot.length, seg.dictionary, true);
 }
 
 }  // namespace latsim::sweep

@@ -64,7 +64,7 @@ class TablesLock {
 // A finished run's row, read from its record; nothing, and `error` set, when
 // the record is missing or unreadable.
 std::optional<RunRow> table_row(const SweepPlan& plan, const SweepStore& store, const StoreIndex& index,
-                                const SweepRun& run, std::string& error) {
+                                StoreIndex::Reader& reader, const SweepRun& run, std::string& error) {
   const auto spot = index.find(run.run_id);
   if (!spot) {
     error = store.store_dir().string() + ": run " + run.run_id + " is marked finished but has no record; delete " +
@@ -74,7 +74,7 @@ std::optional<RunRow> table_row(const SweepPlan& plan, const SweepStore& store, 
   try {
     RunRow row{run.run_id, run.point, run.seed, run.replication, {}};
     // The record's first line is the summary but its scenario.
-    scan_summary(index.read_first_line(*spot), row);
+    scan_summary(reader.read_first_line(*spot), row);
     for (size_t a = 0; a < plan.axes().size(); ++a) row.values.push_back(plan.value(run, a));
     return row;
   } catch (const std::exception& e) {
@@ -122,10 +122,11 @@ size_t write_tables(const SweepPlan& plan, const SweepStore& store, unsigned thr
       const auto t = static_cast<unsigned>(part);
       const size_t first = part * n / threads;
       try {
+        StoreIndex::Reader reader(index);
         db.begin_part(t);
         for (size_t k = first; k < (part + 1) * n / threads; ++k) {
           if (positions[k] < 0) continue;
-          const auto row = table_row(plan, store, index, runs[begin + k], errors[k]);
+          const auto row = table_row(plan, store, index, reader, runs[begin + k], errors[k]);
           if (!row) break;
           append_results_csv_row(lines[k], *row);
           db.add_to_part(t, *row, positions[k]);

@@ -119,14 +119,15 @@ TEST_CASE("segments keep every whole record, drop one cut short, and a run's fir
   }
   {
     const StoreIndex index(dir);
+    StoreIndex::Reader reader(index);
     CHECK(index.size() == 3);
-    CHECK(index.read(*index.find("00000000000000aa")) == a);
-    CHECK(index.read(*index.find("00000000000000bb")) == b);
-    CHECK(index.read(*index.find("00000000000000cc")) == c);
+    CHECK(reader.read(*index.find("00000000000000aa")) == a);
+    CHECK(reader.read(*index.find("00000000000000bb")) == b);
+    CHECK(reader.read(*index.find("00000000000000cc")) == c);
     CHECK(index.segment_first_record(*index.find("00000000000000bb")) == a);
     // The tables read the first line alone: the first record of a segment, and a later one.
-    CHECK(index.read_first_line(*index.find("00000000000000aa")) == a.substr(0, a.find('\n')));
-    CHECK(index.read_first_line(*index.find("00000000000000bb")) == b.substr(0, b.find('\n')));
+    CHECK(reader.read_first_line(*index.find("00000000000000aa")) == a.substr(0, a.find('\n')));
+    CHECK(reader.read_first_line(*index.find("00000000000000bb")) == b.substr(0, b.find('\n')));
     CHECK_FALSE(index.find("00000000000000dd"));
     CHECK(index.damaged_bytes() == 0);
   }
@@ -144,7 +145,7 @@ TEST_CASE("segments keep every whole record, drop one cut short, and a run's fir
   fs::resize_file(torn, bytes.size() - 7);
   {
     const StoreIndex index(dir);
-    CHECK(index.read(*index.find("00000000000000d2")) == b);
+    CHECK(StoreIndex::Reader(index).read(*index.find("00000000000000d2")) == b);
     CHECK_FALSE(index.find("00000000000000d3"));
     CHECK(index.damaged_bytes() > 0);
   }

@@ -73,13 +73,27 @@ class StoreIndex {
 
   std::optional<RecordSpot> find(const std::string& run_id) const;
   size_t size() const { return spots_.size(); }
-  /// The record's text; thread-safe (each call inflates on its own).
-  std::string read(const RecordSpot& spot) const;
-  /// Its first line alone (the summary but its scenario, what the tables
-  /// read), inflated no further than that.
-  std::string read_first_line(const RecordSpot& spot) const;
   /// The first record of the spot's segment (whose scenario the others' patch).
   const std::string& segment_first_record(const RecordSpot& spot) const;
+
+  /// Reads records of an index; one per thread (it keeps its inflater).
+  class Reader {
+   public:
+    explicit Reader(const StoreIndex& index);
+    ~Reader();
+    Reader(const Reader&) = delete;
+    Reader& operator=(const Reader&) = delete;
+    /// The record's text.
+    std::string read(const RecordSpot& spot);
+    /// Its first line alone (the summary but its scenario, what the tables
+    /// read), inflated no further than that.
+    std::string read_first_line(const RecordSpot& spot);
+
+   private:
+    const StoreIndex& index_;
+    struct Inflating;
+    std::unique_ptr<Inflating> inflating_;
+  };
   /// Bytes of frames cut short or damaged at the end of segments (writers killed midway).
   uint64_t damaged_bytes() const { return damaged_bytes_; }
 
