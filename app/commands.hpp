@@ -2,8 +2,11 @@
 #pragma once
 
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "latsim/run/exit_codes.hpp"
+#include "latsim/scenario/config.hpp"
 
 namespace CLI {
 class App;
@@ -22,6 +25,13 @@ std::optional<int> parse_options(CLI::App& app, int argc, char** argv);
 
 /// --max-events N: the largest event estimate a run may have (run::RunOptions::max_events).
 void add_max_events_option(CLI::App& app, double& max_events);
+
+/// The command line as summary.json records it: "latsim" and the subcommand's arguments.
+std::vector<std::string> command_line_of(int argc, char** argv);
+/// One line on stderr: the file, the JSON pointer and what is wrong; returns kExitBadInput.
+int bad_input(const std::string& file, const scenario::ScenarioError& e);
+/// Legal but doubtful input, one line each on stderr.
+void print_warnings(const std::string& file, const std::vector<std::string>& warnings);
 
 int command_run(int argc, char** argv);       ///< latsim run SCENARIO [--out DIR] [--seed N] [--set P=V]...
 int command_validate(int argc, char** argv);  ///< latsim validate SCENARIO...

@@ -1,5 +1,7 @@
-// latsim compare: a frame-timing capture beside a run, drawn by the Python
-// analysis (analysis/compare.py, which reads only the two files).
+// latsim compare: a capture (PresentMon, OVR Metrics Tool, VrApi, SteamVR
+// frame timing) beside a run, read by latsim's one capture reader
+// (sweep/compare.hpp); the CDF plots are drawn by analysis/compare.py from
+// compare_values.json.
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -9,20 +11,37 @@
 
 #include "child_process.hpp"
 #include "commands.hpp"
+#include "latsim/capture/capture.hpp"
+#include "latsim/results/run_files.hpp"
+#include "latsim/sweep/compare.hpp"
 
 namespace latsim::app {
 
 int command_compare(int argc, char** argv) {
-  CLI::App app{"Sets a PresentMon capture beside a run: frame interval, CPU busy, GPU busy and present-to-display "
-               "latency, each as count, mean, p50, p99 and the two-sample Kolmogorov-Smirnov distance "
-               "(compare.md, compare.csv) and as overlaid CDFs (compare_<column>.png)",
+  CLI::App app{"Sets a capture beside a run, each quantity as its source defines it: count, mean, p50, p99 and the "
+               "two-sample Kolmogorov-Smirnov distance, how the run stands to it (predicted, converted, derived, "
+               "replayed, input, differs, no counterpart) and one verdict line (compare.md, compare.csv, "
+               "compare_values.json), and overlaid CDFs (compare_<quantity>.png)",
                "latsim compare"};
-  std::string capture, run, out, application, process_id;
-  app.add_option("capture", capture, "PresentMon CSV (current, v1 or v2 columns)")->required();
-  app.add_option("run", run, "run directory (its presentmon.csv), or another capture CSV")->required();
-  app.add_option("--out,-o", out, "output directory (default: RUN/compare)");
+  std::string capture, run, out, application;
+  int64_t process_id = 0;
+  double ks_threshold = 0.1, mean_tolerance = 0.1;
+  bool no_plots = false;
+  app.add_option("capture", capture,
+                 "PresentMon CSV (current, v1 or v2 columns), OVR Metrics Tool CSV, VrApi logcat lines or SteamVR "
+                 "Compositor_FrameTiming CSV")
+      ->required();
+  app.add_option("run", run, "run directory (presentmon.csv, figures.json, summary.json), or a PresentMon CSV")->required();
+  app.add_option("--out,-o", out, "output directory (default: RUN/compare, or beside a RUN file)");
   app.add_option("--application", application, "the capture's process, by Application (when it holds several)");
-  app.add_option("--process-id", process_id, "the capture's process, by ProcessID (when it holds several)");
+  app.add_option("--process-id", process_id, "the capture's process, by ProcessID (when it holds several)")
+      ->check(CLI::Range(int64_t{1}, int64_t{1} << 40));
+  app.add_option("--ks-threshold", ks_threshold, "samples agree at a KS distance at most this (default 0.1)")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--mean-tolerance", mean_tolerance,
+                 "a run total agrees within this share of the capture's mean (default 0.1)")
+      ->check(CLI::Range(0.0, 10.0));
+  app.add_flag("--no-plots", no_plots, "write the tables only");
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -30,27 +49,53 @@ int command_compare(int argc, char** argv) {
     std::cerr << "compare: " << capture << ": not a regular file\n";
     return kExitBadInput;
   }
-  if (fs::is_directory(run, ec) ? !fs::is_regular_file(fs::path(run) / "presentmon.csv", ec)
-                                : !fs::is_regular_file(run, ec)) {
-    std::cerr << "compare: " << run << ": neither a run directory with a presentmon.csv nor a capture file\n";
+  if (!fs::is_directory(run, ec) && !fs::is_regular_file(run, ec)) {
+    std::cerr << "compare: " << run << ": neither a run directory nor a capture file\n";
+    return kExitBadInput;
+  }
+  const fs::path out_dir = !out.empty() ? fs::path(out)
+                           : fs::is_directory(run, ec) ? fs::path(run) / "compare"
+                                                       : fs::absolute(run).parent_path() / "compare";
+  if (fs::exists(out_dir, ec) && !fs::is_directory(out_dir, ec)) {
+    std::cerr << "compare: --out " << out_dir.string() << ": exists and is not a directory\n";
+    return kExitBadInput;
+  }
+  sweep::CompareRequest request{capture, run, {application, std::nullopt}, ks_threshold, mean_tolerance};
+  if (process_id != 0) request.select.process_id = process_id;
+  sweep::Comparison comparison;
+  try {
+    comparison = sweep::compare_capture(request);
+  } catch (const capture::CaptureError& e) {
+    std::cerr << "compare: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const sweep::CompareError& e) {
+    std::cerr << "compare: " << e.what() << "\n";
     return kExitBadInput;
   }
   try {
-    std::vector<std::string> command{python_interpreter(), analysis_script("compare.py").string(), capture, run};
-    if (!out.empty()) command.insert(command.end(), {"--out", out});
-    if (!application.empty()) command.insert(command.end(), {"--application", application});
-    if (!process_id.empty()) command.insert(command.end(), {"--process-id", process_id});
-    const ChildResult child = run_child(command);
-    // The script's codes follow the program's and it has said why in one line.
-    if (child.exit_code == kExitOk || child.exit_code == kExitFailure || child.exit_code == kExitBadInput ||
-        child.exit_code == 130)
-      return child.exit_code;
-    std::cerr << "compare: the analysis script failed (exit status " << child.exit_code << ")\n";
-    return kExitFailure;
+    fs::create_directories(out_dir);
+    results::write_file_atomically(out_dir / "compare.csv", sweep::compare_csv(comparison));
+    results::write_file_atomically(out_dir / "compare_values.json", sweep::compare_values_json(comparison));
+    results::write_file_atomically(out_dir / "compare.md", sweep::compare_markdown(comparison));
   } catch (const std::exception& e) {
-    std::cerr << "compare: " << e.what() << "\n";
+    std::cerr << "compare: cannot write into " << out_dir.string() << ": " << e.what() << "\n";
     return kExitFailure;
   }
+  if (!no_plots) {
+    try {
+      const ChildResult child = run_child({python_interpreter(), analysis_script("compare.py").string(), out_dir.string()});
+      if (child.exit_code == 130) return 130;
+      if (child.exit_code != kExitOk) {
+        std::cerr << "compare: the plots could not be drawn (python3 with matplotlib is needed); the tables are written\n";
+        return kExitFailure;
+      }
+    } catch (const std::exception& e) {
+      std::cerr << "compare: " << e.what() << "\n";
+      return kExitFailure;
+    }
+  }
+  std::cout << "compare: wrote " << (out_dir / "compare.md").string() << "\n";
+  return kExitOk;
 }
 
 }  // namespace latsim::app

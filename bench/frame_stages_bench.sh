@@ -7,7 +7,7 @@
 #    stages on a CPU thread and a GPU) against the same system as one
 #    double-buffered renderer (4 ms frames), 60 simulated seconds at line
 #    scanout on the 480-line reference display; the two give the same latency
-#    distribution (tests/frame_stages), so the ratio is the price of the stages.
+#    distribution (tests/pipelines/frame_stages), so the ratio is the price of the stages.
 # 2. The time-warp overload scenario (90 Hz, 1200 lines at field scanout,
 #    preemptible GPU, a compositor per refresh) against the same application
 #    without the compositor (frames swapped in at retraces).

@@ -16,7 +16,7 @@ function(latsim_add_library name)
   add_library(latsim_${name} STATIC ${ARG_SOURCES})
   add_library(latsim::${name} ALIAS latsim_${name})
   target_include_directories(latsim_${name} PUBLIC "${CMAKE_CURRENT_SOURCE_DIR}/include")
-  target_link_libraries(latsim_${name} PUBLIC latsim::warnings ${ARG_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+  target_link_libraries(latsim_${name} PUBLIC latsim::warnings latsim::units ${ARG_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
   target_compile_options(latsim_${name} PRIVATE ${LATSIM_FUZZ_COVERAGE})
   # The Python module (a shared object) links every library (cmake/LatsimPython.cmake).
   if(LATSIM_PYTHON)

@@ -60,7 +60,7 @@ class ArpPipeline final : public Pipeline {
   }
 
   // Each tick of the rendering loop starts a render that ends one render time later.
-  std::vector<EventRate> event_rates(const params::SharedParams&) const override {
+  std::vector<EventRate> event_rates(const sections::SharedParams&) const override {
     return {{"/pipeline/render_rate_hz", "arp", 2.0 / p_.render_period.to_seconds()}};
   }
 
@@ -120,14 +120,14 @@ class ArpPipeline final : public Pipeline {
   std::unique_ptr<arp::MemoryRenderer> renderer_;
 };
 
-void bind(scenario::Section& s, ArpPipeline::Params& p, const params::SharedParams&) {
+void bind(scenario::Section& s, ArpPipeline::Params& p, const sections::SharedParams&) {
   s.rate("render_rate_hz", p.render_period, {.unit = "Hz", .doc = "how often the cube display memory is re-rendered"});
   s.duration("render_time_ms", p.render_time, {.unit = "ms", .doc = "time to render the cube"});
   s.check("render_time_ms",
           p.render_time > des::Time::zero() &&
               p.render_time <= des::PeriodicSchedule(des::Time::zero(), p.render_period).nominal_period(),
           "must be positive and at most one rendering period");
-  params::clock(s, "loop_", p.loop, "rendering loop");
+  sections::clock(s, "loop_", p.loop, "rendering loop");
   bind(s, p.frames);
 }
 

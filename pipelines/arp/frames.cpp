@@ -1,13 +1,13 @@
 #include "arp/frames.hpp"
 
-#include "latsim/params/shared.hpp"
+#include "latsim/sections/shared.hpp"
 #include "latsim/pipelines/pipeline.hpp"
 
 namespace latsim::pipelines {
 
 void bind(scenario::Section& s, FrameOptions& p) {
   s.integer("face_px", p.face_px, {.unit = "px", .min = 1.0, .max = 8192.0, .doc = "cube display memory face size"});
-  params::colour(s, "background", p.background, {.doc = "linear colour [r, g, b] where nothing is drawn"});
+  sections::colour(s, "background", p.background, {.doc = "linear colour [r, g, b] where nothing is drawn"});
   s.numbers("frame_times_s", p.times_s,
             {.unit = "s", .min = 0.0, .max = 1e6, .doc = "write the display memories as images at these times"});
   s.integer("frame_threads", p.threads, {.min = 1.0, .max = 256.0, .doc = "threads rendering those images"});

@@ -5,7 +5,6 @@
 // the redraws share the renderers, fastest memory first.
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,7 +16,8 @@
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/renderer/scene_spec.hpp"
 #include "latsim/results/latency_recorder.hpp"
-#include "latsim/scenario/params.hpp"
+#include "latsim/scenario/section.hpp"
+#include "latsim/units/units.hpp"
 
 namespace latsim::pipelines {
 namespace {
@@ -71,7 +71,7 @@ class PriorityPipeline final : public Pipeline {
 
   // A tick at the fastest memory's rate, and at most one render completion
   // per memory per tick (a memory is redrawn at most once per its own slot).
-  std::vector<EventRate> event_rates(const params::SharedParams&) const override {
+  std::vector<EventRate> event_rates(const sections::SharedParams&) const override {
     const double ticks_per_s = 1.0 / p_.model.base_period.to_seconds();
     return {{"/pipeline/max_update_rate_hz", "arp", ticks_per_s * (1.0 + p_.model.memory_count)}};
   }
@@ -162,9 +162,8 @@ class PriorityPipeline final : public Pipeline {
   SampleBook samples_;
 };
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 
-void bind(scenario::Section& s, PriorityPipeline::Params& p, const params::SharedParams& shared) {
+void bind(scenario::Section& s, PriorityPipeline::Params& p, const sections::SharedParams& shared) {
   s.rate("max_update_rate_hz", p.model.base_period, {.unit = "Hz", .max = 1e4, .doc = "rate of the fastest display memory (and of the ticks)"});
   s.integer("memory_count", p.model.memory_count, {.min = 1.0, .max = 16.0, .doc = "display memories at rates halving from the fastest"});
   s.integer("face_px", p.face_px, {.unit = "px", .min = 1.0, .max = 8192.0, .doc = "cube display memory face size"});
@@ -173,9 +172,9 @@ void bind(scenario::Section& s, PriorityPipeline::Params& p, const params::Share
   s.number("threshold_angle_deg", p.threshold_angle_deg,
            {.unit = "deg", .min = 1e-9, .max = 90.0, .doc = "error an image may reach before it is redrawn",
             .default_doc = "90 / face_px (one texel)"});
-  p.model.threshold_rad = p.threshold_angle_deg * kDegToRad;
+  p.model.threshold_rad = p.threshold_angle_deg * units::kRadPerDeg;
   bind_render_costs(s, p.cost, p.renderers, "render_per_object_us", "object drawn");
-  params::clock(s, "loop_", p.loop, "tick loop");
+  sections::clock(s, "loop_", p.loop, "tick loop");
   s.objects("animated", p.animated,
             [](scenario::Section& a, PriorityPipeline::Animated& v) {
               a.doc("An object whose own animation limits how long its image stays valid.");

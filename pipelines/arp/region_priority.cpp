@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
-#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,12 +21,12 @@
 #include "latsim/renderer/scene_spec.hpp"
 #include "latsim/results/latency_recorder.hpp"
 #include "latsim/results/run_files.hpp"
-#include "latsim/scenario/params.hpp"
+#include "latsim/scenario/section.hpp"
+#include "latsim/units/units.hpp"
 
 namespace latsim::pipelines {
 namespace {
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 // Warping looks at every region within its falloff from each warped vertex.
 constexpr double kMaxWarpRegions = 16.0;
 // Every region is tracked and segmented: a floor cut into more than this is
@@ -64,7 +63,7 @@ class RegionPriorityPipeline final : public Pipeline {
 
   // A tick at the fastest memory's rate, and at most one render completion
   // per memory per tick, in the run itself and in every variant it compares.
-  std::vector<EventRate> event_rates(const params::SharedParams&) const override {
+  std::vector<EventRate> event_rates(const sections::SharedParams&) const override {
     const double ticks_per_s = 1.0 / p_.period.to_seconds();
     const double memories = static_cast<double>(p_.model.outer_rings.size()) + 1.0;
     const double runs = 1.0 + static_cast<double>(p_.compare.size());
@@ -250,10 +249,10 @@ class RegionPriorityPipeline final : public Pipeline {
   des::Time window_end_;
 };
 
-void bind(scenario::Section& s, RegionPriorityPipeline::Params& p, const params::SharedParams& shared) {
+void bind(scenario::Section& s, RegionPriorityPipeline::Params& p, const sections::SharedParams& shared) {
   arp::RegionPriorityParams& m = p.model;
   s.rate("max_update_rate_hz", p.period, {.unit = "Hz", .max = 1e4, .doc = "rate of the fastest display memory (and of the ticks)"});
-  params::clock(s, "loop_", p.loop, "tick loop");
+  sections::clock(s, "loop_", p.loop, "tick loop");
   bind(s, p.frames);
   s.number("region_size_m", p.region_size_m, {.unit = "m", .min = 0.0, .above_min = true, .doc = "edge of a square floor region"});
   s.flag("segmentation", p.segmentation, {.doc = "cut objects at region boundaries; false: whole objects"});
@@ -262,7 +261,7 @@ void bind(scenario::Section& s, RegionPriorityPipeline::Params& p, const params:
   s.number("threshold_angle_deg", threshold_deg,
            {.unit = "deg", .min = 1e-9, .max = 90.0, .doc = "error an image may reach before it is redrawn",
             .default_doc = "90 / face_px (one texel)"});
-  m.threshold_rad = threshold_deg * kDegToRad;
+  m.threshold_rad = threshold_deg * units::kRadPerDeg;
   m.swap_margin_m = 0.25 * p.region_size_m;
   s.number("swap_margin_m", m.swap_margin_m,
            {.unit = "m", .min = 0.0, .doc = "hysteresis before a region changes memory", .default_doc = "region_size_m / 4"});

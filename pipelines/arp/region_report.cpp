@@ -64,8 +64,8 @@ std::string memories_markdown(const std::vector<const RegionRun*>& runs, des::Ti
         "segmentation.\n\n| run | render load (segments/s) | renderer utilisation | renders skipped | tear gap max "
         "(px) | tear gap p99 (px) | stretch max (px) | stretch p99 (px) |\n|---|---|---|---|---|---|---|---|\n";
   for (const RegionRun* run : runs) {
-    const des::Distribution& tears = run->tear_gap_px();
-    const des::Distribution& stretch = run->stretch_px();
+    const stats::Distribution& tears = run->tear_gap_px();
+    const stats::Distribution& stretch = run->stretch_px();
     md << "| " << run->label() << " | " << fixed(render_load(*run, duration), 0) << " | "
        << fixed(run->system().memories().queue().utilisation(duration), 3) << " | " << skipped(*run) << " | "
        << fixed(tears.summary().max, 3) << " | " << fixed(tears.quantile(0.99), 3) << " | "
@@ -93,8 +93,8 @@ std::string memories_csv(const std::vector<const RegionRun*>& runs, des::Time du
   csv << "run,memory,update_rate_hz,segments_per_update,render_load,renderer_utilisation,renders_skipped,"
          "tear_gap_max_px,tear_gap_p99_px,stretch_max_px,stretch_p99_px\n";
   for (const RegionRun* run : runs) {
-    const des::Distribution& tears = run->tear_gap_px();
-    const des::Distribution& stretch = run->stretch_px();
+    const stats::Distribution& tears = run->tear_gap_px();
+    const stats::Distribution& stretch = run->stretch_px();
     for (int m = 0; m < run->system().model().memory_count(); ++m) {
       const MemoryRow row = row_of(*run, m, duration);
       csv << '"' << run->label() << "\"," << m << ',' << fixed(row.rate_hz, 3) << ',' << fixed(row.segments, 2) << ','

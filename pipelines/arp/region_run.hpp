@@ -10,7 +10,7 @@
 
 #include "latsim/arp/region_priority_system.hpp"
 #include "latsim/arp/seam_meter.hpp"
-#include "latsim/des/stats.hpp"
+#include "latsim/stats/stats.hpp"
 
 namespace latsim::results {
 class LatencyRecorder;
@@ -36,8 +36,8 @@ class RegionRun {
   /// Measures what the memories show now (at a retrace), the head at
   /// `head` and the user at eye_m: tear gaps and, with warping, stretch.
   void measure(const glm::dquat& head, const glm::dvec3& eye_m, const arp::ScreenProjection& screen);
-  const des::Distribution& tear_gap_px() const { return tear_gap_px_; }
-  const des::Distribution& stretch_px() const { return stretch_px_; }
+  const stats::Distribution& tear_gap_px() const { return tear_gap_px_; }
+  const stats::Distribution& stretch_px() const { return stretch_px_; }
 
   /// Figures under `prefix` ("" or "variants.0."); says on the recorder's
   /// warnings when the renderers could not keep up.
@@ -67,8 +67,8 @@ class RegionRun {
   std::vector<std::vector<arp::WarpedPoint>> warped_points_;  // per memory, of its shown image
   std::vector<double> scratch_;
   arp::DisplayMemories::PresentFn present_fn_;
-  des::Distribution tear_gap_px_{0.005, false};
-  des::Distribution stretch_px_{0.005, false};
+  stats::Distribution tear_gap_px_{0.005, false};
+  stats::Distribution stretch_px_{0.005, false};
   std::vector<std::vector<arp::MemoryRenderCounts>> window_marks_;  // counts at the window's start and end
 };
 

@@ -4,7 +4,7 @@
 #include <string_view>
 
 #include "latsim/arp/memory_render_cost.hpp"
-#include "latsim/scenario/params.hpp"
+#include "latsim/scenario/section.hpp"
 
 namespace latsim::pipelines {
 

@@ -10,7 +10,7 @@
 #include "latsim/des/handoff.hpp"
 #include "latsim/des/process.hpp"
 #include "latsim/des/run_clocks.hpp"
-#include "latsim/params/render_cost.hpp"
+#include "latsim/sections/render_cost.hpp"
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/results/frame_recorder.hpp"
 #include "latsim/results/latency_recorder.hpp"
@@ -45,7 +45,7 @@ class DoubleBufferPipeline final : public Pipeline {
   // One event per frame (its render delay; a retrace resumes the renderer
   // within the display's event). With vsync at most one frame per refresh
   // leaves the swap queue; without, frames follow each other back to back.
-  std::vector<EventRate> event_rates(const params::SharedParams& shared) const override {
+  std::vector<EventRate> event_rates(const sections::SharedParams& shared) const override {
     const des::Time frame = p_.cost.nominal_frame_time();
     const double fields_per_s = 1.0 / shared.display.raster.field_period.to_seconds();
     if (!p_.vsync) return {{"/pipeline/render", "renderer", paced_per_s(frame, std::numeric_limits<double>::infinity())}};
@@ -57,7 +57,11 @@ class DoubleBufferPipeline final : public Pipeline {
     ctx.recorder.set("nominal_frame_time_ms", p_.cost.nominal_frame_time().to_ms());
     ctx.recorder.declare_headline({"motion_to_photon_ms", "frame_rate_hz", "missed_refreshes",
                                    "registration_error_arcmin", "smear_arcmin"});
-    if (p_.cost.trace()) ctx.recorder.add_capture(params::trace_summary(p_.cost));
+    if (p_.cost.trace()) {
+      ctx.recorder.add_capture(sections::trace_summary(p_.cost));
+      const double refresh_hz = 1.0 / ctx.display_params.raster.field_period.to_seconds();
+      for (const std::string& w : sections::trace_warnings(p_.cost, refresh_hz)) ctx.recorder.warn(w);
+    }
     if (!p_.vsync || p_.queued_frames != 0 || p_.cost.varies()) return;
     const auto a = analytic_double_buffer(analytic_inputs(ctx, p_.cost.nominal_frame_time()));
     if (!a) return;
@@ -94,13 +98,14 @@ class DoubleBufferPipeline final : public Pipeline {
       // With vsync every render aims at the next refresh.
       if (p_.vsync) ctx_->recorder.image_due(start + des::Time::ps(1));
       // A measured cost with nothing left ends the run after this event.
-      if (p_.cost.exhausted()) ctx_->end_run_early(params::trace_ran_out(p_.cost, ctx_->sim.now()));
+      if (p_.cost.exhausted()) ctx_->end_run_early(sections::trace_ran_out(p_.cost, ctx_->sim.now()));
       const des::Time render_time = p_.cost.frame_time(*stream_);
       co_await ctx_->sim.delay(render_time);
       Done done = complete(*pose, start, render_time);
       if (!p_.vsync) {
         // No vsync: the new image replaces the front buffer mid-scan.
         for (int eye = 0; eye < ctx_->display.eyes(); ++eye) ctx_->display.present_now(eye, done.ids[eye]);
+        ctx_->app_frames.flipped(done.frame, ctx_->sim.now());
         continue;
       }
       queue_.push_back(std::move(done));
@@ -148,6 +153,7 @@ class DoubleBufferPipeline final : public Pipeline {
       const Done d = std::move(queue_.front());
       queue_.pop_front();
       for (int eye = 0; eye < ctx_->display.eyes(); ++eye) ctx_->display.present_now(eye, d.ids[eye]);
+      ctx_->app_frames.flipped(d.frame, now);
       if (ctx_->timeline) ctx_->timeline->add("QUEUED", d.frame, -1, "swapchain", d.render_end, now);
     }
     retrace_.resume();
@@ -161,16 +167,16 @@ class DoubleBufferPipeline final : public Pipeline {
   int64_t frame_ = 0;
 };
 
-void bind(scenario::Section& s, DoubleBufferPipeline::Params& p, const params::SharedParams& shared) {
+void bind(scenario::Section& s, DoubleBufferPipeline::Params& p, const sections::SharedParams& shared) {
   s.flag("vsync", p.vsync,
          {.doc = "swap at the next retrace after completion; false: swap at once (tearing; needs a render time above "
                  "zero)"});
   s.integer("queued_frames", p.queued_frames, {.min = 0.0, .max = 16.0, .doc = "render-ahead: frames that may wait for display"});
-  s.object("render", p.render, [](scenario::Section& r, renderer::RenderCost::Params& v) { params::bind(r, v); },
+  s.object("render", p.render, [](scenario::Section& r, renderer::RenderCost::Params& v) { sections::bind(r, v); },
            {.required = true, .doc = "the renderer's cost per frame"});
   const display::RasterParams& raster = shared.display.raster;
   s.guard("render", [&] {
-    p.cost = params::render_cost_for_scene(p.render, shared.scene ? &*shared.scene : nullptr, raster.width_px,
+    p.cost = sections::render_cost_for_scene(p.render, shared.scene ? &*shared.scene : nullptr, raster.width_px,
                                            raster.height_px, shared.host.stereo ? 2 : 1);
   });
   s.check("vsync", p.vsync || p.cost.nominal_frame_time() > des::Time::zero(),

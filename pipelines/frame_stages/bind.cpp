@@ -7,10 +7,10 @@
 #include "frame_stages/frame_stages_pipeline.hpp"
 #include "frame_stages/pacing_bind.hpp"
 #include "latsim/des/time.hpp"
-#include "latsim/params/render_cost.hpp"
-#include "latsim/params/shared.hpp"
+#include "latsim/sections/render_cost.hpp"
+#include "latsim/sections/shared.hpp"
 #include "latsim/pipelines/pipeline.hpp"
-#include "latsim/scenario/params.hpp"
+#include "latsim/scenario/section.hpp"
 
 namespace latsim::pipelines::frame_stages {
 
@@ -80,7 +80,7 @@ void bind(Section& s, StageKeys& st) {
              {.unit = "ms", .doc = "retrace: start this long after the retrace (the render start offset; 0: at it)"});
   s.text("until", st.until, {.doc = "late: the stage whose end must meet the deadline (default: this one)"});
   s.flag("samples_pose", st.samples_pose, {.doc = "reads the head pose when it begins (the last such stage's pose is drawn)"});
-  s.object("cost", st.cost, [](Section& c, renderer::RenderCost::Params& v) { params::bind(c, v); },
+  s.object("cost", st.cost, [](Section& c, renderer::RenderCost::Params& v) { sections::bind(c, v); },
            {.doc = "how long it takes (the render-cost model)"});
   s.object("cost_shape", st.shape, [](Section& c, CostShape& v) { bind_cost_shape(c, v); },
            {.doc = "steps and spikes of its cost over the run (docs/pacing.md)"});
@@ -108,7 +108,7 @@ Units expand(const std::vector<ProcessorKeys>& processors, const std::string& li
 
 /// Checks one stage list and turns it into stage specs.
 std::vector<StageSpec> resolve(Section& s, const std::string& key, const std::vector<StageKeys>& stages,
-                               const Units& units, StartRule first_default, const params::SharedParams& shared) {
+                               const Units& units, StartRule first_default, const sections::SharedParams& shared) {
   std::vector<StageSpec> out;
   const display::RasterParams& raster = shared.display.raster;
   const int eyes = shared.host.stereo ? 2 : 1;
@@ -123,7 +123,7 @@ std::vector<StageSpec> resolve(Section& s, const std::string& key, const std::ve
     st.pointer = at;
     st.processors = it->second;
     try {
-      st.cost = params::render_cost_for_scene(k.cost, shared.scene ? &*shared.scene : nullptr, raster.width_px,
+      st.cost = sections::render_cost_for_scene(k.cost, shared.scene ? &*shared.scene : nullptr, raster.width_px,
                                               raster.height_px, eyes);
     } catch (const des::TimeOverflow& e) {
       s.check_pointer(at + "/cost", false, e.what());
@@ -184,7 +184,7 @@ void bind_warp(Section& s, WarpKeys& w) {
 
 }  // namespace
 
-void bind(Section& s, FrameStagesPipeline::Params& p, const params::SharedParams& shared) {
+void bind(Section& s, FrameStagesPipeline::Params& p, const sections::SharedParams& shared) {
   FrameStagesSpec& spec = p.spec;
   s.flag("vsync", spec.vsync,
          {.doc = "frames are swapped in at a retrace (in order, each at least once); false: shown as they complete "

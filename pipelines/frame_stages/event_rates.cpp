@@ -66,7 +66,7 @@ void add_flow(std::vector<EventRate>& out, const std::vector<StageSpec>& stages,
 
 }  // namespace
 
-std::vector<EventRate> FrameStagesPipeline::event_rates(const params::SharedParams& shared) const {
+std::vector<EventRate> FrameStagesPipeline::event_rates(const sections::SharedParams& shared) const {
   const double fields_per_s = 1.0 / shared.display.raster.field_period.to_seconds();
   std::vector<EventRate> out;
   // Application frames: at most one per refresh when each is swapped in at

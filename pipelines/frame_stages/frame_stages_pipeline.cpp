@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "latsim/params/render_cost.hpp"
+#include "latsim/sections/render_cost.hpp"
 #include "frame_stages/app_frame_times.hpp"
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/results/frame_recorder.hpp"
@@ -26,7 +26,7 @@ FlowEnv FrameStagesPipeline::env(des::RandomStream& stream) {
   const display::RasterTiming* timing = &ctx_->display.timing();
   e.next_retrace = [timing](des::Time t) { return timing->field_start(timing->field_at_or_after(t)); };
   e.out_of_input = [ctx = ctx_](const renderer::RenderCost& cost) {
-    ctx->end_run_early(params::trace_ran_out(cost, ctx->sim.now()));
+    ctx->end_run_early(sections::trace_ran_out(cost, ctx->sim.now()));
   };
   return e;
 }
@@ -49,6 +49,9 @@ FlowHooks FrameStagesPipeline::app_hooks() {
   h.image_buffers = image_buffers_.get();
   h.on_complete = [this](JobRecord& frame) {
     ctx_->app_frames.rendered(app_frame_times(frame, app_->last_run_first()));
+    // What a runtime calls its prediction time: the pose query to the photon time it asked for.
+    if (frame.last_pose && !frame.skipped)
+      ctx_->recorder.add("query_to_photon_ms", (frame.last_pose->target - frame.last_sample_at).to_ms());
     if (compositor_) compositor_->on_frame_complete(frame);
     else swap_chain_->on_frame_complete(frame);
     if (app_pacing_) app_pacing_->on_complete(frame);
@@ -155,9 +158,10 @@ void FrameStagesPipeline::start_pacing(RunContext& ctx) {
   clock.period = period;
   clock.period_multiple = spec_.warp && spec_.warp->half_rate ? 2 : 1;
   clock.next_display = [timing](des::Time t) { return timing->field_start(timing->field_at_or_after(t)); };
-  // The compositor latches its budget (or its late warp's lead) before the retrace; a swap chain at the retrace.
+  // The compositor latches its lead (Monado: budget and margin; else the late warp's) before the
+  // retrace; a swap chain at the retrace.
   clock.compositor_time = [this] {
-    if (compositor_pacer_) return compositor_pacer_->budget();
+    if (compositor_pacer_) return compositor_pacer_->lead();
     return warp_ ? warp_->late_lead(0) : des::Time::zero();
   };
   std::function<void(bool)> set_half_rate;
@@ -168,10 +172,14 @@ void FrameStagesPipeline::start_pacing(RunContext& ctx) {
 
 void FrameStagesPipeline::finish(RunContext& ctx) {
   results::LatencyRecorder& r = ctx.recorder;
+  const double refresh_hz = 1.0 / ctx.display_params.raster.field_period.to_seconds();
   for (const StageFlow* flow : {app_.get(), warp_.get()})
     if (flow)
       for (const StageSpec& st : flow->stages())
-        if (st.cost.trace()) r.add_capture(params::trace_summary(st.cost));
+        if (st.cost.trace()) {
+          r.add_capture(sections::trace_summary(st.cost));
+          for (const std::string& w : sections::trace_warnings(st.cost, refresh_hz)) r.warn(w);
+        }
   if (app_pacing_) app_pacing_->finish(r);
   if (compositor_pacer_) compositor_pacer_->finish(r);
   // frames_rendered, application_frame_rate_hz and frames_missed are ctx.app_frames'.

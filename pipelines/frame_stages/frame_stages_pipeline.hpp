@@ -38,7 +38,7 @@ class FrameStagesPipeline final : public Pipeline {
   /// Reports frames, misses, warps and residual errors to the recorder.
   void finish(RunContext& ctx) override;
   /// Frames per second through the stages and warps per refresh (event_rates.cpp).
-  std::vector<EventRate> event_rates(const params::SharedParams& shared) const override;
+  std::vector<EventRate> event_rates(const sections::SharedParams& shared) const override;
   /// The application's pacing (none with the fixed policy).
   const AppPacing* app_pacing() const { return app_pacing_.get(); }
 

@@ -19,10 +19,12 @@ enum class AppPolicy {
   miss_rate,     ///< the median frame time plus a margin raised and lowered to hold a miss rate
 };
 
-/// Monado-style application pacing (u_pacing_app).
+/// Monado-style application pacing (u_pacing_app). Monado's pa_create sets
+/// the CPU and draw estimates to 2 ms and leaves the GPU estimate at zero.
 struct MonadoAppParams {
   double iir_weight = 0.8;                     ///< new = weight * old + (1 - weight) * sample
-  des::Time initial = des::Time::ms(2);        ///< the CPU, draw and GPU estimates before any frame
+  des::Time initial = des::Time::ms(2);        ///< the CPU and draw estimates before any frame
+  des::Time initial_gpu;                       ///< the GPU estimate before any frame (Monado: zero)
   des::Time min_app_time = des::Time::ms(1);   ///< floor of their sum
   des::Time margin = des::Time::ms(2);         ///< between the predicted GPU end and the compositor's latch
 };
@@ -45,23 +47,27 @@ struct MissRateParams {
 };
 
 /// Falls back to half rate (the compositor synthesising every other refresh)
-/// after repeated misses, and returns after a run of clean frames.
+/// after repeated misses, and returns only once the measured frame time fits
+/// the full-rate budget with a margin to spare (hysteresis: the time that
+/// forced the fallback does not end it).
 struct HalfRateFallbackParams {
   bool enabled = false;
   int misses = 3;         ///< misses among the last `window` frames that force half rate
   int window = 10;
-  int clean_frames = 45;  ///< consecutive frames on time that return to full rate
+  int clean_frames = 45;  ///< consecutive frames whose measured time fits that return to full rate
+  double return_margin_percent = 10.0;  ///< of the refresh period: the full-rate budget less this must hold the time
 };
 
-/// Monado-style compositor pacing (u_pacing_compositor with display timing).
+/// Monado-style compositor pacing (u_pacing_compositor with display timing):
+/// its comp_time is the budget here, its margin_ns the target margin.
 struct CompositorPacingParams {
   bool enabled = false;             ///< false: the warp's own late rule
-  double initial_percent = 10.0;    ///< of the refresh period: the first budget (also its floor)
-  double max_percent = 30.0;        ///< the budget's ceiling
+  double initial_percent = 10.0;    ///< of the refresh period: the first budget
+  double max_percent = 30.0;        ///< the ceiling a miss's step is held to
   double miss_step_percent = 4.0;   ///< added after a miss
   double step_percent = 2.0;        ///< step towards the target margin; also the band's half width
   des::Time target_margin = des::Time::ms(1);  ///< wanted between the warp's end and its deadline
-  des::Time late_slop = des::Time::us(500);    ///< shown later than this after its deadline: a miss
+  des::Time late_slop = des::Time::us(500);    ///< shown this much or more after its deadline: a miss
 };
 
 /// Where the application's measured spans begin (stage indices); -1: by runs
@@ -92,6 +98,9 @@ struct FrameSample {
   des::Time gpu_done;
   des::Time latch;     ///< when the compositor (or the retrace) took frames
   bool missed = false; ///< done after its latch
+  /// The longest of the cpu, draw and gpu spans: with each on its own thread
+  /// or GPU and frames overlapping, the span that bounds the frame rate.
+  des::Time longest_span() const;
 };
 
 /// The display as a policy sees it, and what it plans around.

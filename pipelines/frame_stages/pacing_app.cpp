@@ -9,6 +9,8 @@
 
 namespace latsim::pipelines::frame_stages {
 
+des::Time FrameSample::longest_span() const { return std::max({cpu, draw, gpu}); }
+
 FramePlan plan_for(des::Time now, des::Time app_time, des::Time margin, int frame_periods, des::Time last_display,
                    const PacingClock& clock) {
   const des::Time comp = clock.compositor_time();
@@ -37,7 +39,7 @@ namespace {
 /// compositor's time fit before.
 class MonadoAppPacer final : public AppPacer {
  public:
-  explicit MonadoAppPacer(const MonadoAppParams& p) : p_(p), cpu_(p.initial), draw_(p.initial), gpu_(p.initial) {}
+  explicit MonadoAppPacer(const MonadoAppParams& p) : p_(p), cpu_(p.initial), draw_(p.initial), gpu_(p.initial_gpu) {}
 
   FramePlan plan(des::Time now, const PacingClock& clock) override {
     const des::Time app = std::max(p_.min_app_time, cpu_ + draw_ + gpu_);

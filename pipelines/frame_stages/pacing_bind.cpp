@@ -9,7 +9,9 @@ using scenario::Section;
 void bind(Section& s, MonadoAppParams& p) {
   s.number("iir_weight", p.iir_weight,
            {.min = 0.0, .max = 1.0, .doc = "each of the CPU, draw and GPU estimates: weight * old + (1 - weight) * sample"});
-  s.duration("initial_ms", p.initial, {.unit = "ms", .min = 0.0, .doc = "each estimate before the first frame"});
+  s.duration("initial_ms", p.initial, {.unit = "ms", .min = 0.0, .doc = "the CPU and draw estimates before the first frame"});
+  s.duration("initial_gpu_ms", p.initial_gpu,
+             {.unit = "ms", .min = 0.0, .doc = "the GPU estimate before the first frame (Monado leaves it at zero)"});
   s.duration("min_app_time_ms", p.min_app_time, {.unit = "ms", .min = 0.0, .doc = "floor of the application time (their sum)"});
   s.duration("margin_ms", p.margin, {.unit = "ms", .min = 0.0, .doc = "between the predicted GPU end and the compositor's latch"});
 }
@@ -32,17 +34,26 @@ void bind(Section& s, MissRateParams& p) {
 void bind(Section& s, HalfRateFallbackParams& p) {
   s.integer("misses", p.misses, {.min = 1.0, .max = 1000.0, .doc = "misses among the last `window` frames that force half rate"});
   s.integer("window", p.window, {.min = 1.0, .max = 1000.0, .doc = "frames looked back at"});
-  s.integer("clean_frames", p.clean_frames, {.min = 1.0, .max = 100000.0, .doc = "consecutive frames on time that return to full rate"});
+  s.integer("clean_frames", p.clean_frames,
+            {.min = 1.0, .max = 100000.0,
+             .doc = "consecutive frames whose measured time (longest span) fits the full-rate budget less the "
+                    "return margin that return to full rate"});
+  s.number("return_margin_percent", p.return_margin_percent,
+           {.min = 0.0, .max = 100.0,
+            .doc = "% of the refresh period the measured time must leave spare in the full-rate budget (the period "
+                   "less the compositor's time) before returning"});
 }
 
 void bind(Section& s, CompositorPacingParams& p) {
-  s.number("initial_percent", p.initial_percent, {.min = 0.0, .max = 100.0, .doc = "first budget (and its floor), % of the refresh period"});
-  s.number("max_percent", p.max_percent, {.min = 0.0, .max = 100.0, .doc = "the budget's ceiling, % of the period"});
+  s.number("initial_percent", p.initial_percent, {.min = 0.0, .max = 100.0, .doc = "first budget, % of the refresh period"});
+  s.number("max_percent", p.max_percent,
+           {.min = 0.0, .max = 100.0, .doc = "ceiling of the budget after a miss's step, % of the period"});
   s.number("miss_step_percent", p.miss_step_percent, {.min = 0.0, .max = 100.0, .doc = "added after a miss, % of the period"});
   s.number("step_percent", p.step_percent,
            {.min = 0.0, .max = 100.0, .doc = "step towards the target margin and the band's half width, % of the period"});
   s.duration("target_margin_ms", p.target_margin, {.unit = "ms", .min = 0.0, .doc = "wanted between the warp's end and its deadline"});
-  s.duration("late_slop_ms", p.late_slop, {.unit = "ms", .min = 0.0, .doc = "shown later than this after the deadline: a miss"});
+  s.duration("late_slop_ms", p.late_slop,
+             {.unit = "ms", .min = 0.0, .doc = "shown this much or more after the deadline: a miss"});
 }
 
 }  // namespace

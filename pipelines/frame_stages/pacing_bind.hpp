@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "frame_stages/spec.hpp"
-#include "latsim/scenario/params.hpp"
+#include "latsim/scenario/section.hpp"
 
 namespace latsim::pipelines::frame_stages {
 

@@ -1,6 +1,7 @@
 #include "frame_stages/pacing_driver.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 namespace latsim::pipelines::frame_stages {
@@ -77,26 +78,34 @@ void AppPacing::on_complete(const JobRecord& rec) {
     timeline_->add("shown", rec.job, -1, "app display", s.gpu_done, shown);
   }
   if (log_.size() < kMaxLog) log_.push_back(PacedFrame{rec.job, plan, s, shown, half});
-  if (fallback_.enabled) fall_back(s.missed);
+  if (fallback_.enabled) fall_back(s);
 }
 
-void AppPacing::fall_back(bool missed) {
+void AppPacing::fall_back(const FrameSample& s) {
   if (!half_rate()) {
-    recent_misses_.push_back(missed);
+    recent_misses_.push_back(s.missed);
     if (static_cast<int>(recent_misses_.size()) > fallback_.window) recent_misses_.pop_front();
     if (std::count(recent_misses_.begin(), recent_misses_.end(), true) < fallback_.misses) return;
     clock_.period_multiple = 2;
     ++half_rate_periods_;
-    clean_run_ = 0;
+    fitting_run_ = 0;
     recent_misses_.clear();
     if (set_half_rate_) set_half_rate_(true);
     return;
   }
   ++half_rate_frames_;
-  clean_run_ = missed ? 0 : clean_run_ + 1;
-  if (clean_run_ < fallback_.clean_frames) return;
+  // Hysteresis: a frame on time at half rate says nothing of full rate; only
+  // a measured time that fits a refresh with the margin to spare does.
+  fitting_run_ = s.longest_span() <= return_threshold() ? fitting_run_ + 1 : 0;
+  if (fitting_run_ < fallback_.clean_frames) return;
   clock_.period_multiple = 1;
   if (set_half_rate_) set_half_rate_(false);
+}
+
+des::Time AppPacing::return_threshold() const {
+  const des::Time margin = des::Time::ps(
+      std::llround(static_cast<double>(clock_.period.ticks()) * fallback_.return_margin_percent / 100.0));
+  return clock_.period - clock_.compositor_time() - margin;
 }
 
 void AppPacing::finish(results::LatencyRecorder& r) const {

@@ -1,6 +1,7 @@
 // Runs an application pacing policy inside a frame_stages pipeline: asks it
 // when each frame wakes, tells it what each frame measured, falls back to
-// half rate after repeated misses, and reports the pacing figures.
+// half rate after repeated misses (and returns once the measured frame time
+// fits a refresh again), and reports the pacing figures.
 #pragma once
 
 #include <cstdint>
@@ -48,7 +49,12 @@ class AppPacing {
 
  private:
   FrameSample measure(const JobRecord& rec, const FramePlan& plan) const;
-  void fall_back(bool missed);
+  /// Half-rate fallback: in after `misses` of the last `window` frames
+  /// missed; out after `clean_frames` in a row whose longest span fits
+  /// return_threshold().
+  void fall_back(const FrameSample& s);
+  /// The full-rate budget (a period less the compositor's time) less the return margin.
+  des::Time return_threshold() const;
 
   HalfRateFallbackParams fallback_;
   std::unique_ptr<AppPacer> pacer_;
@@ -61,7 +67,7 @@ class AppPacing {
   std::map<int64_t, bool> planned_half_;
   std::vector<PacedFrame> log_;
   std::deque<bool> recent_misses_;
-  int clean_run_ = 0;
+  int fitting_run_ = 0;
   int64_t misses_ = 0, half_rate_periods_ = 0, half_rate_frames_ = 0;
 };
 

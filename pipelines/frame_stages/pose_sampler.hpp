@@ -6,6 +6,7 @@
 
 #include "latsim/des/time.hpp"
 #include "latsim/pipelines/pipeline.hpp"
+#include "latsim/tracker/host_feed.hpp"
 #include "latsim/tracker/host_prediction.hpp"
 
 namespace latsim::pipelines::frame_stages {
@@ -13,7 +14,7 @@ namespace latsim::pipelines::frame_stages {
 /// Answers a stage's request for the pose to compute with.
 class PoseSampler {
  public:
-  explicit PoseSampler(const results::HostFeed& host) : host_(&host) {}
+  explicit PoseSampler(const tracker::HostFeed& host) : host_(&host) {}
 
   /// The pose a stage beginning at `now` uses for pixels expected to be lit
   /// at `photon_target`: from the newest sample the host can see, predicted
@@ -23,7 +24,7 @@ class PoseSampler {
   }
 
  private:
-  const results::HostFeed* host_;
+  const tracker::HostFeed* host_;
 };
 
 }  // namespace latsim::pipelines::frame_stages

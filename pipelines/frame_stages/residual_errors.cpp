@@ -36,7 +36,7 @@ void ResidualErrors::on_scanout(const display::ScanoutSpan& span) {
   if (within_line && span.x_begin != 0) return;
   const uint64_t samples = within_line ? 1 : span.photons.count;
   Bucket& b = buckets_[static_cast<size_t>(std::min(rewarps, kBuckets - 1))];
-  des::TickStepper t(span.photons);
+  stats::TickStepper t(span.photons);
   for (uint64_t i = 0; i < samples; ++i, t.step()) {
     const tracker::Pose truth = tracker::eye_pose(motion_.pose_at(t.time()), span.eye, ipd_m_, stereo_);
     const double deg = tracker::angle_between(img->eye_pose.orientation, truth.orientation) * kDegPerRad;

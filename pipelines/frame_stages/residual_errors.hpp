@@ -24,8 +24,8 @@ class ResidualErrors final : public display::ScanoutListener {
   static constexpr int kBuckets = 8;  ///< rewarps 0 .. 6, and 7 or more
   /// Exact sums: the means do not depend on how the display groups samples into spans.
   struct Bucket {
-    des::RunningStats orientation_deg;
-    des::RunningStats position_mm;
+    stats::RunningStats orientation_deg;
+    stats::RunningStats position_mm;
     int64_t samples() const { return static_cast<int64_t>(orientation_deg.count()); }
   };
 
@@ -40,8 +40,8 @@ class ResidualErrors final : public display::ScanoutListener {
   const tracker::MotionSource& motion_;
   double ipd_m_;
   bool stereo_;
-  des::Distribution* orientation_ = nullptr;
-  des::Distribution* position_ = nullptr;
+  stats::Distribution* orientation_ = nullptr;
+  stats::Distribution* position_ = nullptr;
   std::array<Bucket, kBuckets> buckets_{};
 };
 

@@ -44,6 +44,7 @@ void SwapChain::on_retrace(int64_t) {
 
 void SwapChain::show(const Done& d) {
   for (int eye = 0; eye < ctx_.display.eyes(); ++eye) ctx_.display.present_now(eye, d.ids[static_cast<size_t>(eye)]);
+  ctx_.app_frames.flipped(d.frame, ctx_.sim.now());
   // The image that was on screen is free to be drawn into again.
   if (on_screen_) images_.release();
   on_screen_ = true;

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "latsim/params/shared.hpp"
-#include "latsim/scenario/params.hpp"
+#include "latsim/sections/shared.hpp"
+#include "latsim/scenario/section.hpp"
 
 namespace latsim::pipelines {
 
@@ -55,7 +55,7 @@ void FramelessPipeline::start(RunContext& ctx) {
   ctx.sim.start(pixel_stream(), kind_chunk);
 }
 
-std::vector<EventRate> FramelessPipeline::event_rates(const params::SharedParams& shared) const {
+std::vector<EventRate> FramelessPipeline::event_rates(const sections::SharedParams& shared) const {
   const double budget = static_cast<double>(budget_px_s_);
   if (double_buffer_) {
     // One event per image of width × height × eyes pixels of the budget.
@@ -98,7 +98,7 @@ void FramelessPipeline::make_blocks(des::RandomStream stream) {
   block_order_.emplace(blocks_x_ * blocks_y_ * eyes_, std::move(stream));
 }
 
-void bind(scenario::Section& s, FramelessPipeline::Params& p, const params::SharedParams& shared) {
+void bind(scenario::Section& s, FramelessPipeline::Params& p, const sections::SharedParams& shared) {
   s.choice("strategy", p.double_buffer, {{"frameless", false}, {"double_buffer", true}},
            {.doc = "frameless: each pixel from the newest pose; double_buffer: whole images at the same budget"});
   const int64_t pixels = int64_t{shared.display.raster.width_px} * shared.display.raster.height_px *
@@ -120,7 +120,7 @@ void bind(scenario::Section& s, FramelessPipeline::Params& p, const params::Shar
             {.unit = "px", .min = 1.0, .max = 1073741824.0, .doc = "pixels computed per event (exact either way)"});
   s.integer("sample_pixels", p.sample_pixels,
             {.unit = "px", .min = 0.0, .max = 1073741824.0, .doc = "pixels where ages and registration are sampled"});
-  params::clock(s, "loop_", p.loop, "pixel computation (the first pixel's start)");
+  sections::clock(s, "loop_", p.loop, "pixel computation (the first pixel's start)");
   s.number("registration_depth_m", p.registration_depth_m,
            {.unit = "m", .min = 0.0, .above_min = true, .doc = "depth at which a pixel's surface point is taken"});
   const bool double_buffer = p.double_buffer;

@@ -72,7 +72,7 @@ class FramelessPipeline final : public Pipeline, public display::ScanoutListener
   void start(RunContext& ctx) override;
   void finish(RunContext& ctx) override;
   /// Chunks (or whole images) per second, pixels computed and, with a fallback, deliveries.
-  std::vector<EventRate> event_rates(const params::SharedParams& shared) const override;
+  std::vector<EventRate> event_rates(const sections::SharedParams& shared) const override;
   void on_scanout(const display::ScanoutSpan& span) override;
   // Ages (and registration) of the sampled pixels of one line of a span.
   void sample_line(const display::ScanoutSpan& span, int line, const results::ImageRecord* image);

@@ -2,11 +2,11 @@
 #include "frameless/frameless_pipeline.hpp"
 
 #include <algorithm>
-#include <numbers>
 #include <stdexcept>
 
 #include "latsim/results/latency_recorder.hpp"
 #include "latsim/results/timeline.hpp"
+#include "latsim/units/units.hpp"
 
 namespace latsim::pipelines {
 
@@ -21,7 +21,6 @@ namespace frameless {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 }  // namespace
 
@@ -117,7 +116,7 @@ void FramelessPipeline::write_block(int32_t b, int64_t slot, int64_t field) {
 
 void FramelessPipeline::delivered(const tracker::TrackerSample& s, des::Time t) {
   if (last_delivered_) {
-    const double angle_deg = tracker::angle_between(last_delivered_->orientation, s.pose.orientation) * 180.0 / kPi;
+    const double angle_deg = units::rad_to_deg(tracker::angle_between(last_delivered_->orientation, s.pose.orientation));
     const double moved_m = glm::length(s.pose.position_m - last_delivered_->position_m);
     // Units that start at or after the delivery fall back; earlier ones are unchanged.
     if (angle_deg > trigger_deg_ || moved_m > trigger_m_) triggers_.push_back(schedule_.index_at_or_after(t));

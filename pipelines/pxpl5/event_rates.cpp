@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "latsim/renderer/scene_spec.hpp"
+
 namespace latsim::pipelines {
 
 namespace {
@@ -21,11 +23,11 @@ constexpr double kEventsPerHop = 1.0;
 // The host, per sample it sends (Slats) or per frame (RC): a wake, the ring and the transfer.
 constexpr double kEventsPerSend = 3.0;
 
-double fields_per_s_of(const params::SharedParams& shared) {
+double fields_per_s_of(const sections::SharedParams& shared) {
   return 1.0 / shared.display.raster.field_period.to_seconds();
 }
 
-pxpl5::RegionGrid grid_of(const params::SharedParams& shared) {
+pxpl5::RegionGrid grid_of(const sections::SharedParams& shared) {
   const display::RasterParams& r = shared.display.raster;
   return pxpl5::RegionGrid::for_screen(r.width_px, r.height_px, r.interlaced, 128);
 }
@@ -33,7 +35,7 @@ pxpl5::RegionGrid grid_of(const params::SharedParams& shared) {
 }  // namespace
 
 std::vector<EventRate> slats_event_rates(const pxpl5::SlatsParams& p, const Pxpl5Common& common,
-                                         const params::SharedParams& shared) {
+                                         const sections::SharedParams& shared) {
   const double eyes = common.stereo ? 2.0 : 1.0;
   const double triangles = static_cast<double>(common.synthetic.triangles);
   // The GP starts a field at a retrace once it is free: one per refresh at most.
@@ -55,10 +57,20 @@ std::vector<EventRate> slats_event_rates(const pxpl5::SlatsParams& p, const Pxpl
           {"/tracker/rate_hz", "pxpl5", tracker_hz * kEventsPerSend}};
 }
 
+// Triangles one image transforms as on screen. With the view workload the
+// view decides, from none to all of the geometry's (spheres counted as
+// triangles): half of them keeps the estimate within a factor of two of
+// either end's transform time.
+double rc_triangles_in_view(const Pxpl5Common& common, const sections::SharedParams& shared) {
+  if (common.workload != Pxpl5WorkloadKind::view || !shared.scene) return static_cast<double>(common.synthetic.triangles);
+  const renderer::Scene scene = renderer::make_scene(shared.scene->geometry, renderer::SphereForm::native);
+  return 0.5 * static_cast<double>(scene.triangles().size() + scene.spheres().size());
+}
+
 std::vector<EventRate> rc_event_rates(const pxpl5::RcParams& p, const Pxpl5Common& common,
-                                      const params::SharedParams& shared) {
+                                      const sections::SharedParams& shared) {
   const double eyes = common.stereo ? 2.0 : 1.0;
-  const double triangles = static_cast<double>(common.synthetic.triangles);
+  const double triangles = rc_triangles_in_view(common, shared);
   const double bins = triangles * common.synthetic.regions_per_triangle;
   const double slaves = p.slaves();
   const double regions = grid_of(shared).regions();
@@ -82,9 +94,19 @@ std::vector<EventRate> rc_event_rates(const pxpl5::RcParams& p, const Pxpl5Commo
   // its commands (at most all of them), the end-of-frame transfer, the
   // shading wait and the copy.
   const double holders = std::min(slaves, std::max(1.0, common.synthetic.regions_per_triangle * triangles / regions));
+  // A copy that holds its renderer waits for it too; a swap held back to a
+  // frame's start hands the frame over one event later.
   const double per_region = slaves * kEventsPerHop + holders * (kEventsPerTransfer + 1.0) + kEventsPerTransfer + 2.0 +
-                            kEventsPerCopy;
-  return {{key, "pxpl5", frames_per_s * (eyes * regions * per_region + kEventsPerSend + 4.0)}};
+                            kEventsPerCopy + (p.copy_holds_renderer ? 2.0 : 0.0);
+  const double per_frame = kEventsPerSend + 4.0 + (p.swap_at == pxpl5::SwapAt::frame_start ? 1.0 : 0.0);
+  std::vector<EventRate> rates{{key, "pxpl5", frames_per_s * (eyes * regions * per_region + per_frame)}};
+  if (p.host_waits_for_new_sample) {
+    // Every sample becomes visible as an event, and may wake the waiting host.
+    const double tracker_hz = 1.0 / shared.tracker.period.to_seconds();
+    rates.push_back({"/tracker/rate_hz", "transport", tracker_hz});
+    rates.push_back({"/tracker/rate_hz", "pxpl5", tracker_hz});
+  }
+  return rates;
 }
 
 }  // namespace latsim::pipelines

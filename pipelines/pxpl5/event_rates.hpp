@@ -13,11 +13,11 @@ namespace latsim::pipelines {
 /// Slats: fields per second (at most one per refresh) times the events of
 /// each field's ring messages and region copies, and the host's sends.
 std::vector<EventRate> slats_event_rates(const pxpl5::SlatsParams& p, const Pxpl5Common& common,
-                                         const params::SharedParams& shared);
+                                         const sections::SharedParams& shared);
 
 /// Rendering Control: frames per second (at most one per refresh) times the
 /// events of each eye's region tokens, bin transfers and copies.
 std::vector<EventRate> rc_event_rates(const pxpl5::RcParams& p, const Pxpl5Common& common,
-                                      const params::SharedParams& shared);
+                                      const sections::SharedParams& shared);
 
 }  // namespace latsim::pipelines

@@ -30,6 +30,9 @@ class Pxpl5RcPipeline final : public Pipeline {
     wiring_->expect_photon_time([this, &ctx](des::Time t) { return ctx.photon_time_after(t + wiring_->read_to_copy_end()); });
     engine_ = std::make_unique<pxpl5::RcEngine>(ctx.sim, p_.rc, wiring_->field_timing(), wiring_->grid(),
                                                 wiring_->workload(p_.common), wiring_->hooks());
+    // A host that waits for the tracker wakes when a sample becomes visible (no events otherwise).
+    if (p_.rc.host_waits_for_new_sample)
+      ctx.host.on_delivery([this](const tracker::TrackerSample&, des::Time) { engine_->sample_visible(); });
     engine_->start(ctx.sim.now() + ctx.duration);
   }
 
@@ -39,7 +42,7 @@ class Pxpl5RcPipeline final : public Pipeline {
                                    "missed_refreshes"});
   }
 
-  std::vector<EventRate> event_rates(const params::SharedParams& shared) const override {
+  std::vector<EventRate> event_rates(const sections::SharedParams& shared) const override {
     return rc_event_rates(p_.rc, p_.common, shared);
   }
 
@@ -49,7 +52,7 @@ class Pxpl5RcPipeline final : public Pipeline {
   std::unique_ptr<pxpl5::RcEngine> engine_;
 };
 
-void bind(scenario::Section& s, Pxpl5RcPipeline::Params& p, const params::SharedParams& shared) {
+void bind(scenario::Section& s, Pxpl5RcPipeline::Params& p, const sections::SharedParams& shared) {
   pxpl5::RcParams& r = p.rc;
   bind_hardware(s, r.hw);
   s.integer("graphics_processors", r.graphics_processors, {.min = 2.0, .max = 256.0, .doc = "one master plus the slaves"});
@@ -62,17 +65,41 @@ void bind(scenario::Section& s, Pxpl5RcPipeline::Params& p, const params::Shared
   s.duration("reject_us_per_triangle", r.reject_time_per_triangle,
              {.unit = "us", .doc = "one eye, a triangle outside the view: transform its corners, clip test (view workload)"});
   s.duration("binitize_us_per_bin", r.binitize_time_per_bin, {.unit = "us", .doc = "one command into one region's bin"});
+  s.duration("sphere_transform_us", r.sphere_transform_time,
+             {.unit = "us", .doc = "one eye, a sphere on screen: transform its centre and radius, set up its quadratics"});
+  s.duration("sphere_reject_us", r.sphere_reject_time,
+             {.unit = "us", .doc = "one eye, a sphere outside the view: transform its centre, clip test"});
+  s.integer("words_per_sphere_command", r.words_per_sphere_command,
+            {.min = 1.0, .max = 4096.0, .doc = "one sphere for one eye: disk, z and normal quadratics, colour"});
+  s.check("max_message_words", r.hw.max_message_words >= r.words_per_sphere_command,
+          "must hold at least one sphere command (words_per_sphere_command)");
+  s.duration("render_us_per_sphere_command", r.render_time_per_sphere_command,
+             {.unit = "us", .doc = "one sphere command into one region (quadratic expressions)"});
   s.duration("token_hop_us", r.token_hop_time, {.unit = "us", .doc = "a region token from one processor to the next"});
   s.duration("region_shade_us", r.region_shade_time, {.unit = "us", .doc = "end-of-frame (deferred shading) commands"});
   s.integer("end_of_frame_words", r.end_of_frame_words, {.min = 0.0, .max = 1048576.0, .doc = "end-of-frame commands on the ring"});
   s.object(
-      "host", r.host_read,
-      [](scenario::Section& h, pxpl5::HostRead& read) {
-        h.choice("read", read, {{"send_start", pxpl5::HostRead::send_start}, {"late", pxpl5::HostRead::late}},
+      "host", r,
+      [](scenario::Section& h, pxpl5::RcParams& rc) {
+        h.choice("read", rc.host_read, {{"send_start", pxpl5::HostRead::send_start}, {"late", pxpl5::HostRead::late}},
                  {.doc = "send_start: the tracker is read as SEND starts; late: as EDIT starts, when the slaves "
                          "first need the viewing transforms"});
+        h.flag("wait_for_new_sample", rc.host_waits_for_new_sample,
+               {.doc = "SEND first waits until the host sees a tracker sample newer than the previous frame's (an "
+                       "application blocking on the tracker; examined in docs/pxpl5.md)"});
       },
-      {.doc = "when the host reads the tracker"});
+      {.doc = "when the host reads the tracker, and whether it waits for a new sample"});
+  s.flag("copy_holds_renderer", r.copy_holds_renderer,
+         {.doc = "a region's COPY holds the renderer that rendered it, as Slats' copies do (an assumption: "
+                 "docs/pxpl5.md)"});
+  s.choice("swap_at", r.swap_at,
+           {{"any_field", pxpl5::SwapAt::any_field}, {"frame_start", pxpl5::SwapAt::frame_start}},
+           {.doc = "any_field: the first retrace after the pair's COPY; frame_start: on an interlaced display only "
+                   "a retrace that starts a frame (an assumption: docs/pxpl5.md)"});
+  s.choice("stereo_swap", r.stereo_swap,
+           {{"together", pxpl5::StereoSwap::together}, {"per_eye", pxpl5::StereoSwap::per_eye}},
+           {.doc = "together: both frame buffers swap after the pair's last COPY (SPEC.md section 4); per_eye: each "
+                   "after its own eye's COPY (examined against the published minimum case: docs/pxpl5.md)"});
   bind_pxpl5_common(s, shared, r.hw, p.common);
   // What one frame of the synthetic workload costs must fit the run's clock.
   const double triangles = static_cast<double>(p.common.synthetic.triangles) * (p.common.stereo ? 2.0 : 1.0);
@@ -96,7 +123,11 @@ void bind(scenario::Section& s, Pxpl5RcPipeline::Params& p, const params::Shared
   p.common.view_spans = {{at + "/ring_mwords_per_s", s_per_word * r.hw.words_per_command, true, true},{at + "/transform_us_per_triangle", r.transform_time_per_triangle.to_seconds(), true, false},
                          {at + "/reject_us_per_triangle", r.reject_time_per_triangle.to_seconds(), true, false},
                          {at + "/binitize_us_per_bin", r.binitize_time_per_bin.to_seconds(), true, true},
-                         {at + "/render_us_per_command", r.hw.render_time_per_command.to_seconds(), true, true}};
+                         {at + "/render_us_per_command", r.hw.render_time_per_command.to_seconds(), true, true},
+                         {at + "/sphere_transform_us", r.sphere_transform_time.to_seconds(), true, false, true},
+                         {at + "/render_us_per_sphere_command", r.render_time_per_sphere_command.to_seconds(), true,
+                          true, true}};
+  p.common.draws_spheres = true;
 }
 
 }  // namespace

@@ -44,7 +44,7 @@ class Pxpl5SlatsPipeline final : public Pipeline {
     });
   }
 
-  std::vector<EventRate> event_rates(const params::SharedParams& shared) const override {
+  std::vector<EventRate> event_rates(const sections::SharedParams& shared) const override {
     return slats_event_rates(p_.slats, p_.common, shared);
   }
 
@@ -69,7 +69,7 @@ class Pxpl5SlatsPipeline final : public Pipeline {
   std::unique_ptr<pxpl5::SlatsEngine> engine_;
 };
 
-void bind(scenario::Section& s, Pxpl5SlatsPipeline::Params& p, const params::SharedParams& shared) {
+void bind(scenario::Section& s, Pxpl5SlatsPipeline::Params& p, const sections::SharedParams& shared) {
   pxpl5::SlatsParams& q = p.slats;
   bind_hardware(s, q.hw);
   s.duration("gp_us_per_triangle", q.gp_time_per_triangle,

@@ -60,12 +60,13 @@ pxpl5::WorkloadSource& Pxpl5Wiring::workload(const Pxpl5Common& common) {
     workload_ = std::make_unique<pxpl5::SyntheticWorkload>(common.synthetic, g.regions(), ctx_->stream("pxpl5.bins"));
     return *workload_;
   }
-  const renderer::Scene scene = renderer::make_scene(ctx_->scene->geometry);
-  // Every triangle of the geometry may be in view of each eye and touch
+  const renderer::Scene scene = renderer::make_scene(
+      ctx_->scene->geometry, common.draws_spheres ? renderer::SphereForm::native : renderer::SphereForm::tessellated);
+  // Every primitive of the geometry may be in view of each eye and touch
   // every region: one image must still fit the run's clock.
   for (const Pxpl5ViewSpan& span : common.view_spans) {
-    double items = static_cast<double>(scene.triangles().size());
-    std::string text = "triangles of /scene's geometry";
+    double items = static_cast<double>(span.spheres ? scene.spheres().size() : scene.triangles().size());
+    std::string text = span.spheres ? "spheres of /scene's geometry" : "triangles of /scene's geometry";
     if (span.per_eye && common.stereo) {
       items *= 2.0;
       text += " × 2 eyes";
@@ -80,13 +81,17 @@ pxpl5::WorkloadSource& Pxpl5Wiring::workload(const Pxpl5Common& common) {
   triangles.reserve(scene.triangles().size());
   for (const renderer::Triangle& t : scene.triangles())
     triangles.push_back({glm::dvec3(t.position_m[0]), glm::dvec3(t.position_m[1]), glm::dvec3(t.position_m[2])});
+  std::vector<pxpl5::WorldSphere> spheres;
+  spheres.reserve(scene.spheres().size());
+  for (const renderer::Sphere& s : scene.spheres()) spheres.push_back({glm::dvec3(s.centre_m), s.radius_m});
   const display::RasterParams& p = ctx_->display.timing().params();
   pxpl5::ViewScreen screen;
   screen.hfov_deg = ctx_->display_params.hfov_deg;
   screen.width_px = p.width_px;
   screen.height_px = p.height_px;
   screen.region_px = g.region_px;
-  workload_ = std::make_unique<pxpl5::ViewWorkload>(pxpl5::ViewBinner(std::move(triangles), screen),
+  screen.cull_back_faces = common.cull_back_faces;
+  workload_ = std::make_unique<pxpl5::ViewWorkload>(pxpl5::ViewBinner(std::move(triangles), screen, std::move(spheres)),
                                                     [this](int64_t token, int eye) {
                                                       const tracker::Pose pose = eye_pose_of_token(token, eye);
                                                       return tracker::Pose{pose.position_m, pose.orientation};
@@ -99,6 +104,10 @@ pxpl5::EngineHooks Pxpl5Wiring::hooks() {
   h.newest_sample = [this](des::Time t) -> int64_t {
     const auto s = ctx_->host.newest_at(t);
     return s ? remember(*s, t) : -1;
+  };
+  h.newest_index = [this](des::Time t) -> int64_t {
+    const auto s = ctx_->host.newest_at(t);
+    return s ? s->index : -1;
   };
   h.sample_age_ms = [this](int64_t older, int64_t newer) {
     const auto a = poses_.find(older), b = poses_.find(newer);
@@ -170,9 +179,10 @@ void Pxpl5Wiring::report(const pxpl5::Utilisation& u, int64_t frames_completed) 
   r.set("utilisation.copy", u.copy);
   r.set("frames_completed", frames_completed);
   if (workload_) r.set("display_list_triangles", workload_->triangles());
+  if (workload_ && workload_->spheres() > 0) r.set("display_list_spheres", workload_->spheres());
   r.set("images_without_sample", images_without_sample_);
   for (const char* name : {"transform_to_copy_end_fields", "copy_ms_per_frame"})
-    if (!samples_by_name_.count(name)) r.publish(name, des::Distribution{});
+    if (!samples_by_name_.count(name)) r.publish(name, stats::Distribution{});
 }
 
 void bind_hardware(scenario::Section& s, pxpl5::HardwareParams& h) {
@@ -192,7 +202,7 @@ void bind_hardware(scenario::Section& s, pxpl5::HardwareParams& h) {
              {.unit = "us", .doc = "one triangle command into one region"});
 }
 
-void bind_pxpl5_common(scenario::Section& s, const params::SharedParams& shared, const pxpl5::HardwareParams& hw,
+void bind_pxpl5_common(scenario::Section& s, const sections::SharedParams& shared, const pxpl5::HardwareParams& hw,
                        Pxpl5Common& common) {
   common.stereo = shared.host.stereo;
   s.check("frame_buffers", !(common.stereo && hw.frame_buffers < 2), "stereo needs one frame buffer per eye (2)");
@@ -200,6 +210,9 @@ void bind_pxpl5_common(scenario::Section& s, const params::SharedParams& shared,
            {{"synthetic", Pxpl5WorkloadKind::synthetic}, {"view", Pxpl5WorkloadKind::view}},
            {.doc = "synthetic: /scene's triangles and regions_per_triangle, the same every image; view: /scene's "
                    "geometry inside each eye's view at the pose used, binned by screen bounding box"});
+  s.flag("cull_back_faces", common.cull_back_faces,
+         {.doc = "workload view: the application culls back faces (PHIGS PLUS face culling); a triangle facing away "
+                 "costs what one outside the view does"});
   s.check_pointer("/scene", shared.scene.has_value(), "Pixel-Planes 5 needs a scene (its triangles)");
   // Every triangle is dealt to a bin one by one.
   s.check_pointer("/scene/triangles", !shared.scene || shared.scene->triangles <= 100'000'000,

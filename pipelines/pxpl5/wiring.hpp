@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "latsim/des/stats.hpp"
+#include "latsim/stats/stats.hpp"
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/pxpl5/engine_hooks.hpp"
 #include "latsim/pxpl5/field_timing.hpp"
@@ -34,6 +34,7 @@ struct Pxpl5ViewSpan {
   double per_item_s = 0.0;
   bool per_eye = false;      ///< items are counted once per eye (Rendering Control), not once for both (Slats)
   bool per_region = false;   ///< and in every region (the most a triangle can touch)
+  bool spheres = false;      ///< items are the spheres, not the triangles
 };
 
 /// What both pipelines read besides their own costs.
@@ -42,13 +43,15 @@ struct Pxpl5Common {
   Pxpl5WorkloadKind workload = Pxpl5WorkloadKind::synthetic;
   pxpl5::Workload synthetic;
   std::vector<Pxpl5ViewSpan> view_spans;  ///< workload view: what one image costs must fit the run's clock
+  bool draws_spheres = false;             ///< the pipeline has sphere primitives (Rendering Control)
+  bool cull_back_faces = false;           ///< workload view: back-facing triangles are rejected
 };
 
 /// Declares the /pipeline keys both Pixel-Planes 5 pipelines share.
 void bind_hardware(scenario::Section& s, pxpl5::HardwareParams& p);
 /// Declares `workload` and what both read from the shared sections: stereo and
 /// the /scene workload (both required).
-void bind_pxpl5_common(scenario::Section& s, const params::SharedParams& shared, const pxpl5::HardwareParams& hw,
+void bind_pxpl5_common(scenario::Section& s, const sections::SharedParams& shared, const pxpl5::HardwareParams& hw,
                        Pxpl5Common& common);
 
 /// Connects a pxpl5 engine to a run: host samples in, images to the recorder
@@ -93,7 +96,7 @@ class Pxpl5Wiring {
   std::map<int64_t, tracker::PosePrediction> poses_;  // by token, recent samples' only
   int64_t next_token_ = 0;
   des::Time read_to_copy_end_;
-  std::map<std::string, des::Distribution> samples_by_name_;
+  std::map<std::string, stats::Distribution> samples_by_name_;
   std::map<std::pair<int64_t, int>, int64_t> image_ids_;  // (frame, eye) -> recorder id, recent ones only
   std::unique_ptr<pxpl5::WorkloadSource> workload_;
   int64_t images_without_sample_ = 0;

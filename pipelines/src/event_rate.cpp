@@ -12,7 +12,7 @@ double paced_per_s(double period_s, double cap_hz) {
   return std::min(cap_hz, 1.0 / period_s);
 }
 
-std::vector<EventRate> shared_event_rates(const params::SharedParams& p) {
+std::vector<EventRate> shared_event_rates(const sections::SharedParams& p) {
   std::vector<EventRate> rates;
   const double tracker_hz = 1.0 / p.tracker.period.to_seconds();
   rates.push_back({"/tracker/rate_hz", "tracker", tracker_hz});

@@ -37,13 +37,13 @@ void FigureTable::set(const std::string& name, FigureValue value) {
   values_.emplace(name, std::move(value));
 }
 
-void FigureTable::publish(const std::string& name, const des::Distribution& d) {
+void FigureTable::publish(const std::string& name, const stats::Distribution& d) {
   if (values_.count(name) != 0 || published_.count(name) != 0)
     throw std::logic_error("figure \"" + name + "\" is published twice; a figure has one value");
   published_.emplace(name, d);
 }
 
-Json FigureTable::distribution_json(const des::Distribution& d) {
+Json FigureTable::distribution_json(const stats::Distribution& d) {
   const auto s = d.summary();
   Json j{{"count", s.count}, {"mean", s.mean}, {"stddev", s.stddev}, {"min", s.min}, {"p50", s.p50},
          {"p90", s.p90},     {"p99", s.p99},   {"p999", s.p999},     {"max", s.max}};
@@ -54,7 +54,7 @@ Json FigureTable::distribution_json(const des::Distribution& d) {
   return j;
 }
 
-Json FigureTable::to_json(const std::map<std::string, des::Distribution>& distributions,
+Json FigureTable::to_json(const std::map<std::string, stats::Distribution>& distributions,
                           const std::map<std::string, int64_t>& counters) const {
   Json f = Json::object();
   for (const auto& [name, d] : distributions) f[name] = distribution_json(d);

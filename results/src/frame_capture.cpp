@@ -328,7 +328,7 @@ struct FrameCapture::Impl {
   }
 };
 
-FrameCapture::FrameCapture(const params::FramesParams& frames, renderer::SceneSpec scene, FrameCaptureInputs inputs)
+FrameCapture::FrameCapture(const sections::FramesParams& frames, renderer::SceneSpec scene, FrameCaptureInputs inputs)
     : impl_(std::make_unique<Impl>(std::move(inputs))) {
   Impl& m = *impl_;
   for (double t : frames.at_s) m.at_fields.insert(m.in.timing.field_at_or_after(des::Time::from_seconds(t)));

@@ -19,6 +19,10 @@ void FrameRecorder::shown(int64_t frame, des::Time first_photon) {
   if (log_) log_->shown(frame, first_photon, *files_);
 }
 
+void FrameRecorder::flipped(int64_t frame, des::Time t) {
+  if (log_) log_->flipped(frame, t);
+}
+
 void FrameRecorder::log_presentmon(RunFiles& files, std::string application) {
   files_ = &files;
   log_ = std::make_unique<PresentMonLog>(std::move(application), presents_);

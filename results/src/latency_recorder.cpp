@@ -3,20 +3,19 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <numbers>
 
 #include "latsim/results/frame_recorder.hpp"
 #include "latsim/results/timeline.hpp"
+#include "latsim/units/units.hpp"
 
 namespace latsim::results {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 }  // namespace
 
-LatencyRecorder::LatencyRecorder(const des::Simulator& sim, const tracker::MotionSource& motion, const HostFeed& host,
+LatencyRecorder::LatencyRecorder(const des::Simulator& sim, const tracker::MotionSource& motion, const tracker::HostFeed& host,
                                  ImageBook& images, const display::RasterTiming& timing, ProbeSet probes, double ipd_m,
                                  bool stereo, bool keep_samples)
     : sim_(sim),
@@ -29,7 +28,7 @@ LatencyRecorder::LatencyRecorder(const des::Simulator& sim, const tracker::Motio
       stereo_(stereo),
       keep_samples_(keep_samples) {
   const double w = timing_.params().width_px, h = timing_.params().height_px;
-  tan_half_h_ = std::tan(probes_.hfov_deg * kPi / 360.0);
+  tan_half_h_ = std::tan(units::deg_to_rad(0.5 * probes_.hfov_deg));
   tan_half_v_ = tan_half_h_ * h / w;
   // Pixels per radian at the image centre of a pinhole display.
   rad_per_px_ = 2.0 * tan_half_h_ / w;
@@ -40,20 +39,20 @@ void LatencyRecorder::image_due(des::Time due_by) {
   due_.push_back(due_by);
 }
 
-void LatencyRecorder::record(des::Distribution*& d, const char* name, double value) {
+void LatencyRecorder::record(stats::Distribution*& d, const char* name, double value) {
   if (!d) d = &dists_.try_emplace(name, 0.005, keep_samples_).first->second;
   d->add(value);
   if (sample_log_.on()) sample_log_.add(sim_.now().to_ms(), name, value);
 }
 
-void LatencyRecorder::record(des::Distribution*& d, const char* name, des::Time value) {
+void LatencyRecorder::record(stats::Distribution*& d, const char* name, des::Time value) {
   if (!d) d = &dists_.try_emplace(name, 0.005, keep_samples_).first->second;
   runs_.close(d);  // a span figure's gathered run goes first
   d->add(value);
   if (sample_log_.on()) sample_log_.add(sim_.now().to_ms(), name, value.to_ms());
 }
 
-des::Distribution& LatencyRecorder::figure(des::Distribution*& d, const char* name) {
+stats::Distribution& LatencyRecorder::figure(stats::Distribution*& d, const char* name) {
   if (!d) d = &dists_.try_emplace(name, 0.005, keep_samples_).first->second;
   return *d;
 }
@@ -86,7 +85,7 @@ void LatencyRecorder::record_spans(const display::ScanoutSpan& span, des::Time o
 }
 
 void LatencyRecorder::log_run(const char* name, const display::ScanoutSpan& span, des::Time origin) {
-  des::TickStepper photon(span.photons), written(span.written);
+  stats::TickStepper photon(span.photons), written(span.written);
   for (uint64_t i = 0; i < span.photons.count; ++i, photon.step(), written.step())
     sample_log_.add(std::min(written.time(), sim_.now()).to_ms(), name, (photon.time() - origin).to_ms());
 }
@@ -365,7 +364,7 @@ void LatencyRecorder::add_prediction_error(const tracker::PosePrediction& p, boo
   const tracker::Pose truth = motion_.pose_at(p.target);
   record(prediction_horizon_, "prediction_horizon_ms", p.horizon().to_ms());
   if (orientation) {
-    const double deg = tracker::angle_between(p.pose.orientation, truth.orientation) * 180.0 / kPi;
+    const double deg = units::rad_to_deg(tracker::angle_between(p.pose.orientation, truth.orientation));
     record(prediction_deg_, "prediction_error_deg", deg);
     add_split(prediction_split_, "prediction_error_deg", deg, p.target);
   }

@@ -2,15 +2,14 @@
 // how far from where they are seen when their pixels light up.
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "latsim/results/latency_recorder.hpp"
+#include "latsim/units/units.hpp"
 
 namespace latsim::results {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 // Angle between two directions, stable for tiny and for near-opposite angles.
 double angle_between_dirs(const glm::dvec3& a, const glm::dvec3& b) {
@@ -25,7 +24,7 @@ void LatencyRecorder::registration(int eye, const glm::dvec3& point_m, const glm
   const glm::dvec3 seen = truth.orientation * drawn_head_dir;
   const glm::dvec3 should = glm::normalize(point_m - truth.position_m);
   const double angle = angle_between_dirs(seen, should);
-  const double arcmin = angle * 180.0 / kPi * 60.0;
+  const double arcmin = units::rad_to_deg(angle) * units::kArcminPerDeg;
   record(reg_arcmin_, "registration_error_arcmin", arcmin);
   record(reg_px_, "registration_error_px", angle / rad_per_px_);
   add_split(reg_split_, "registration_error_arcmin", arcmin, photon);

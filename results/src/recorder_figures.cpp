@@ -29,11 +29,11 @@ void LatencyRecorder::add(const std::string& name, double value) {
   if (sample_log_.on()) sample_log_.add(sim_.now().to_ms(), name, value);
 }
 
-des::Distribution& LatencyRecorder::distribution_ref(const std::string& name) {
+stats::Distribution& LatencyRecorder::distribution_ref(const std::string& name) {
   auto it = dists_.find(name);
   if (it == dists_.end()) {
     refuse(name, "add");
-    it = dists_.emplace(name, des::Distribution(0.005, keep_samples_)).first;
+    it = dists_.emplace(name, stats::Distribution(0.005, keep_samples_)).first;
   }
   return it->second;
 }
@@ -60,13 +60,13 @@ void LatencyRecorder::object(const std::string& name) {
   table_.object(name);
 }
 
-void LatencyRecorder::publish(const std::string& name, const des::Distribution& d) {
+void LatencyRecorder::publish(const std::string& name, const stats::Distribution& d) {
   refuse(name, "publish");
   if (dists_.count(name) != 0) throw std::logic_error("figure \"" + name + "\" is already a distribution");
   table_.publish(name, d);
 }
 
-const des::Distribution* LatencyRecorder::distribution(const std::string& name) const {
+const stats::Distribution* LatencyRecorder::distribution(const std::string& name) const {
   runs_.close_all();
   auto it = dists_.find(name);
   return it == dists_.end() ? nullptr : &it->second;

@@ -1,11 +1,10 @@
 #include "latsim/results/smear_recorder.hpp"
+#include "latsim/units/units.hpp"
 
-#include <numbers>
 
 namespace latsim::results {
 
 namespace {
-constexpr double kArcminPerRad = 10800.0 / std::numbers::pi;
 }  // namespace
 
 double head_angular_speed_rad_s(const tracker::MotionSource& motion, des::Time t) {
@@ -20,10 +19,10 @@ SmearRecorder::SmearRecorder(LatencyRecorder& recorder, const tracker::MotionSou
 
 void SmearRecorder::on_scanout(const display::ScanoutSpan& span) {
   // One value per sample of the span, each at its own photon time.
-  des::TickStepper t(span.photons);
+  stats::TickStepper t(span.photons);
   for (uint64_t i = 0; i < span.photons.count; ++i, t.step()) {
     const double speed = still_ ? 0.0 : head_angular_speed_rad_s(motion_, t.time());
-    smear_.add(speed * span.lit_duration.to_seconds() * kArcminPerRad);
+    smear_.add(speed * span.lit_duration.to_seconds() * units::kArcminPerRad);
   }
 }
 

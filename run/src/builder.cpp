@@ -4,11 +4,11 @@
 #include <cstdio>
 #include <optional>
 #include <string>
-#include <numbers>
 #include <stdexcept>
 
 #include "latsim/run/builtin_pipelines.hpp"
-#include "latsim/tracker/params.hpp"
+#include "latsim/tracker/motion_and_transport.hpp"
+#include "latsim/units/units.hpp"
 
 namespace latsim::run {
 
@@ -26,7 +26,7 @@ ProbeSet default_probes(const tracker::Pose& start, double hfov_deg) {
   p.hfov_deg = hfov_deg;
   for (int i = 0; i < 24; ++i)
     for (int k = -1; k <= 1; ++k) {
-      const double yaw = i * 15.0 * std::numbers::pi / 180.0, pitch = k * 15.0 * std::numbers::pi / 180.0;
+      const double yaw = units::deg_to_rad(i * 15.0), pitch = units::deg_to_rad(k * 15.0);
       const glm::dvec3 dir(-std::sin(yaw) * std::cos(pitch), std::sin(pitch), -std::cos(yaw) * std::cos(pitch));
       p.points_m.push_back(start.position_m + 2.0 * dir);
     }
@@ -35,8 +35,8 @@ ProbeSet default_probes(const tracker::Pose& start, double hfov_deg) {
 
 /// Declares (reading mode: reads) the whole scenario: the shared sections,
 /// then /pipeline through the declaration of the pipeline its "type" names.
-PipelineFactory bind_scenario(scenario::Section& root, params::SharedParams& shared, const PipelineRegistry& registry) {
-  params::bind(root, shared);
+PipelineFactory bind_scenario(scenario::Section& root, sections::SharedParams& shared, const PipelineRegistry& registry) {
+  sections::bind(root, shared);
   PipelineFactory factory;
   std::vector<scenario::ModeDecl> modes;
   for (const auto& named : registry.entries()) {
@@ -69,7 +69,7 @@ PipelineFactory bind_scenario(scenario::Section& root, params::SharedParams& sha
 // fixed phase is the user's choice), neither clock drifts (rate error,
 // display clock noise) nor jitters, and the spread is at least 0.5 ms.
 std::optional<std::string> phase_luck(const Run& run) {
-  const params::SharedParams& p = run.shared;
+  const sections::SharedParams& p = run.shared;
   const des::Clock* tracker = run.clocks->find("tracker");
   const des::Clock* display = run.clocks->find("display");
   if (!tracker || !display || !tracker->drawn || !display->drawn) return std::nullopt;
@@ -105,7 +105,7 @@ std::optional<std::string> phase_luck(const Run& run) {
 }
 
 void resolve_clocks(Run& run, uint64_t replication) {
-  params::SharedParams& p = run.shared;
+  sections::SharedParams& p = run.shared;
   run.clocks = std::make_unique<des::RunClocks>(run.seed, replication);
   // A rate error that leaves a period no 64-bit fraction holds is the scenario's problem, at its key.
   auto resolve = [&run](const char* name, const std::string& prefix, des::RationalSeconds period,
@@ -164,7 +164,7 @@ std::shared_ptr<const display::ClockNoise> clock_noise(const display::RasterTimi
 scenario::ObjectSchema schema_of(const PipelineRegistry& registry) {
   scenario::ObjectSchema root;
   scenario::Section s(root);
-  params::SharedParams shared;
+  sections::SharedParams shared;
   (void)bind_scenario(s, shared, registry);
   return root;
 }
@@ -193,7 +193,7 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
   run.duration = des::Time::from_seconds(run.shared.duration_s);
   run.seed = options.seed ? *options.seed : static_cast<uint64_t>(run.shared.seed);
   resolve_clocks(run, options.replication);
-  const params::SharedParams& p = run.shared;
+  const sections::SharedParams& p = run.shared;
   // A run that could never finish is refused before anything is built.
   built_from("/pipeline", "pipeline", [&] {
     run.pipeline = make_pipeline();

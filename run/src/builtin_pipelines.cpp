@@ -12,7 +12,8 @@
   X(arp_pipeline)                   \
   X(priority_pipeline)              \
   X(region_priority_pipeline)       \
-  X(frame_stages_pipeline)
+  X(frame_stages_pipeline)          \
+  X(present_replay_pipeline)
 
 // The registry's entries are defined in the pipelines' own folders.
 namespace latsim::pipelines {

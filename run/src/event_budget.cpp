@@ -30,7 +30,7 @@ nlohmann::json EventEstimate::to_json() const {
   return {{"events", events}, {"events_without_steps", events_only}, {"dominant", dominant}, {"rates", rates_json}};
 }
 
-EventEstimate estimate_events(const params::SharedParams& p, const pipelines::Pipeline& pipeline) {
+EventEstimate estimate_events(const sections::SharedParams& p, const pipelines::Pipeline& pipeline) {
   EventEstimate e;
   e.duration_s = p.duration_s;
   e.rates = pipelines::shared_event_rates(p);

@@ -8,7 +8,7 @@
 #include "latsim/scenario/json_text.hpp"
 #include "latsim/scenario/readable.hpp"
 #include "latsim/scenario/schema.hpp"
-#include "params_internal.hpp"
+#include "section_internal.hpp"
 
 namespace latsim::scenario {
 

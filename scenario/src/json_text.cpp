@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "latsim/des/input_file.hpp"
+#include "latsim/io/input_file.hpp"
 #include "latsim/scenario/config.hpp"
 #include "latsim/scenario/readable.hpp"
 
@@ -159,8 +159,8 @@ void run_parser(std::string_view text, const std::string& source, const JsonLimi
 
 std::string read_text_file(const std::filesystem::path& file, std::string_view what, size_t max_bytes) {
   try {
-    return des::read_input_file(file, max_bytes);
-  } catch (const des::InputFileError& e) {
+    return io::read_input_file(file, max_bytes);
+  } catch (const io::InputFileError& e) {
     throw ScenarioError("", "cannot read the " + std::string(what) + ": " + e.what(), file);
   }
 }

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "latsim/scenario/json_text.hpp"
-#include "latsim/scenario/params.hpp"
-#include "params_internal.hpp"
+#include "latsim/scenario/section.hpp"
+#include "section_internal.hpp"
 
 namespace latsim::scenario {
 

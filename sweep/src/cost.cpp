@@ -3,11 +3,11 @@
 #include <algorithm>
 
 #include "latsim/display/display.hpp"
-#include "latsim/scenario/params.hpp"
+#include "latsim/scenario/section.hpp"
 
 namespace latsim::sweep {
 
-double expected_cost(const params::SharedParams& p) {
+double expected_cost(const sections::SharedParams& p) {
   const display::RasterParams& raster = p.display.raster;
   const double fields_per_s = 1.0 / raster.field_period.to_seconds();
   // Scanout events come per active line or pixel; blanking is one wait.
@@ -20,9 +20,9 @@ double expected_cost(const params::SharedParams& p) {
 }
 
 double expected_cost(const scenario::ScenarioDocument& doc) {
-  params::SharedParams p;
+  sections::SharedParams p;
   scenario::Section root(doc.root());
-  params::bind(root, p);
+  sections::bind(root, p);
   return expected_cost(p);
 }
 

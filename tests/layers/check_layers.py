@@ -5,9 +5,10 @@ Each library may include its own headers and those of the libraries below it
 (ALLOWED). The test reads every source and header of every library folder,
 finds each `#include "latsim/<lib>/..."` and fails on an include of a library
 that is not allowed, naming the file and line. A pipeline folder's own
-headers ("frame_stages/spec.hpp") belong to the pipelines library. A new
-top-level folder with sources must be given its place here, or the test
-fails: the layers are declared, not discovered.
+headers ("frame_stages/spec.hpp") belong to the pipelines library. The Python
+module (python/) is checked like the command line (app/). A new top-level
+folder with sources must be given its place here, or the test fails: the
+layers are declared, not discovered.
 """
 import pathlib
 import re
@@ -16,29 +17,36 @@ import sys
 ROOT = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else ".")
 
 MODELS = {"tracker", "display", "renderer", "pxpl5", "arp", "capture", "measurement"}
+# The floor every library stands on: units and angle constants, the event
+# kernel, statistics and input files.
+BASE = {"units", "des", "stats", "io"}
 # Library -> the latsim libraries it may include (its own included).
 ALLOWED = {
-    "des": {"des"},
-    "scenario": {"des", "scenario"},
-    "tracker": {"des", "tracker"},
-    "display": {"des", "display"},
-    "capture": {"des", "capture"},
-    "renderer": {"des", "tracker", "capture", "renderer"},
-    "pxpl5": {"des", "tracker", "pxpl5"},
-    "arp": {"des", "tracker", "renderer", "arp"},
-    "measurement": {"des", "tracker", "measurement"},
-    "params": {"des", "scenario", "params"} | MODELS,
-    "results": {"des", "scenario", "params", "results"} | MODELS,
-    "pipelines": {"des", "scenario", "params", "results", "pipelines"} | MODELS,
-    "run": {"des", "scenario", "params", "results", "pipelines", "run"} | MODELS,
-    "sweep": {"des", "scenario", "params", "results", "run", "sweep"} | MODELS,
-    "app": {"des", "scenario", "params", "results", "run", "sweep"} | MODELS,
+    "units": {"units"},
+    "des": {"units", "des"},
+    "stats": {"units", "des", "stats"},
+    "io": {"units", "io"},
+    "scenario": {"units", "des", "io", "scenario"},
+    "tracker": {"units", "des", "io", "tracker"},
+    "display": {"units", "des", "stats", "display"},
+    "capture": {"units", "des", "io", "capture"},
+    "renderer": {"units", "des", "io", "tracker", "capture", "renderer"},
+    "pxpl5": {"units", "des", "tracker", "pxpl5"},
+    "arp": {"units", "des", "stats", "tracker", "renderer", "arp"},
+    "measurement": {"units", "des", "tracker", "measurement"},
+    "sections": BASE | {"scenario", "sections"} | MODELS,
+    "results": BASE | {"scenario", "sections", "results"} | MODELS,
+    "pipelines": BASE | {"scenario", "sections", "results", "pipelines"} | MODELS,
+    "run": BASE | {"scenario", "sections", "results", "pipelines", "run"} | MODELS,
+    "sweep": BASE | {"scenario", "sections", "results", "run", "sweep"} | MODELS,
+    # The two programs on top: the command line and the Python module.
+    "app": BASE | {"scenario", "sections", "results", "run", "sweep"} | MODELS,
+    "python": BASE | {"scenario", "sections", "results", "run", "sweep"} | MODELS,
 }
 # Folder of each library, relative to the root.
 FOLDERS = {name: (f"models/{name}" if name in MODELS else name) for name in ALLOWED}
 # Top-level folders that hold no library.
-NOT_LIBRARIES = {"tests", "bench", "analysis", "docs", "scenarios", "scripts", "cmake", "build", "models", "examples",
-                 "python"}
+NOT_LIBRARIES = {"tests", "bench", "analysis", "docs", "scenarios", "scripts", "cmake", "build", "models", "examples"}
 
 INCLUDE = re.compile(r'^\s*#\s*include\s*"latsim/([a-z0-9_]+)/')
 

@@ -11,19 +11,19 @@
 #include <vector>
 
 #include "latsim/des/random.hpp"
-#include "latsim/des/stats.hpp"
-#include "latsim/des/tick_run.hpp"
+#include "latsim/stats/stats.hpp"
+#include "latsim/stats/tick_run.hpp"
 
-using latsim::des::Distribution;
-using latsim::des::i128;
-using latsim::des::LogHistogram;
+using latsim::stats::Distribution;
+using latsim::stats::i128;
+using latsim::stats::LogHistogram;
 using latsim::des::RandomStream;
-using latsim::des::RunningStats;
-using latsim::des::TickRun;
-using latsim::des::tick_run_sums;
-using latsim::des::TickStepper;
+using latsim::stats::RunningStats;
+using latsim::stats::TickRun;
+using latsim::stats::tick_run_sums;
+using latsim::stats::TickStepper;
 using latsim::des::Time;
-using latsim::des::U256;
+using latsim::stats::U256;
 
 namespace {
 
@@ -82,10 +82,10 @@ TEST_CASE("tick run sums in closed form equal brute-force sums", "[stats][tick_r
   RandomStream rng(11, "stats.tick_sums");
   for (int trial = 0; trial < 400; ++trial) {
     const TickRun run = random_run(rng, trial % 2 == 1);
-    latsim::des::u128 sum = 0;
+    latsim::stats::u128 sum = 0;
     U256 sum_sq;
     for (uint64_t i = 0; i < run.count; ++i) {
-      const auto w = static_cast<latsim::des::u128>(run.at(i) - run.base);
+      const auto w = static_cast<latsim::stats::u128>(run.at(i) - run.base);
       sum += w;
       sum_sq = sum_sq.plus(U256::of(w * w));
     }
@@ -287,7 +287,7 @@ TEST_CASE("a run's moments are 128-bit integers while they fit, and the wide sum
     for (uint64_t i = 0; i < run.count; ++i) {
       const int64_t v = run.at(i);
       sum += v;
-      const auto m = static_cast<latsim::des::u128>(v < 0 ? -static_cast<i128>(v) : static_cast<i128>(v));
+      const auto m = static_cast<latsim::stats::u128>(v < 0 ? -static_cast<i128>(v) : static_cast<i128>(v));
       sum_sq = sum_sq.plus(U256::product(m, m));
     }
   };
@@ -296,7 +296,7 @@ TEST_CASE("a run's moments are 128-bit integers while they fit, and the wide sum
     // |base| <= 2e12 and n <= 3000: n base^2 <= 1.2e28, far below 2^127; the
     // other terms are smaller still, so the moments must fit.
     const TickRun run = random_run(rng, trial % 3 == 0);
-    const latsim::des::TickRunMoments m = latsim::des::tick_run_moments(run, tick_run_sums(run));
+    const latsim::stats::TickRunMoments m = latsim::stats::tick_run_moments(run, tick_run_sums(run));
     i128 sum = 0;
     U256 sum_sq;
     direct(run, sum, sum_sq);
@@ -311,7 +311,7 @@ TEST_CASE("a run's moments are 128-bit integers while they fit, and the wide sum
   // wide sums, and still equals its values added one by one.
   for (const int64_t base : {int64_t{1} << 62, -(int64_t{1} << 62) - 5'000'000}) {
     const TickRun run = TickRun::make(base, 7, 3'000'001, 1'000, 1'000);
-    CHECK_FALSE(latsim::des::tick_run_moments(run, tick_run_sums(run)).fits);
+    CHECK_FALSE(latsim::stats::tick_run_moments(run, tick_run_sums(run)).fits);
     RunningStats batch, loop;
     batch.add_run(run);
     batch.add_run(run.slice(0, 10));  // a short one that fits, after the wide one

@@ -12,19 +12,19 @@
 #include <vector>
 
 #include "latsim/des/random.hpp"
-#include "latsim/des/run_buckets_cache.hpp"
-#include "latsim/des/run_feed.hpp"
-#include "latsim/des/stats.hpp"
-#include "latsim/des/tick_run.hpp"
+#include "latsim/stats/run_buckets_cache.hpp"
+#include "latsim/stats/run_feed.hpp"
+#include "latsim/stats/stats.hpp"
+#include "latsim/stats/tick_run.hpp"
 
-using latsim::des::Distribution;
-using latsim::des::i128;
-using latsim::des::LogHistogram;
+using latsim::stats::Distribution;
+using latsim::stats::i128;
+using latsim::stats::LogHistogram;
 using latsim::des::RandomStream;
-using latsim::des::RunBuckets;
-using latsim::des::RunBucketsCache;
-using latsim::des::TickRun;
-using latsim::des::tick_run_sums;
+using latsim::stats::RunBuckets;
+using latsim::stats::RunBucketsCache;
+using latsim::stats::TickRun;
+using latsim::stats::tick_run_sums;
 using latsim::des::Time;
 
 namespace {
@@ -195,8 +195,8 @@ TEST_CASE("a distribution keeps a bucketed run's samples", "[stats][tick_run]") 
 
 TEST_CASE("runs fed a line at a time are gathered into the figures of the lines added one by one",
           "[stats][tick_run]") {
-  using latsim::des::RunFeed;
-  using latsim::des::TickStepper;
+  using latsim::stats::RunFeed;
+  using latsim::stats::TickStepper;
   // 60 Hz, 502 lines of 800 pixel times: a line every 1e12 / (60 * 502) ps.
   const i128 den = i128{60} * 502 * 800, line_step = i128{800} * 1'000'000'000'000;
   RunFeed feed;
@@ -233,8 +233,8 @@ TEST_CASE("runs fed a line at a time are gathered into the figures of the lines 
 
 TEST_CASE("runs whose step and den need more than 64 bits are gathered into the values of the direct formula",
           "[stats][tick_run]") {
-  using latsim::des::RunFeed;
-  using latsim::des::TickStepper;
+  using latsim::stats::RunFeed;
+  using latsim::stats::TickStepper;
   // A den of 2^70 + 12345 and a step of 3 den + 2^66 + 7: three whole ticks
   // a line, and a remainder with high bits that carries into a fourth tick
   // about every sixteenth line (2^66 / 2^70).

@@ -9,13 +9,13 @@
 #include <vector>
 
 #include "latsim/des/random.hpp"
-#include "latsim/des/stats.hpp"
+#include "latsim/stats/stats.hpp"
 
-using latsim::des::Distribution;
-using latsim::des::LogHistogram;
-using latsim::des::nearest_rank_index;
+using latsim::stats::Distribution;
+using latsim::stats::LogHistogram;
+using latsim::stats::nearest_rank_index;
 using latsim::des::RandomStream;
-using latsim::des::RunningStats;
+using latsim::stats::RunningStats;
 
 namespace {
 

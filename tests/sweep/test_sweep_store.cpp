@@ -7,7 +7,7 @@
 #include <fstream>
 #include <string>
 
-#include "latsim/des/stats.hpp"
+#include "latsim/stats/stats.hpp"
 #include "latsim/sweep/record.hpp"
 #include "latsim/sweep/segment.hpp"
 #include "scratch_dir.hpp"
@@ -25,9 +25,9 @@ namespace fs = std::filesystem;
 namespace {
 
 // A distribution figure as a run writes it (results::FigureTable): its
-// histogram made by des::Distribution::plot_histogram, the code every figure uses.
+// histogram made by stats::Distribution::plot_histogram, the code every figure uses.
 Json distribution(const std::vector<double>& samples) {
-  latsim::des::Distribution d(0.005, true);
+  latsim::stats::Distribution d(0.005, true);
   for (double x : samples) d.add(x);
   const auto s = d.summary();
   Json h = Json::array();

@@ -4,12 +4,12 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
-#include <numbers>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
 
 #include "latsim/arp/validity.hpp"
+#include "latsim/units/units.hpp"
 
 namespace latsim::arp {
 
@@ -119,7 +119,7 @@ int RegionPriorityModel::memory_of_region(int linear_region, renderer::RegionInd
 double RegionPriorityModel::warp_weight(double distance_m) const {
   if (distance_m <= 0.0) return 1.0;
   if (distance_m >= params_.warp_falloff_m) return 0.0;
-  return 0.5 * (1.0 + std::cos(std::numbers::pi * distance_m / params_.warp_falloff_m));
+  return 0.5 * (1.0 + std::cos(units::kPi * distance_m / params_.warp_falloff_m));
 }
 
 glm::dvec3 RegionPriorityModel::warp_offset_m(int memory, const glm::dvec3& vertex_m, const RegionView& view) const {

@@ -1,7 +1,7 @@
 #include "latsim/arp/screen_projection.hpp"
+#include "latsim/units/units.hpp"
 
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 namespace latsim::arp {
@@ -11,7 +11,7 @@ ScreenProjection::ScreenProjection(double hfov_deg, int width_px, int height_px)
   if (!(hfov_deg > 0.0 && hfov_deg < 180.0) || width_px <= 0 || height_px <= 0) {
     throw std::invalid_argument("screen projection: need 0 < hfov_deg < 180 and a positive size");
   }
-  focal_px_ = 0.5 * width_px / std::tan(0.5 * hfov_deg * std::numbers::pi / 180.0);
+  focal_px_ = 0.5 * width_px / std::tan(units::deg_to_rad(0.5 * hfov_deg));
 }
 
 bool ScreenProjection::project(const glm::dquat& head, const glm::dvec3& direction_world, glm::dvec2& pixel) const {

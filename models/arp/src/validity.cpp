@@ -1,9 +1,9 @@
 #include "latsim/arp/validity.hpp"
+#include "latsim/units/units.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
@@ -14,7 +14,7 @@ namespace {
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 void check_threshold(double threshold_rad) {
-  if (!(threshold_rad > 0.0) || !(threshold_rad < std::numbers::pi)) {
+  if (!(threshold_rad > 0.0) || !(threshold_rad < units::kPi)) {
     throw std::invalid_argument("validity: threshold angle must lie in (0, pi) rad");
   }
 }

@@ -29,6 +29,9 @@ const char* generation_name(Generation g) {
     case Generation::current: return "current";
     case Generation::v1: return "v1";
     case Generation::v2: return "v2";
+    case Generation::ovr_metrics: return "ovr_metrics";
+    case Generation::vrapi: return "vrapi";
+    case Generation::steamvr: return "steamvr";
     case Generation::generic: return "generic";
   }
   return "generic";
@@ -38,8 +41,12 @@ Generation detect_generation(const std::vector<std::string>& header) {
   if (has(header, "MsBetweenPresents") || has(header, "MsCPUBusy")) return Generation::current;
   if (has(header, "TimeInSeconds") || has(header, "msBetweenPresents")) return Generation::v1;
   if (has(header, "CPUBusy") || has(header, "CPUStartQPC")) return Generation::v2;
+  if (has(header, "average_frame_rate") || has(header, "app_gpu_time_microseconds")) return Generation::ovr_metrics;
+  if (has(header, "m_nFrameIndex") || has(header, "m_flClientFrameIntervalMs")) return Generation::steamvr;
   return Generation::generic;
 }
+
+bool is_presentmon(Generation g) { return g == Generation::current || g == Generation::v1 || g == Generation::v2; }
 
 bool is_display_column(const std::string& name) {
   std::string lower(name);

@@ -7,16 +7,14 @@
 #include <map>
 #include <string_view>
 
-#include "csv_row.hpp"
+#include "cell_units.hpp"
 #include "latsim/capture/capture.hpp"
-#include "latsim/des/input_file.hpp"
+#include "row_source.hpp"
 
 namespace latsim::capture {
 
 namespace {
 
-constexpr size_t kChunkBytes = size_t{1} << 20;
-constexpr size_t kMaxLineBytes = size_t{1} << 20;
 // Past this a list of names in a message is cut short: an error is one line.
 constexpr size_t kListBudgetChars = 110;
 
@@ -65,65 +63,6 @@ std::string name_list(const std::vector<std::string>& names) {
   return out;
 }
 
-/// The file read line by line from chunks, with line numbers.
-class LineSource {
- public:
-  LineSource(const std::filesystem::path& file) : file_(file), in_(open(file)) { buffer_.reserve(kChunkBytes); }
-
-  /// The next line without its line end (false at the end of the file).
-  bool next(std::string_view& line) {
-    for (;;) {
-      const size_t nl = buffer_.find('\n', pos_);
-      if (nl != std::string::npos) {
-        line = std::string_view(buffer_).substr(pos_, nl - pos_);
-        pos_ = nl + 1;
-        return finish(line);
-      }
-      if (buffer_.size() - pos_ > kMaxLineBytes)
-        throw CaptureError(file_, number_ + 1, "a line longer than " + std::to_string(kMaxLineBytes) + " bytes");
-      buffer_.erase(0, pos_);
-      pos_ = 0;
-      const size_t had = buffer_.size();
-      buffer_.resize(had + kChunkBytes);
-      size_t got = 0;
-      try {
-        got = in_.read(buffer_.data() + had, kChunkBytes);
-      } catch (const des::InputFileError& e) {
-        throw CaptureError(file_, 0, std::string("cannot read the capture file: ") + e.what());
-      }
-      buffer_.resize(had + got);
-      if (got == 0) {
-        if (buffer_.empty()) return false;
-        line = buffer_;  // a last line without a line end
-        pos_ = buffer_.size();
-        return finish(line);
-      }
-    }
-  }
-  int64_t number() const { return number_; }
-
- private:
-  static des::InputFile open(const std::filesystem::path& file) {
-    try {
-      return des::InputFile(file, kMaxCaptureBytes);
-    } catch (const des::InputFileError& e) {
-      throw CaptureError(file, 0, std::string("cannot read the capture file: ") + e.what());
-    }
-  }
-  bool finish(std::string_view& line) {
-    ++number_;
-    if (number_ == 1 && line.substr(0, 3) == "\xEF\xBB\xBF") line.remove_prefix(3);
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    return true;
-  }
-
-  const std::filesystem::path& file_;
-  des::InputFile in_;
-  std::string buffer_;
-  size_t pos_ = 0;
-  int64_t number_ = 0;
-};
-
 /// A process as the capture names it, with its rows.
 struct ProcessRows {
   std::string application;
@@ -144,18 +83,13 @@ struct Layout {
   size_t needed = 0;  // fields a row must have
 };
 
-std::optional<size_t> find(const std::vector<std::string>& header, std::string_view name) {
-  const auto it = std::find(header.begin(), header.end(), name);
-  if (it == header.end()) return std::nullopt;
-  return static_cast<size_t>(it - header.begin());
-}
 
 std::string missing_column(const std::vector<std::string>& header, Generation g, const std::string& name) {
   std::string text = "no column \"" + shown(name) + "\" in this " + generation_name(g) + " capture";
   for (const auto& group : kAliases)
     if (std::find(group.begin(), group.end(), name) != group.end())
       for (std::string_view alias : group)
-        if (!alias.empty() && alias != name && find(header, alias))
+        if (!alias.empty() && alias != name && find_column(header, alias))
           text += " (here it is \"" + std::string(alias) + "\")";
   return text + "; its columns: " + name_list(header);
 }
@@ -163,16 +97,13 @@ std::string missing_column(const std::vector<std::string>& header, Generation g,
 /// The reading itself: the header, then every row.
 class Reader {
  public:
-  Reader(const std::filesystem::path& file, const CaptureRequest& request) : file_(file), request_(request), lines_(file) {}
+  Reader(const std::filesystem::path& file, const CaptureRequest& request) : file_(file), request_(request), rows_(file) {}
 
   Capture read() {
     capture_.source = file_;
     read_header();
-    std::string_view line;
-    while (lines_.next(line)) {
-      if (blank(line)) continue;
-      // The fields after the last one read are not even split.
-      if (!row_.split(line, layout_.needed)) fail("an unterminated quote");
+    // The fields after the last one read are not even split.
+    while (rows_.next(layout_.needed)) {
       ++capture_.rows_read;
       take_row();
     }
@@ -180,29 +111,24 @@ class Reader {
   }
 
  private:
-  static bool blank(std::string_view line) { return line.find_first_not_of(" \t\r") == std::string_view::npos; }
-  [[noreturn]] void fail(const std::string& reason) const { throw CaptureError(file_, lines_.number(), reason); }
+  [[noreturn]] void fail(const std::string& reason) const { rows_.fail(reason); }
 
   void read_header() {
-    std::string_view line;
-    do {
-      if (!lines_.next(line)) throw CaptureError(file_, lines_.number(), "empty capture file: no header line");
-    } while (blank(line));
-    if (!row_.split(line)) fail("an unterminated quote in the header");
-    for (std::string_view f : row_.fields()) header_.emplace_back(f);
-    capture_.generation = detect_generation(header_);
+    header_ = rows_.header();
+    capture_.generation = rows_.vrapi() ? Generation::vrapi : detect_generation(header_);
     for (const std::string& name : request_.columns) {
-      const auto at = find(header_, name);
+      const auto at = find_column(header_, name);
       if (!at) fail(missing_column(header_, capture_.generation, name));
+      if (const auto why = not_a_duration(capture_.generation, name)) fail(*why);
       layout_.wanted.push_back(*at);
       layout_.needed = std::max(layout_.needed, *at + 1);
       capture_.columns.push_back(CaptureColumn{.name = name});
       display_.push_back(is_display_column(name));
       extremes_.emplace_back();
     }
-    layout_.application = find(header_, "Application");
-    layout_.process_id = find(header_, "ProcessID");
-    if (capture_.generation == Generation::v1) layout_.dropped = find(header_, "Dropped");
+    layout_.application = find_column(header_, "Application");
+    layout_.process_id = find_column(header_, "ProcessID");
+    if (capture_.generation == Generation::v1) layout_.dropped = find_column(header_, "Dropped");
     const ProcessSelect& sel = request_.select;
     if (!sel.application.empty() && !layout_.application)
       fail("an application is chosen but the capture has no Application column");
@@ -213,8 +139,8 @@ class Reader {
 
   // Whether this row belongs to the chosen process; counts every process seen.
   bool chosen() {
-    const std::string_view app = layout_.application ? row_[*layout_.application] : std::string_view();
-    const std::string_view pid = layout_.process_id ? row_[*layout_.process_id] : std::string_view();
+    const std::string_view app = layout_.application ? rows_[*layout_.application] : std::string_view();
+    const std::string_view pid = layout_.process_id ? rows_[*layout_.process_id] : std::string_view();
     const ProcessSelect& sel = request_.select;
     if (!sel.application.empty() && !iequal(app, sel.application)) return other();
     if (sel.process_id) {
@@ -242,14 +168,14 @@ class Reader {
   }
 
   void take_row() {
-    if (row_.size() < layout_.needed)
-      fail("a row of " + std::to_string(row_.size()) + " fields; the columns read need " + std::to_string(layout_.needed));
+    if (rows_.size() < layout_.needed)
+      fail("a row of " + std::to_string(rows_.size()) + " fields; the columns read need " + std::to_string(layout_.needed));
     if (!chosen()) return;
-    const bool dropped = layout_.dropped && row_[*layout_.dropped] == "1";
+    const bool dropped = layout_.dropped && rows_[*layout_.dropped] == "1";
     for (size_t k = 0; k < layout_.wanted.size(); ++k) {
       CaptureColumn& col = capture_.columns[k];
-      const std::string_view cell = row_[layout_.wanted[k]];
-      const bool unknown = cell.empty() || cell == "NA";
+      const std::string_view cell = rows_[layout_.wanted[k]];
+      const bool unknown = not_available(capture_.generation, cell);
       if (display_[k] && (dropped || unknown)) {
         ++col.skipped_not_displayed;
         continue;
@@ -263,16 +189,15 @@ class Reader {
   }
 
   void add(CaptureColumn& col, size_t index, std::string_view cell) {
-    double ms = 0.0;
-    const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), ms);
     const std::string where = "column " + std::to_string(index + 1) + " (" + col.name + ") ";
-    if (ec != std::errc{} || end != cell.data() + cell.size())
-      fail(where + "holds '" + shown(cell) + "', not a number of milliseconds");
+    const std::optional<double> parsed = cell_ms(capture_.generation, col.name, cell);
+    if (!parsed) fail(where + "holds '" + shown(cell) + "', not a number of " + unit_name(capture_.generation, col.name));
+    const double ms = *parsed;
     if (!std::isfinite(ms) || std::fabs(ms) > 1e9) fail(where + "holds '" + shown(cell) + "', out of range (|ms| <= 1e9)");
     const des::Time v = des::Time::from_ms(ms);
     Extremes& x = extremes_[static_cast<size_t>(&col - capture_.columns.data())];
-    if (col.values.empty() || v < x.min) x = Extremes{v, x.max, lines_.number(), x.max_line};
-    if (col.values.empty() || v > x.max) x = Extremes{x.min, v, x.min_line, lines_.number()};
+    if (col.values.empty() || v < x.min) x = Extremes{v, x.max, rows_.line(), x.max_line};
+    if (col.values.empty() || v > x.max) x = Extremes{x.min, v, x.min_line, rows_.line()};
     col.values.push_back(v);
   }
 
@@ -321,8 +246,7 @@ class Reader {
 
   const std::filesystem::path& file_;
   const CaptureRequest& request_;
-  LineSource lines_;
-  CsvRow row_;
+  RowSource rows_;
   std::vector<std::string> header_;
   Layout layout_;
   std::vector<bool> display_;
@@ -333,6 +257,11 @@ class Reader {
 };
 
 }  // namespace
+
+Generation file_generation(const std::filesystem::path& file) {
+  const RowSource rows(file);
+  return rows.vrapi() ? Generation::vrapi : detect_generation(rows.header());
+}
 
 Capture read_capture(const std::filesystem::path& file, const CaptureRequest& request) {
   return Reader(file, request).read();

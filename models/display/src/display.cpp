@@ -30,13 +30,13 @@ Display::Display(des::Simulator& sim, RasterTiming timing, int eyes, ScanoutFide
   if (fidelity_ == ScanoutFidelity::Line) kind_line_ = sim_.kind("display.line");
   if (fidelity_ == ScanoutFidelity::Pixel) kind_pixel_ = sim_.kind(pixel_events_ ? "display.pixel" : "display.pixels");
   const int64_t ppl = timing_.pixels_per_line();
-  line_pace_ = des::TickStepper(timing_.photon_run(0, 0, 0, ppl, 1));
-  unit_pace_ = des::TickStepper(timing_.photon_run(0, 0, 0, pixel_stride_, 1));
-  unit_step_ = static_cast<des::i128>(pixel_stride_) * timing_.ticks_per_slot_num();
-  line_step_ = static_cast<des::i128>(ppl) * timing_.ticks_per_slot_num();
+  line_pace_ = stats::TickStepper(timing_.photon_run(0, 0, 0, ppl, 1));
+  unit_pace_ = stats::TickStepper(timing_.photon_run(0, 0, 0, pixel_stride_, 1));
+  unit_step_ = static_cast<stats::i128>(pixel_stride_) * timing_.ticks_per_slot_num();
+  line_step_ = static_cast<stats::i128>(ppl) * timing_.ticks_per_slot_num();
   // What every line's span has in common (emit_line() writes the rest): all
   // columns, no persistence, one sample at the pace of lines.
-  const des::TickRun line = line_pace_.run_from_here(line_step_, 1);
+  const stats::TickRun line = line_pace_.run_from_here(line_step_, 1);
   line_span_ = ScanoutSpan(0, 0, 1, 0, 0, timing_.params().width_px, pixel_stride_, des::Time::zero(), line, line);
 }
 
@@ -101,14 +101,14 @@ void Display::retrace(int64_t field) {
   const int lines = timing_.lines_per_field();
   const int width = timing_.params().width_px;
   // The field's first line, and its last sample, in exact steppers.
-  line_start_ = des::TickStepper(timing_.photon_run(field, 0, 0, timing_.pixels_per_line(), 1)).at_pace_of(line_pace_);
+  line_start_ = stats::TickStepper(timing_.photon_run(field, 0, 0, timing_.pixels_per_line(), 1)).at_pace_of(line_pace_);
   switch (fidelity_) {
     case ScanoutFidelity::Field:
       // The whole field is computed now from the content at the retrace:
       // cheap, but a swap during scanout (tearing) is not seen. Lines lit
       // after the end of the run are left out, as the other levels leave them.
       {
-        const des::TickRun run = line_start_.run_from_here(line_step_, static_cast<uint64_t>(lines));
+        const stats::TickRun run = line_start_.run_from_here(line_step_, static_cast<uint64_t>(lines));
         const uint64_t lit = run.first_index_at_or_above(end_.ticks() + 1);
         if (lit > 0) emit(field, 0, static_cast<int>(lit), 0, width, run.slice(0, lit));
       }
@@ -122,7 +122,7 @@ void Display::retrace(int64_t field) {
         sim_.at(pixel_.time(), kind_pixel_, [this, field] { scan_pixel(field, 0, 0); }, kPixelPriority);
       } else {
         const int last_x = (units_per_line() - 1) * pixel_stride_;
-        line_last_ = des::TickStepper(timing_.photon_run(field, 0, last_x, timing_.pixels_per_line(), 1))
+        line_last_ = stats::TickStepper(timing_.photon_run(field, 0, last_x, timing_.pixels_per_line(), 1))
                          .at_pace_of(line_pace_);
         open_line(field, 0);
       }
@@ -147,7 +147,7 @@ void Display::scan_line(int64_t field, int line) {
 void Display::scan_pixel(int64_t field, int line, int unit) {
   const int width = timing_.params().width_px;
   const int x = unit * pixel_stride_;
-  const des::TickRun photon = des::TickRun::single(sim_.now().ticks());
+  const stats::TickRun photon = stats::TickRun::single(sim_.now().ticks());
   emit(field, line, line + 1, x, std::min(width, x + pixel_stride_), photon);
   int next_unit = unit + 1, next_line = line;
   if (next_unit < units_per_line()) {
@@ -176,7 +176,7 @@ void Display::open_line(int64_t field, int line) {
 void Display::finish_line(int64_t field, int line) {
   // Normally every sample of the line is lit by now; at the end of the run
   // only those at or before it.
-  const des::TickRun rest = open_.at.run_from_here(unit_step_, static_cast<uint64_t>(units_per_line() - open_.next_unit));
+  const stats::TickRun rest = open_.at.run_from_here(unit_step_, static_cast<uint64_t>(units_per_line() - open_.next_unit));
   const auto lit = static_cast<int>(rest.first_index_at_or_above(sim_.now().ticks() + 1));
   emit_open(open_.next_unit + lit);
   if (line + 1 >= timing_.lines_per_field() || sim_.now() >= end_) {
@@ -191,7 +191,7 @@ void Display::finish_line(int64_t field, int line) {
 void Display::split_scanout() {
   if (open_.line < 0) return;
   // Samples lit strictly before now keep what was shown until now.
-  const des::TickRun rest = open_.at.run_from_here(unit_step_, static_cast<uint64_t>(units_per_line() - open_.next_unit));
+  const stats::TickRun rest = open_.at.run_from_here(unit_step_, static_cast<uint64_t>(units_per_line() - open_.next_unit));
   const auto lit = static_cast<int>(rest.first_index_at_or_above(sim_.now().ticks()));
   if (lit > 0) emit_open(open_.next_unit + lit);
 }
@@ -200,20 +200,20 @@ void Display::emit_open(int end_unit) {
   const int n = end_unit - open_.next_unit;
   if (n <= 0) return;
   const int width = timing_.params().width_px;
-  const des::TickRun written = open_.at.run_from_here(unit_step_, static_cast<uint64_t>(n));
+  const stats::TickRun written = open_.at.run_from_here(unit_step_, static_cast<uint64_t>(n));
   emit(open_.field, open_.line, open_.line + 1, open_.next_unit * pixel_stride_,
        std::min(width, end_unit * pixel_stride_), written);
   if (end_unit < units_per_line()) {
     // Where the next sample is written: one division, only when a line is split.
-    open_.at = des::TickStepper(written.slice(static_cast<uint64_t>(n), 1));
+    open_.at = stats::TickStepper(written.slice(static_cast<uint64_t>(n), 1));
   }
   open_.next_unit = end_unit;
 }
 
-void Display::emit(int64_t field, int line, int line_end, int x_begin, int x_end, const des::TickRun& written) {
+void Display::emit(int64_t field, int line, int line_end, int x_begin, int x_end, const stats::TickRun& written) {
   const des::Time written_at = des::Time::ps(written.base);
   const bool persists = persistence_.configured();
-  const des::TickRun photons = persists ? persistence_.photons(field, written) : written;
+  const stats::TickRun photons = persists ? persistence_.photons(field, written) : written;
   ScanoutSpan span(field, line, line_end, timing_.row_of(field, line), x_begin, x_end, pixel_stride_,
                    persists ? persistence_.lit(field, written_at).duration : des::Time::zero(), photons, written);
   emit_span(span);

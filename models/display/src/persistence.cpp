@@ -42,10 +42,10 @@ LitInterval Persistence::lit(int64_t field, des::Time written) const {
   return {written, des::Time::zero()};
 }
 
-des::TickRun Persistence::photons(int64_t field, const des::TickRun& written) const {
+stats::TickRun Persistence::photons(int64_t field, const stats::TickRun& written) const {
   const des::Time first = des::Time::ps(written.base);
   const des::Time middle = lit(field, first).middle();
-  if (params_.mode == Mode::global) return des::TickRun::make(middle.ticks(), 0, 0, 1, written.count);
+  if (params_.mode == Mode::global) return stats::TickRun::make(middle.ticks(), 0, 0, 1, written.count);
   // Every other mode lights a pixel a fixed time after its write.
   return written.shifted((middle - first).ticks());
 }

@@ -6,9 +6,9 @@ namespace latsim::display {
 
 namespace {
 
-des::i128 gcd(des::i128 a, des::i128 b) {
+stats::i128 gcd(stats::i128 a, stats::i128 b) {
   while (b != 0) {
-    const des::i128 r = a % b;
+    const stats::i128 r = a % b;
     a = b;
     b = r;
   }
@@ -22,9 +22,9 @@ RasterTiming::RasterTiming(RasterParams params, des::Time t0) : p_(params), sche
   if (p_.interlaced && p_.height_px % 2 != 0) throw std::invalid_argument("an interlaced display needs an even line count");
   if (p_.vblank_lines < 0 || p_.hblank_px < 0) throw std::invalid_argument("blanking must not be negative");
   // One pixel time is period / (total lines * pixels per line) of a field.
-  const des::i128 num = static_cast<des::i128>(p_.field_period.num) * des::Time::kTicksPerSecond;
-  const des::i128 den = static_cast<des::i128>(total_lines_per_field()) * pixels_per_line() * p_.field_period.den;
-  const des::i128 g = gcd(num, den);
+  const stats::i128 num = static_cast<stats::i128>(p_.field_period.num) * des::Time::kTicksPerSecond;
+  const stats::i128 den = static_cast<stats::i128>(total_lines_per_field()) * pixels_per_line() * p_.field_period.den;
+  const stats::i128 g = gcd(num, den);
   k_ = num / g;
   d_ = den / g;
 }
@@ -50,16 +50,16 @@ int64_t RasterTiming::noisy_index_at_or_after(des::Time t) const {
 des::Time RasterTiming::offset(int64_t slot_times_px) const {
   // slot pixel times of period / (total lines * pixels per line) each, floored
   // to a tick in 128-bit arithmetic: exact, and identical for every field.
-  return des::Time::ps(static_cast<int64_t>(static_cast<des::i128>(slot_times_px) * k_ / d_));
+  return des::Time::ps(static_cast<int64_t>(static_cast<stats::i128>(slot_times_px) * k_ / d_));
 }
 
 des::Time RasterTiming::line_time(int64_t field, int j) const { return field_start(field) + offset(slot(j, 0)); }
 
 des::Time RasterTiming::pixel_time(int64_t field, int j, int x) const { return field_start(field) + offset(slot(j, x)); }
 
-des::TickRun RasterTiming::photon_run(int64_t field, int j, int x, int64_t slot_step, uint64_t count) const {
-  return des::TickRun::make(field_start(field).ticks(), static_cast<des::i128>(slot(j, x)) * k_,
-                            static_cast<des::i128>(slot_step) * k_, d_, count);
+stats::TickRun RasterTiming::photon_run(int64_t field, int j, int x, int64_t slot_step, uint64_t count) const {
+  return stats::TickRun::make(field_start(field).ticks(), static_cast<stats::i128>(slot(j, x)) * k_,
+                            static_cast<stats::i128>(slot_step) * k_, d_, count);
 }
 
 int RasterTiming::parity(int64_t field) const {

@@ -1,10 +1,10 @@
 #include "latsim/measurement/apparent_latency.hpp"
+#include "latsim/units/units.hpp"
 
 #include <algorithm>
 #include <array>
 #include <deque>
 #include <cmath>
-#include <numbers>
 
 namespace latsim::measurement {
 
@@ -70,7 +70,7 @@ std::optional<double> refine(std::span<const ShownSample> window, const tracker:
   // Near its minimum the misfit is Σ ω_j² (s − s*)², so its curvature is
   // 2 n ω² for a root-mean-square speed ω: too flat, and nothing moves.
   const double curvature = (l - 2.0 * m + r) / (kFineMs * kFineMs);  // rad²/ms²
-  const double min_speed_rad_ms = kMinSpeedDegS * std::numbers::pi / 180.0 / 1000.0;
+  const double min_speed_rad_ms = units::deg_to_rad(kMinSpeedDegS) / 1000.0;
   if (!(curvature > 2.0 * static_cast<double>(window.size()) * min_speed_rad_ms * min_speed_rad_ms))
     return std::nullopt;
   const double s1 = fine_from + kFineMs * f + std::clamp(vertex(l, m, r, kFineMs), -kFineMs, kFineMs);

@@ -1,8 +1,8 @@
 #include "latsim/measurement/shown_trace.hpp"
+#include "latsim/units/units.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include <glm/geometric.hpp>
 
@@ -26,7 +26,7 @@ double twist_deg(const glm::dquat& from, const glm::dquat& to, const glm::dvec3&
   glm::dquat r = to * glm::inverse(from);
   if (r.w < 0.0) r = -r;  // the short way round
   const double along = r.x * axis.x + r.y * axis.y + r.z * axis.z;
-  return 2.0 * std::atan2(along, r.w) * 180.0 / std::numbers::pi;
+  return units::rad_to_deg(2.0 * std::atan2(along, r.w));
 }
 
 }  // namespace latsim::measurement

@@ -16,10 +16,12 @@ RcEngine::RcEngine(des::Simulator& sim, RcParams params, FieldTiming timing, Reg
       workload_(workload),
       hooks_(std::move(hooks)),
       work_available_(sim, "pxpl5.rc.work"),
+      sample_arrived_(sim, "pxpl5.rc.sample"),
       ring_(sim, params.hw.ring_channels, "pxpl5.ring") {
   if (p_.slaves() < 1) throw std::invalid_argument("RC needs a master and at least one slave GP");
   for (int s = 0; s < p_.slaves(); ++s) sgp_ports_.push_back(std::make_unique<des::Resource>(sim, 1));
   for (int f = 0; f < p_.hw.frame_buffers; ++f) fb_ports_.push_back(std::make_unique<des::Resource>(sim, 1));
+  for (int k = 0; k < p_.hw.renderers; ++k) renderers_.push_back(std::make_unique<des::Resource>(sim, 1));
   sgp_busy_.assign(p_.slaves(), des::Time::zero());
   renderer_busy_.assign(p_.hw.renderers, des::Time::zero());
 }
@@ -33,6 +35,11 @@ void RcEngine::start(des::Time end) {
   const des::KindId render = sim_.kind("pxpl5.render");
   for (int k = 0; k < p_.hw.renderers; ++k) sim_.spawn(renderer_process(k), render);
   sim_.spawn(copy_process(), sim_.kind("pxpl5.copy"));
+}
+
+void RcEngine::sample_visible() {
+  sample_arrived_.trigger();
+  sample_arrived_.reset();
 }
 
 RcEngine::FrameState& RcEngine::frame(int64_t i) {
@@ -63,13 +70,26 @@ void RcEngine::sample(const std::string& name, double value) {
 
 int64_t RcEngine::newest_sample(des::Time t) const { return hooks_.newest_sample ? hooks_.newest_sample(t) : -1; }
 
-// One slave's TRANSFORM of one eye: set-up, every triangle of its display
+// One slave's TRANSFORM of one eye: set-up, every primitive of its display
 // list (on screen: transform, light, set up; elsewhere: transform and reject)
-// and one bin entry per region an on-screen triangle covers.
+// and one bin entry per region an on-screen primitive covers.
 des::Time RcEngine::transform_time(const BinCounts& bins, int s) const {
   return p_.transform_overhead + p_.transform_time_per_triangle * bins.on_screen(s) +
          p_.reject_time_per_triangle * (bins.triangles(s) - bins.on_screen(s)) +
+         p_.sphere_transform_time * bins.spheres_on_screen(s) +
+         p_.sphere_reject_time * (bins.spheres(s) - bins.spheres_on_screen(s)) +
          p_.binitize_time_per_bin * bins.bin_entries(s);
+}
+
+int64_t RcEngine::bin_words(const BinCounts& bins, int s, int region) const {
+  const int64_t spheres = bins.sphere_commands(s, region);
+  return (bins.commands(s, region) - spheres) * p_.hw.words_per_command + spheres * p_.words_per_sphere_command;
+}
+
+des::Time RcEngine::bin_render_time(const BinCounts& bins, int s, int region) const {
+  const int64_t spheres = bins.sphere_commands(s, region);
+  return p_.hw.render_time_per_command * (bins.commands(s, region) - spheres) +
+         p_.render_time_per_sphere_command * spheres;
 }
 
 // SEND(i) may start once EDIT(i-1) has finished; unless the read is late,
@@ -81,9 +101,14 @@ des::Process RcEngine::send_process() {
     if (sim_.now() >= end_) co_return;
     FrameState& f = frame(i);
     const des::Time start = sim_.now();
+    if (p_.host_waits_for_new_sample && hooks_.newest_index) {
+      // The application blocks until the tracker delivers a newer sample.
+      while (hooks_.newest_index(sim_.now()) <= last_sent_index_) co_await sample_arrived_;
+      last_sent_index_ = hooks_.newest_index(sim_.now());
+    }
     if (p_.host_read == HostRead::send_start) {
-      f.sample_read_at = start;
-      f.sample_token = newest_sample(start);
+      f.sample_read_at = sim_.now();
+      f.sample_token = newest_sample(sim_.now());
     }
     co_await sim_.delay(p_.send_time + p_.hw.transfer_time(p_.send_words));
     stage("SEND", i, -1, "host", start, sim_.now());
@@ -147,6 +172,13 @@ des::Process RcEngine::transform_process() {
     for (int s = 0; s < p_.slaves(); ++s) sgp_busy_[s] += busy[s];
     sample("stage_ms.TRANSFORM", slowest.to_ms());
     sample("triangles_on_screen", static_cast<double>(work.on_screen_count));
+    if (workload_.spheres() > 0) sample("spheres_on_screen", static_cast<double>(work.spheres_on_screen_count));
+    // How many regions an on-screen primitive touches in this view (SPEC.md section 4: typically 1.3).
+    if (const int64_t shown = work.on_screen_count + work.spheres_on_screen_count; shown > 0) {
+      int64_t entries = 0;
+      for (int s = 0; s < p_.slaves(); ++s) entries += bins.bin_entries(s);
+      sample("regions_per_primitive", static_cast<double>(entries) / static_cast<double>(shown));
+    }
     es.transform_done.trigger();
     // Busiest region (most waiting commands) first; ties in screen order.
     std::vector<int> order(grid_.regions());
@@ -167,6 +199,14 @@ des::Process RcEngine::renderer_process(int k) {
   const std::string unit = unit_name("R", k);
   for (;;) {
     while (unrendered_.empty()) co_await work_available_;
+    if (p_.copy_holds_renderer) {
+      // A copy out of this renderer may hold it; meanwhile a free renderer may take the region.
+      co_await renderers_[k]->acquire();
+      if (unrendered_.empty()) {
+        renderers_[k]->release();
+        continue;
+      }
+    }
     const RegionTask task = unrendered_.front();
     unrendered_.pop_front();
     EyeState& es = eye(task.eye_seq);
@@ -180,14 +220,13 @@ des::Process RcEngine::renderer_process(int k) {
     des::Time processed = start;  // when the renderer has consumed everything received so far
     for (int s = 0; s < p_.slaves(); ++s) {
       co_await sim_.delay(p_.token_hop_time);
-      const int64_t commands = bins.commands(s, task.region);
-      if (commands == 0) continue;
+      if (bins.commands(s, task.region) == 0) continue;
       co_await sgp_ports_[s]->acquire();
       co_await ring_.acquire();
-      co_await sim_.delay(p_.hw.transfer_time(commands * p_.hw.words_per_command));
+      co_await sim_.delay(p_.hw.transfer_time(bin_words(bins, s, task.region)));
       ring_.release();
       sgp_ports_[s]->release();
-      processed = std::max(processed, sim_.now()) + p_.hw.render_time_per_command * commands;
+      processed = std::max(processed, sim_.now()) + bin_render_time(bins, s, task.region);
     }
     co_await ring_.acquire();
     co_await sim_.delay(p_.hw.transfer_time(p_.end_of_frame_words));
@@ -198,6 +237,9 @@ des::Process RcEngine::renderer_process(int k) {
     const int64_t i = task.eye_seq / p_.eyes();
     stage("RENDER", i, e, unit, start, sim_.now());
     renderer_busy_[k] += sim_.now() - start;
+    if (p_.copy_holds_renderer) renderers_[k]->release();
+    if (es.renderer_of_region.empty()) es.renderer_of_region.assign(static_cast<std::size_t>(grid_.regions()), -1);
+    es.renderer_of_region[static_cast<std::size_t>(task.region)] = k;
     es.render_order.push_back(task.region);
     es.rendered.trigger();
     es.rendered.reset();
@@ -219,48 +261,35 @@ des::Process RcEngine::copy_process() {
     const int e = static_cast<int>(n % p_.eyes());
     const int fb = p_.stereo ? e : 0;
     EyeState& es = eye(n);
-    if (i > 0) co_await sim_.until(std::max(sim_.now(), frame(i - 1).swap_at));
+    // The eye's back buffer is free once its previous image is swapped in.
+    if (i > 0) co_await sim_.until(std::max(sim_.now(), eye(n - p_.eyes()).swap_at));
     for (int r = 0; r < grid_.regions(); ++r) {
       while (static_cast<int>(es.render_order.size()) <= r) co_await es.rendered;
       co_await fb_ports_[fb]->acquire();
+      // With copy_holds_renderer the copy also takes the renderer holding the region.
+      const int k = p_.copy_holds_renderer ? es.renderer_of_region[static_cast<std::size_t>(es.render_order[r])] : -1;
+      des::Resource* renderer = k >= 0 ? renderers_[static_cast<std::size_t>(k)].get() : nullptr;
+      if (renderer != nullptr) co_await renderer->acquire();
       co_await ring_.acquire();
       const des::Time start = sim_.now();
       if (r == 0) es.copy_start = start;
       if (r == 0 && e == 0) frame(i).copy_start = start;
       co_await sim_.delay(p_.hw.copy_time_per_region);
       ring_.release();
+      if (renderer != nullptr) renderer->release();
       fb_ports_[fb]->release();
       stage("COPY", i, e, unit_name("FB", fb), start, sim_.now());
+      if (renderer != nullptr) stage("COPY", i, e, unit_name("R", k), start, sim_.now());
     }
     es.copy_end = sim_.now();
     sample("stage_ms.COPY", (es.copy_end - es.copy_start).to_ms());
     es.copy_done.trigger();
-    if (e == p_.eyes() - 1) finish_frame(i);
+    if (p_.stereo_swap == StereoSwap::per_eye) swap_eyes(i, e, e);
+    if (e == p_.eyes() - 1) {
+      if (p_.stereo_swap == StereoSwap::together) swap_eyes(i, 0, e);
+      finish_frame(i);
+    }
   }
-}
-
-// Both eyes swap together at the first retrace after the pair's last COPY.
-void RcEngine::finish_frame(int64_t i) {
-  FrameState& f = frame(i);
-  f.swap_field = timing_.field_after(sim_.now());
-  f.swap_at = timing_.retrace(f.swap_field);
-  FrameReady ready;
-  ready.frame = i;
-  ready.swap_field = f.swap_field;
-  ready.swap_at = f.swap_at;
-  const double field_ms = timing_.period_ms();
-  for (int e = 0; e < p_.eyes(); ++e) {
-    const EyeState& es = eye(i * p_.eyes() + e);
-    ready.eyes.push_back(EyeImage{e, f.sample_token, f.sample_read_at, es.transform_start, es.copy_end});
-    // The published measure: TRANSFORM start to the end of the eye's COPY.
-    sample("transform_to_copy_end_fields", (es.copy_end - es.transform_start).to_ms() / field_ms);
-    sample("transform_to_retrace_fields", (f.swap_at - es.transform_start).to_ms() / field_ms);
-  }
-  sample("copy_ms_per_frame", (sim_.now() - f.copy_start).to_ms());
-  // Retrace to retrace between consecutive frames: the published "frame time".
-  if (i > 0) sample("frame_time_ms", (f.swap_at - frame(i - 1).swap_at).to_ms());
-  ++frames_completed_;
-  if (hooks_.frame_ready) hooks_.frame_ready(ready);
 }
 
 Utilisation RcEngine::utilisation(des::Time elapsed) const {

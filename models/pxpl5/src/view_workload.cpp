@@ -1,15 +1,16 @@
 #include "latsim/pxpl5/view_workload.hpp"
+#include "latsim/units/units.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
+
+#include <glm/geometric.hpp>
 
 namespace latsim::pxpl5 {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 /// A corner in eye space as (x, y, d): d = distance in front of the eye.
 struct EyePoint {
@@ -48,14 +49,28 @@ int clip_near(const std::array<EyePoint, 3>& in, double near_m, std::array<EyePo
   return n;
 }
 
+/// The interval of screen slopes (x / d) a circle of radius r about (a, d)
+/// covers, seen from the origin: the two tangents through it, or everything
+/// when the circle reaches the near plane.
+void slope_interval(double a, double d, double r, double near_m, double& lo, double& hi) {
+  if (d - r < near_m) {
+    lo = -INFINITY;
+    hi = INFINITY;
+    return;
+  }
+  const double root = r * std::sqrt(a * a + d * d - r * r), den = d * d - r * r;
+  lo = (a * d - root) / den;
+  hi = (a * d + root) / den;
+}
+
 }  // namespace
 
-ViewBinner::ViewBinner(std::vector<WorldTriangle> triangles, ViewScreen screen)
-    : triangles_(std::move(triangles)), screen_(screen) {
+ViewBinner::ViewBinner(std::vector<WorldTriangle> triangles, ViewScreen screen, std::vector<WorldSphere> spheres)
+    : triangles_(std::move(triangles)), spheres_(std::move(spheres)), screen_(screen) {
   if (!(screen_.hfov_deg > 0.0 && screen_.hfov_deg < 180.0) || screen_.width_px < 1 || screen_.height_px < 1 ||
       screen_.region_px < 1 || !(screen_.near_m > 0.0))
     throw std::invalid_argument("ViewBinner: bad screen");
-  tan_half_h_ = std::tan(screen_.hfov_deg * kPi / 360.0);
+  tan_half_h_ = std::tan(units::deg_to_rad(0.5 * screen_.hfov_deg));
   // Square pixels: the vertical extent follows from the aspect ratio.
   tan_half_v_ = tan_half_h_ * screen_.height_px / screen_.width_px;
 }
@@ -66,6 +81,11 @@ void ViewBinner::regions_of(const WorldTriangle& triangle, const tracker::Pose& 
   const std::array<EyePoint, 3> c{to_eye(triangle[0], pose, inverse), to_eye(triangle[1], pose, inverse),
                                   to_eye(triangle[2], pose, inverse)};
   if (outside_one_plane(c, tan_half_h_, tan_half_v_, screen_.near_m)) return;
+  if (screen_.cull_back_faces) {
+    // Counter-clockwise corners face their normal; the eye sits at the origin of eye space.
+    const glm::dvec3 a(c[0].x, c[0].y, -c[0].d), b(c[1].x, c[1].y, -c[1].d), e(c[2].x, c[2].y, -c[2].d);
+    if (glm::dot(glm::cross(b - a, e - a), -a) <= 0.0) return;
+  }
   std::array<EyePoint, 4> poly{};
   const int n = clip_near(c, screen_.near_m, poly);
   const double w = screen_.width_px, h = screen_.height_px;
@@ -79,11 +99,34 @@ void ViewBinner::regions_of(const WorldTriangle& triangle, const tracker::Pose& 
     y0 = std::min(y0, y);
     y1 = std::max(y1, y);
   }
+  if (n == 0) return;
+  box_regions(x0, x1, y0, y1, out);
+}
+
+void ViewBinner::regions_of(const WorldSphere& sphere, const tracker::Pose& pose, std::vector<int>& out) const {
+  out.clear();
+  const EyePoint c = to_eye(sphere.centre_m, pose, glm::conjugate(pose.orientation));
+  const double r = sphere.radius_m;
+  // Wholly beyond the near plane or one side plane (distances along the planes' unit normals).
+  const double nh = std::sqrt(1.0 + tan_half_h_ * tan_half_h_), nv = std::sqrt(1.0 + tan_half_v_ * tan_half_v_);
+  if (c.d + r < screen_.near_m || (c.x + c.d * tan_half_h_) / nh < -r || (c.d * tan_half_h_ - c.x) / nh < -r ||
+      (c.y + c.d * tan_half_v_) / nv < -r || (c.d * tan_half_v_ - c.y) / nv < -r)
+    return;
+  double u0, u1, v0, v1;
+  slope_interval(c.x, c.d, r, screen_.near_m, u0, u1);
+  slope_interval(c.y, c.d, r, screen_.near_m, v0, v1);
+  const double w = screen_.width_px, h = screen_.height_px;
+  box_regions((u0 / tan_half_h_ + 1.0) * 0.5 * w, (u1 / tan_half_h_ + 1.0) * 0.5 * w,
+              (1.0 - v1 / tan_half_v_) * 0.5 * h, (1.0 - v0 / tan_half_v_) * 0.5 * h, out);
+}
+
+void ViewBinner::box_regions(double x0, double x1, double y0, double y1, std::vector<int>& out) const {
+  const double w = screen_.width_px, h = screen_.height_px;
   x0 = std::max(x0, 0.0);
   y0 = std::max(y0, 0.0);
   x1 = std::min(x1, w);
   y1 = std::min(y1, h);
-  if (n == 0 || x0 >= w || y0 >= h || x1 <= 0.0 || y1 <= 0.0 || x0 > x1 || y0 > y1) return;
+  if (x0 >= w || y0 >= h || x1 <= 0.0 || y1 <= 0.0 || x0 > x1 || y0 > y1) return;
   const double r = screen_.region_px;
   const int cols = screen_.columns(), rows = screen_.rows();
   const int c0 = std::clamp(static_cast<int>(std::floor(x0 / r)), 0, cols - 1);
@@ -105,6 +148,11 @@ EyeWork ViewBinner::bin(const tracker::Pose& pose, int processors) const {
     w.on_screen[t] = visible ? 1 : 0;
     w.on_screen_count += visible ? 1 : 0;
     w.bins.add_triangle(static_cast<int64_t>(t), visible, covered);
+  }
+  for (std::size_t k = 0; k < spheres_.size(); ++k) {
+    regions_of(spheres_[k], pose, covered);
+    w.spheres_on_screen_count += covered.empty() ? 0 : 1;
+    w.bins.add_sphere(static_cast<int64_t>(triangles_.size() + k), !covered.empty(), covered);
   }
   return w;
 }

@@ -39,6 +39,22 @@ void BinCounts::add_triangle(int64_t t, bool on_screen, const std::vector<int>& 
   for (int r : regions) ++counts_[index(p, r)];
 }
 
+void BinCounts::add_sphere(int64_t t, bool on_screen, const std::vector<int>& regions) {
+  if (spheres_.empty()) {
+    sphere_counts_.assign(counts_.size(), 0);
+    spheres_.assign(static_cast<std::size_t>(processors_), 0);
+    spheres_on_screen_.assign(static_cast<std::size_t>(processors_), 0);
+  }
+  const int p = static_cast<int>(t % processors_);
+  ++spheres_[p];
+  if (!on_screen) return;
+  ++spheres_on_screen_[p];
+  for (int r : regions) {
+    ++counts_[index(p, r)];
+    ++sphere_counts_[index(p, r)];
+  }
+}
+
 int64_t BinCounts::region_commands(int region) const {
   int64_t n = 0;
   for (int p = 0; p < processors_; ++p) n += commands(p, region);

@@ -1,9 +1,9 @@
 #include "latsim/renderer/camera.hpp"
+#include "latsim/units/units.hpp"
 
 #include <glm/geometric.hpp>
 
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -18,12 +18,12 @@ Camera::Camera(double hfov_deg, int width_px, int height_px)
     throw std::invalid_argument("camera: width and height must be positive, got " +
                                 std::to_string(width_px) + " x " + std::to_string(height_px));
   }
-  const double half_fov_rad = 0.5 * hfov_deg * std::numbers::pi / 180.0;
+  const double half_fov_rad = units::deg_to_rad(0.5 * hfov_deg);
   focal_px_ = 0.5 * width_px / std::tan(half_fov_rad);
 }
 
 double Camera::vfov_deg() const {
-  return 2.0 * std::atan(0.5 * height_px_ / focal_px_) * 180.0 / std::numbers::pi;
+  return units::rad_to_deg(2.0 * std::atan(0.5 * height_px_ / focal_px_));
 }
 
 glm::dvec3 Camera::head_direction(double px, double py) const {

@@ -60,6 +60,42 @@ void add_box(Scene& scene, const glm::dvec3& min_m, const glm::dvec3& max_m,
   add_tiled_box(scene, min_m, max_m, 0.0, [&](int, int) { return colour; });
 }
 
+void add_sphere_mesh(Scene& scene, const Sphere& sphere, int divisions) {
+  const int n = std::max(1, divisions);
+  const glm::dvec3 centre(sphere.centre_m);
+  const double radius = sphere.radius_m;
+  // A point of the face with corners a, b, c at grid step (i, j), on the sphere.
+  const auto on_sphere = [&](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, int i, int j) {
+    const glm::dvec3 p = a + (b - a) * (static_cast<double>(i) / n) + (c - a) * (static_cast<double>(j) / n);
+    return glm::vec3(centre + glm::normalize(p) * radius);
+  };
+  for (int face = 0; face < 8; ++face) {
+    const glm::dvec3 a((face & 1) ? -1.0 : 1.0, 0.0, 0.0);
+    const glm::dvec3 b(0.0, (face & 2) ? -1.0 : 1.0, 0.0);
+    const glm::dvec3 c(0.0, 0.0, (face & 4) ? -1.0 : 1.0);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; i + j < n; ++j) {
+        scene.add_triangle(on_sphere(a, b, c, i, j), on_sphere(a, b, c, i + 1, j), on_sphere(a, b, c, i, j + 1),
+                           sphere.colour);
+        if (i + j + 2 <= n)
+          scene.add_triangle(on_sphere(a, b, c, i + 1, j), on_sphere(a, b, c, i + 1, j + 1),
+                             on_sphere(a, b, c, i, j + 1), sphere.colour);
+      }
+  }
+}
+
+Scene tessellate_spheres(const Scene& scene) {
+  if (scene.spheres().empty()) return scene;
+  Scene out;
+  for (const SceneObject& object : scene.objects()) {
+    out.begin_object(object.name, object.animated);
+    for (uint32_t k = 0; k < object.triangle_count; ++k) out.add_triangle(scene.triangles()[object.first_triangle + k]);
+  }
+  out.begin_object("spheres");
+  for (const Sphere& sphere : scene.spheres()) add_sphere_mesh(out, sphere, 3);
+  return out;
+}
+
 glm::vec3 distinct_colour(int index) {
   // Golden-ratio steps around the hue circle never repeat and stay well apart.
   const double hue = std::fmod(0.1 + 0.6180339887498949 * index, 1.0) * 6.0;

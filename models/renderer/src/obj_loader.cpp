@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-#include "latsim/des/input_file.hpp"
+#include "latsim/io/input_file.hpp"
 
 namespace latsim::renderer {
 namespace {
@@ -160,8 +160,8 @@ Scene parse_obj(std::istream& input, const std::string& source_name,
 Scene load_obj(const std::filesystem::path& path, const glm::vec3& default_colour) {
   std::istringstream file;
   try {
-    file.str(des::read_input_file(path, kMaxObjBytes));
-  } catch (const des::InputFileError& e) {
+    file.str(io::read_input_file(path, kMaxObjBytes));
+  } catch (const io::InputFileError& e) {
     throw SceneError(path.string() + ": cannot read the mesh: " + e.what());
   }
   return parse_obj(file, path.string(), default_colour);

@@ -34,6 +34,14 @@ void Scene::add_triangle(const glm::vec3& a_m, const glm::vec3& b_m, const glm::
   add_triangle(Triangle{{a_m, b_m, c_m}, {colour, colour, colour}});
 }
 
+void Scene::add_sphere(const Sphere& sphere) {
+  if (!(sphere.radius_m > 0.0f)) throw SceneError("scene: a sphere needs a radius above zero");
+  spheres_.push_back(sphere);
+  const glm::dvec3 r(sphere.radius_m);
+  bounds_.extend(glm::dvec3(sphere.centre_m) - r);
+  bounds_.extend(glm::dvec3(sphere.centre_m) + r);
+}
+
 uint32_t Scene::find_object(const std::string& name) const {
   for (size_t i = 0; i < objects_.size(); ++i) {
     if (objects_[i].name == name) return static_cast<uint32_t>(i);

@@ -1,7 +1,7 @@
 #include "latsim/tracker/kalman_predictor.hpp"
+#include "latsim/units/units.hpp"
 
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -16,7 +16,6 @@ using Vector6 = Eigen::Matrix<double, 6, 1>;
 using Matrix3 = Eigen::Matrix3d;
 using Vector3 = Eigen::Vector3d;
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 Vector3 to_eigen(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 glm::dvec3 to_glm(const Vector3& v) { return {v(0), v(1), v(2)}; }
@@ -74,10 +73,10 @@ KalmanPredictor::KalmanPredictor(const KalmanParams& params)
     : orientation_r_(params.measurement_covariance.bottomRightCorner<3, 3>()),
       position_r_(params.measurement_covariance.topLeftCorner<3, 3>()),
       angular_psd_(std::pow(positive(params.angular_accel_noise_deg_s2_rthz, "angular acceleration noise") *
-                                kDegToRad,
+                                units::kRadPerDeg,
                             2)),
       linear_psd_(std::pow(positive(params.linear_accel_noise_m_s2_rthz, "linear acceleration noise"), 2)),
-      angular_prior_var_(std::pow(positive(params.initial_angular_speed_deg_s, "initial angular speed") * kDegToRad, 2)),
+      angular_prior_var_(std::pow(positive(params.initial_angular_speed_deg_s, "initial angular speed") * units::kRadPerDeg, 2)),
       linear_prior_var_(std::pow(positive(params.initial_speed_m_s, "initial speed"), 2)) {
   // Validates symmetry and semidefiniteness with the tracker's own rules.
   (void)noise_factor(params.measurement_covariance);

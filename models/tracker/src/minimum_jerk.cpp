@@ -1,7 +1,7 @@
 #include "latsim/tracker/minimum_jerk.hpp"
+#include "latsim/units/units.hpp"
 
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
@@ -39,11 +39,10 @@ double MinimumJerkMotion::angle_deg_at(des::Time t) const {
 }
 
 Pose MinimumJerkMotion::pose_at(des::Time t) const {
-  constexpr double kRadPerDeg = std::numbers::pi / 180.0;
   // Whole turns are removed first so that a long same-way run keeps precision.
   const double turned_deg = std::fmod(angle_deg_at(t), 360.0);
   Pose p = params_.start;
-  p.orientation = quat_from_rotation_vector(axis_ * (turned_deg * kRadPerDeg)) * params_.start.orientation;
+  p.orientation = quat_from_rotation_vector(axis_ * (turned_deg * units::kRadPerDeg)) * params_.start.orientation;
   return p;
 }
 

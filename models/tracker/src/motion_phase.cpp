@@ -1,8 +1,8 @@
 #include "latsim/tracker/motion_phase.hpp"
+#include "latsim/units/units.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 namespace latsim::tracker {
@@ -18,7 +18,7 @@ std::string_view phase_name(MotionPhase phase) {
 }
 
 MotionPhaseClassifier::MotionPhaseClassifier(const MotionSource& motion, MotionPhaseParams params)
-    : motion_(motion), params_(params), threshold_rad_s_(params.threshold_deg_s * std::numbers::pi / 180.0) {
+    : motion_(motion), params_(params), threshold_rad_s_(units::deg_to_rad(params.threshold_deg_s)) {
   if (!std::isfinite(params.threshold_deg_s) || params.threshold_deg_s < 0.0)
     throw std::invalid_argument("motion phase threshold must be finite and not negative");
   if (params.window <= des::Time::zero()) throw std::invalid_argument("motion phase window must be positive");

@@ -1,12 +1,12 @@
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
 #include "latsim/tracker/motion_source.hpp"
+#include "latsim/units/units.hpp"
 
 namespace latsim::tracker {
 
@@ -50,7 +50,7 @@ PolylineWalk::PolylineWalk(WalkParams params) : params_(std::move(params)) {
     const Segment& before = segments_[(i + n - 1) % n];
     Segment& after = segments_[i];
     const double cos_half = std::min(1.0, std::abs(glm::dot(before.facing, after.facing)));
-    const double angle_deg = 2.0 * std::acos(cos_half) * 180.0 / std::numbers::pi;
+    const double angle_deg = units::rad_to_deg(2.0 * std::acos(cos_half));
     const double walk_m = params_.speed_m_s * angle_deg / params_.turn_rate_deg_s;
     after.turn_in_m = std::min({walk_m / 2.0, before.length_m / 2.0, after.length_m / 2.0});
   }

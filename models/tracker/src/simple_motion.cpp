@@ -1,24 +1,23 @@
 // StillMotion lives in the header; this file holds the two analytic sources.
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
 
 #include "latsim/tracker/motion_source.hpp"
+#include "latsim/units/units.hpp"
 
 namespace latsim::tracker {
 
 namespace {
 
-constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 
 // sin(2 pi (f t) + phase) with the whole cycles of f*t removed first, so the
 // argument stays small and hours-long runs keep their precision.
 double sine_at(double frequency_hz, des::Time t, double phase_rad) {
   const double cycles = frequency_hz * t.to_seconds();
   const double fraction = cycles - std::floor(cycles);
-  return std::sin(2.0 * std::numbers::pi * fraction + phase_rad);
+  return std::sin(2.0 * units::kPi * fraction + phase_rad);
 }
 
 }  // namespace
@@ -38,7 +37,7 @@ Pose ConstantAngularVelocity::pose_at(des::Time t) const {
   // stay accurate after hours of spinning.
   const double turned_deg = std::fmod(rate_deg_s_ * t.to_seconds(), 360.0);
   Pose p = start_;
-  p.orientation = quat_from_rotation_vector(axis_ * (turned_deg * kRadPerDeg)) * start_.orientation;
+  p.orientation = quat_from_rotation_vector(axis_ * (turned_deg * units::kRadPerDeg)) * start_.orientation;
   return p;
 }
 
@@ -54,13 +53,13 @@ bool SinusoidalMotion::is_still() const {
 }
 
 double SinusoidalMotion::yaw_rad_at(des::Time t) const {
-  return params_.yaw_amplitude_deg * kRadPerDeg *
-         sine_at(params_.yaw_frequency_hz, t, params_.yaw_phase_deg * kRadPerDeg);
+  return params_.yaw_amplitude_deg * units::kRadPerDeg *
+         sine_at(params_.yaw_frequency_hz, t, params_.yaw_phase_deg * units::kRadPerDeg);
 }
 
 double SinusoidalMotion::pitch_rad_at(des::Time t) const {
-  return params_.pitch_amplitude_deg * kRadPerDeg *
-         sine_at(params_.pitch_frequency_hz, t, params_.pitch_phase_deg * kRadPerDeg);
+  return params_.pitch_amplitude_deg * units::kRadPerDeg *
+         sine_at(params_.pitch_frequency_hz, t, params_.pitch_phase_deg * units::kRadPerDeg);
 }
 
 Pose SinusoidalMotion::pose_at(des::Time t) const {

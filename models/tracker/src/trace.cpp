@@ -9,7 +9,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "latsim/des/input_file.hpp"
+#include "latsim/io/input_file.hpp"
 
 namespace latsim::tracker {
 
@@ -146,8 +146,8 @@ TraceSample parse_row(TraceFormat format, std::string_view line, const RowParser
 Trace load_trace(const std::filesystem::path& file) {
   std::istringstream in;
   try {
-    in.str(des::read_input_file(file, kMaxTraceBytes));
-  } catch (const des::InputFileError& e) {
+    in.str(io::read_input_file(file, kMaxTraceBytes));
+  } catch (const io::InputFileError& e) {
     throw TraceError(file, 0, std::string("cannot read the trace file: ") + e.what());
   }
 

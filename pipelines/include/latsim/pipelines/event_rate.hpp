@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "latsim/des/time.hpp"
-#include "latsim/params/shared.hpp"
+#include "latsim/sections/shared.hpp"
 
 namespace latsim::pipelines {
 
@@ -33,6 +33,6 @@ double paced_per_s(double period_s, double cap_hz);
 /// a serial link's line events, the display's retraces and scanout events
 /// (/display/refresh_hz, /display/scanout, /display/pixel_stride) and the
 /// motion-phase grid (/motion_phases/step_ms).
-std::vector<EventRate> shared_event_rates(const params::SharedParams& p);
+std::vector<EventRate> shared_event_rates(const sections::SharedParams& p);
 
 }  // namespace latsim::pipelines

@@ -16,10 +16,10 @@
 #include <string>
 #include <vector>
 
-#include "latsim/params/shared.hpp"
+#include "latsim/sections/shared.hpp"
 #include "latsim/pipelines/event_rate.hpp"
 #include "latsim/pipelines/run_context.hpp"
-#include "latsim/scenario/params.hpp"
+#include "latsim/scenario/section.hpp"
 
 namespace latsim::pipelines {
 
@@ -34,7 +34,7 @@ class Pipeline {
   /// Events per simulated second of the pipeline's own processes, each with
   /// the key that drives it (EventRate), known before start(); none
   /// declared: only the shared models' rates count against the event budget.
-  virtual std::vector<EventRate> event_rates(const params::SharedParams& /*shared*/) const { return {}; }
+  virtual std::vector<EventRate> event_rates(const sections::SharedParams& /*shared*/) const { return {}; }
 };
 
 /// Builds a pipeline from parameters already read.
@@ -45,16 +45,16 @@ using PipelineFactory = std::function<std::unique_ptr<Pipeline>()>;
 struct PipelineEntry {
   std::string name;
   std::string doc;
-  std::function<PipelineFactory(scenario::Section&, const params::SharedParams&)> bind;
+  std::function<PipelineFactory(scenario::Section&, const sections::SharedParams&)> bind;
 };
 
 /// The entry of a pipeline class P with a nested `Params` struct, a function
-/// `bind(scenario::Section&, P::Params&, const params::SharedParams&)` found by
+/// `bind(scenario::Section&, P::Params&, const sections::SharedParams&)` found by
 /// argument-dependent lookup, and a constructor from its Params.
 template <class P>
 PipelineEntry pipeline_entry(std::string name, std::string doc) {
   return PipelineEntry{std::move(name), std::move(doc),
-                       [](scenario::Section& s, const params::SharedParams& shared) -> PipelineFactory {
+                       [](scenario::Section& s, const sections::SharedParams& shared) -> PipelineFactory {
                          typename P::Params p{};
                          bind(s, p, shared);
                          return [p] { return std::make_unique<P>(p); };

@@ -13,8 +13,9 @@
 #include "latsim/des/random.hpp"
 #include "latsim/des/simulator.hpp"
 #include "latsim/display/display.hpp"
-#include "latsim/params/shared.hpp"
+#include "latsim/sections/shared.hpp"
 #include "latsim/results/image_record.hpp"
+#include "latsim/tracker/host_feed.hpp"
 #include "latsim/tracker/host_prediction.hpp"
 #include "latsim/tracker/motion_source.hpp"
 #include "latsim/tracker/transport.hpp"
@@ -44,10 +45,10 @@ struct RunContext {
   const tracker::MotionSource& motion;         ///< true head motion
   const tracker::TrackerParams& tracker;       ///< how the head is sampled
   const tracker::Transport& transport;         ///< the link from tracker to host
-  results::HostFeed& host;
+  tracker::HostFeed& host;
   display::Display& display;
   const display::DisplayParams& display_params;
-  const params::SceneParams* scene;            ///< /scene, when the scenario has one
+  const sections::SceneParams* scene;            ///< /scene, when the scenario has one
   results::ImageBook& images;                  ///< every image shown is registered here first
   results::LatencyRecorder& recorder;          ///< every figure and warning goes here
   results::FrameRecorder& app_frames;          ///< the application's frames: rendered, missed

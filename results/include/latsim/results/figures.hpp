@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "latsim/des/stats.hpp"
+#include "latsim/stats/stats.hpp"
 
 namespace latsim::results {
 
@@ -28,21 +28,21 @@ class FigureTable {
   void list(const std::string& name) { containers_[name] = true; }
   void object(const std::string& name) { containers_[name] = false; }
   /// A distribution kept outside the recorder, serialised like the recorder's.
-  void publish(const std::string& name, const des::Distribution& d);
+  void publish(const std::string& name, const stats::Distribution& d);
   void warn(std::string text) { warnings_.push_back(std::move(text)); }
   const std::vector<std::string>& warnings() const { return warnings_; }
 
   /// The figures object: distributions, then counters under "counts", then
   /// published distributions and named values.
-  nlohmann::json to_json(const std::map<std::string, des::Distribution>& distributions,
+  nlohmann::json to_json(const std::map<std::string, stats::Distribution>& distributions,
                          const std::map<std::string, int64_t>& counters) const;
   /// {count, mean, stddev, min, p50, p90, p99, p999, max, histogram}.
-  static nlohmann::json distribution_json(const des::Distribution& d);
+  static nlohmann::json distribution_json(const stats::Distribution& d);
 
  private:
   std::map<std::string, FigureValue> values_;
   std::map<std::string, bool> containers_;  // name -> true: list, false: object
-  std::map<std::string, des::Distribution> published_;
+  std::map<std::string, stats::Distribution> published_;
   std::vector<std::string> warnings_;
 };
 

@@ -14,9 +14,10 @@
 #include "latsim/des/time.hpp"
 #include "latsim/display/display.hpp"
 #include "latsim/display/raster_timing.hpp"
-#include "latsim/params/shared.hpp"
+#include "latsim/sections/shared.hpp"
 #include "latsim/renderer/scene_spec.hpp"
 #include "latsim/results/image_record.hpp"
+#include "latsim/tracker/host_feed.hpp"
 #include "latsim/tracker/motion_source.hpp"
 
 namespace latsim::results {
@@ -46,7 +47,7 @@ class PixelSource {
 /// Everything a capture needs from the run besides its configuration.
 struct FrameCaptureInputs {
   LatencyRecorder& recorder;              ///< image ids -> the pose each image was rendered from; figures
-  const HostFeed& host;                   ///< newest orientation for address-recalculation images
+  const tracker::HostFeed& host;                   ///< newest orientation for address-recalculation images
   const tracker::MotionSource& motion;    ///< the true head pose (ground truth)
   const display::RasterTiming& timing;    ///< rows and photon times
   double hfov_deg = 90.0;
@@ -68,7 +69,7 @@ struct FrameCaptureInputs {
 class FrameCapture final : public display::ScanoutListener {
  public:
   /// Captures as `frames` says, of `scene`; loads nothing yet.
-  FrameCapture(const params::FramesParams& frames, renderer::SceneSpec scene, FrameCaptureInputs inputs);
+  FrameCapture(const sections::FramesParams& frames, renderer::SceneSpec scene, FrameCaptureInputs inputs);
   ~FrameCapture() override;
   FrameCapture(const FrameCapture&) = delete;
   FrameCapture& operator=(const FrameCapture&) = delete;

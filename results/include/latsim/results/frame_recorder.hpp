@@ -37,7 +37,7 @@ class FrameRecorder {
   void declare(Figures figures, PresentFacts presents = {}) {
     declared_ = true;
     figures_ = figures;
-    presents_ = presents;
+    presents_ = std::move(presents);
   }
   /// One frame's work is complete.
   void rendered() { ++rendered_; }
@@ -45,6 +45,10 @@ class FrameRecorder {
   void rendered(const FrameTimes& frame);
   /// The first photon of an image showing application frame `frame`.
   void shown(int64_t frame, des::Time first_photon);
+  /// Application frame `frame` began to be scanned out at `t`: the retrace
+  /// it was swapped in at, or the instant it replaced the front buffer
+  /// (PresentMon's display time; pipelines that know it say it).
+  void flipped(int64_t frame, des::Time t);
   /// One frame missed the refresh it was due for.
   void missed() { ++missed_; }
 

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <string>
 
 #include "latsim/des/time.hpp"
 
@@ -20,6 +22,9 @@ struct FrameTimes {
   des::Time gpu_start;   ///< its first GPU stage begins
   des::Time gpu_end;     ///< its last GPU stage ends: the image is complete
   des::Time gpu_busy;    ///< the GPU's work on it: its GPU stages' durations as drawn
+  /// Its present call's return minus its start, where the pipeline models a
+  /// call that can block (present_replay); none where the present takes no time.
+  std::optional<des::Time> in_present;
 };
 
 /// How a pipeline hands frames to the display.
@@ -27,6 +32,7 @@ struct PresentFacts {
   int sync_interval = 1;        ///< refreshes a frame waits for (1: vsync; 0: shown at once)
   bool allows_tearing = false;  ///< a frame may replace another in the middle of a scan
   bool shown = true;            ///< false: no frame is ever shown (a compositor draws its own images)
+  std::string present_mode;     ///< PresentMon's PresentMode text, where the pipeline models one (else NA)
 };
 
 }  // namespace latsim::results

@@ -1,10 +1,9 @@
 // What the results of a run are computed from: the images a pipeline shows
-// (their poses and the times of their stages) and the host's view of the
-// tracker, through which every pose of an image is taken.
+// (their poses and the times of their stages). Every pose of an image is
+// taken through the host's view of the tracker (tracker::HostFeed).
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <optional>
 
 #include "latsim/des/time.hpp"
@@ -50,43 +49,6 @@ struct ImageRecord {
   /// was measured. Absent without a controller.
   std::optional<tracker::Pose> controller_pose;
   des::Time controller_measured_at;
-};
-
-/// Newest tracker data available to the host at any instant.
-class HostFeed {
- public:
-  virtual ~HostFeed() = default;
-  /// Newest sample the host application can see at time t (nullopt before the first).
-  virtual std::optional<tracker::TrackerSample> newest_at(des::Time t) const = 0;
-  /// When that sample became visible to the host.
-  virtual des::Time received_at(const tracker::TrackerSample& s) const = 0;
-  /// Called whenever a new sample becomes visible to the host (async senders).
-  virtual void on_delivery(std::function<void(const tracker::TrackerSample&, des::Time)> fn) = 0;
-  /// What the host knew when `s` was its newest sample: enough to predict
-  /// the pose for any photon time. `s` must be recent (the host keeps about
-  /// one second); pipelines that hold a sample longer keep its basis.
-  virtual tracker::PredictionBasis basis_of(const tracker::TrackerSample& s) const = 0;
-  /// Whether the scenario asks the host to predict (/host/prediction).
-  virtual bool predicts() const = 0;
-  /// The tracked controller's pose for an image computed from the head pose
-  /// `head`: the controller measured with `head.sample`, predicted by the
-  /// host's predictor to the same instant. nullopt without a controller.
-  virtual std::optional<tracker::PosePrediction> controller_for(const tracker::PosePrediction& head) const {
-    (void)head;
-    return std::nullopt;
-  }
-
-  /// The pose for an image computed at `now` that the pipeline expects to be
-  /// lit at `photon_time`: the newest sample visible at `now`, predicted by
-  /// the host's predictor to `photon_time` (or to its fixed horizon; the
-  /// sample's pose when the host does not predict). nullopt before the first
-  /// sample. Every pipeline takes the pose of an image (or line, or pixel)
-  /// through this call.
-  std::optional<tracker::PosePrediction> pose_for(des::Time now, des::Time photon_time) const {
-    const std::optional<tracker::TrackerSample> s = newest_at(now);
-    if (!s) return std::nullopt;
-    return basis_of(*s).for_photon_time(photon_time);
-  }
 };
 
 }  // namespace latsim::results

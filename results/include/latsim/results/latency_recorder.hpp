@@ -13,9 +13,9 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
-#include "latsim/des/run_feed.hpp"
+#include "latsim/stats/run_feed.hpp"
 #include "latsim/des/simulator.hpp"
-#include "latsim/des/stats.hpp"
+#include "latsim/stats/stats.hpp"
 #include "latsim/display/display.hpp"
 #include "latsim/measurement/apparent_latency.hpp"
 #include "latsim/measurement/camera_rig.hpp"
@@ -24,6 +24,7 @@
 #include "latsim/results/image_book.hpp"
 #include "latsim/results/image_record.hpp"
 #include "latsim/results/ledger.hpp"
+#include "latsim/tracker/host_feed.hpp"
 #include "latsim/tracker/motion_phase.hpp"
 #include "latsim/tracker/transport.hpp"
 
@@ -65,7 +66,7 @@ struct RunTotals {
 class LatencyRecorder : public display::ScanoutListener {
  public:
   /// Looks up in `images` the image each span shows.
-  LatencyRecorder(const des::Simulator& sim, const tracker::MotionSource& motion, const HostFeed& host,
+  LatencyRecorder(const des::Simulator& sim, const tracker::MotionSource& motion, const tracker::HostFeed& host,
                   ImageBook& images, const display::RasterTiming& timing, ProbeSet probes, double ipd_m, bool stereo,
                   bool keep_samples);
 
@@ -100,12 +101,12 @@ class LatencyRecorder : public display::ScanoutListener {
   void add(const std::string& name, double value);
   /// The named distribution, created on first use; the reference stays valid
   /// for the recorder's lifetime (hot paths keep it instead of the name).
-  des::Distribution& distribution_ref(const std::string& name);
+  stats::Distribution& distribution_ref(const std::string& name);
   /// Adds to a named counter.
   void count(const std::string& name, int64_t n = 1);
-  const des::Distribution* distribution(const std::string& name) const;
+  const stats::Distribution* distribution(const std::string& name) const;
   int64_t counter(const std::string& name) const;
-  const std::map<std::string, des::Distribution>& distributions() const {
+  const std::map<std::string, stats::Distribution>& distributions() const {
     runs_.close_all();
     return dists_;
   }
@@ -117,7 +118,7 @@ class LatencyRecorder : public display::ScanoutListener {
   void list(const std::string& name);
   void object(const std::string& name);
   /// A distribution a model kept itself, reported under `name` like the recorder's own.
-  void publish(const std::string& name, const des::Distribution& d);
+  void publish(const std::string& name, const stats::Distribution& d);
   /// The figures a reader of this pipeline means first (in tables, plots and
   /// the run line), in order; a name whose figure the run lacks is left out.
   /// Pipelines that declare none get default_headline().
@@ -221,18 +222,18 @@ class LatencyRecorder : public display::ScanoutListener {
   /// image's position.
   void record_probes(const display::ScanoutSpan& span, const glm::dquat& orientation, const glm::dvec3& position_m,
                      int64_t sample_index, int64_t image_id, bool image_pose);
-  using PhaseSplit = std::array<des::Distribution*, 4>;
+  using PhaseSplit = std::array<stats::Distribution*, 4>;
   void add_split(PhaseSplit& split, const char* name, double value, des::Time at);
   void first_shown(const ImageRecord& img, const display::ScanoutSpan& span);
   void flush_pending();
   void close_field();
   void prune(int64_t below_id);
   /// Glossary figures only through here; pipelines through add().
-  void record(des::Distribution*& d, const char* name, double value);
+  void record(stats::Distribution*& d, const char* name, double value);
   /// A duration, kept exactly (a glossary duration is only ever recorded so).
-  void record(des::Distribution*& d, const char* name, des::Time value);
+  void record(stats::Distribution*& d, const char* name, des::Time value);
   /// The glossary distribution `name` behind handle d, created on first use.
-  des::Distribution& figure(des::Distribution*& d, const char* name);
+  stats::Distribution& figure(stats::Distribution*& d, const char* name);
   /// Motion-to-photon, rotation and translation latency and display delay of
   /// every sample of a span (photon - origin), in closed form for a run.
   void record_spans(const display::ScanoutSpan& span, des::Time orientation_measured, des::Time position_measured);
@@ -263,7 +264,7 @@ class LatencyRecorder : public display::ScanoutListener {
 
   const des::Simulator& sim_;
   const tracker::MotionSource& motion_;
-  const HostFeed& host_;
+  const tracker::HostFeed& host_;
   ImageBook& images_;
   const display::RasterTiming& timing_;
   ProbeSet probes_;
@@ -288,25 +289,25 @@ class LatencyRecorder : public display::ScanoutListener {
   int64_t scan_field_ = INT64_MIN;  // field whose scanout start is cached
   des::Time scan_start_;
   double tan_half_h_ = 1.0, tan_half_v_ = 1.0;
-  std::map<std::string, des::Distribution> dists_;
-  des::Distribution* mtp_ = nullptr;
-  des::Distribution* display_ms_ = nullptr;
-  des::Distribution* rotation_ = nullptr;
-  des::Distribution* translation_ = nullptr;
-  des::Distribution* image_age_ = nullptr;
-  des::Distribution* pixel_age_ = nullptr;
-  des::Distribution* reg_arcmin_ = nullptr;
-  des::Distribution* reg_px_ = nullptr;
-  des::Distribution* render_latency_ = nullptr;
-  des::Distribution* render_latency_fields_ = nullptr;
-  des::Distribution* tracker_to_render_ = nullptr;
-  des::Distribution* tracker_to_host_ = nullptr;
-  des::Distribution* line_wait_ = nullptr;
+  std::map<std::string, stats::Distribution> dists_;
+  stats::Distribution* mtp_ = nullptr;
+  stats::Distribution* display_ms_ = nullptr;
+  stats::Distribution* rotation_ = nullptr;
+  stats::Distribution* translation_ = nullptr;
+  stats::Distribution* image_age_ = nullptr;
+  stats::Distribution* pixel_age_ = nullptr;
+  stats::Distribution* reg_arcmin_ = nullptr;
+  stats::Distribution* reg_px_ = nullptr;
+  stats::Distribution* render_latency_ = nullptr;
+  stats::Distribution* render_latency_fields_ = nullptr;
+  stats::Distribution* tracker_to_render_ = nullptr;
+  stats::Distribution* tracker_to_host_ = nullptr;
+  stats::Distribution* line_wait_ = nullptr;
   bool predicting_ = false;
   std::optional<tracker::MotionPhaseClassifier> phases_;
-  des::Distribution* prediction_horizon_ = nullptr;
-  des::Distribution* prediction_deg_ = nullptr;
-  des::Distribution* prediction_mm_ = nullptr;
+  stats::Distribution* prediction_horizon_ = nullptr;
+  stats::Distribution* prediction_deg_ = nullptr;
+  stats::Distribution* prediction_mm_ = nullptr;
   PhaseSplit reg_split_{};
   PhaseSplit prediction_split_{};
   std::map<std::string, int64_t> counters_;
@@ -315,7 +316,7 @@ class LatencyRecorder : public display::ScanoutListener {
   int64_t* images_shown_count_ = nullptr;  // counters_["images_shown"] once counted
   // The runs of the span figures, gathered across spans; closed whenever the
   // figures are read, so they are always complete (hence mutable).
-  mutable des::RunFeed runs_;
+  mutable stats::RunFeed runs_;
   // Refresh deadlines: due times of renders not yet shown, oldest first, and
   // the field (one eye) being scanned now.
   std::deque<des::Time> due_;

@@ -25,7 +25,8 @@ namespace latsim::results {
 /// picosecond, latsim's unit of time.
 class PresentMonLog {
  public:
-  PresentMonLog(std::string application, PresentFacts presents) : application_(std::move(application)), presents_(presents) {}
+  PresentMonLog(std::string application, PresentFacts presents)
+      : application_(std::move(application)), presents_(std::move(presents)) {}
 
   /// The column names, in order.
   static const std::vector<std::string>& columns();
@@ -34,6 +35,8 @@ class PresentMonLog {
   void completed(const FrameTimes& f, RunFiles& files);
   /// An image of frame `frame` is first lit at `photon`.
   void shown(int64_t frame, des::Time photon, RunFiles& files);
+  /// Frame `frame` began to be scanned out at `t` (MsUntilScanout; the first such instant counts).
+  void flipped(int64_t frame, des::Time t);
   /// Writes the rows whose frame was shown or passed over; those after the
   /// last frame shown are still on their way to the display and left out.
   /// Commits the file (nothing when no row was written).
@@ -45,10 +48,11 @@ class PresentMonLog {
   struct Pending {
     std::optional<FrameTimes> times;  ///< set once complete
     std::optional<des::Time> photon;  ///< its first photon, once shown
+    std::optional<des::Time> flip;    ///< when its scanout began, where the pipeline says
   };
   Pending& pending(int64_t frame);
   void flush(RunFiles& files, int64_t below_frame);
-  void write_row(const FrameTimes& f, const std::optional<des::Time>& photon, RunFiles& files);
+  void write_row(const FrameTimes& f, const Pending& p, RunFiles& files);
 
   std::string application_;
   PresentFacts presents_;
@@ -58,6 +62,7 @@ class PresentMonLog {
   std::optional<des::Time> last_present_, last_photon_;
   StreamedFile file_;
   std::string prefix_;  ///< the cells every row begins with
+  std::string mode_cell_;  ///< the PresentMode cell, with its comma
   std::string batch_;   ///< rows not yet given to file_ (its capacity is reused)
   int64_t rows_ = 0;
 };

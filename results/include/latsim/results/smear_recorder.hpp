@@ -2,7 +2,7 @@
 // the retina while the head turns (SPEC section 10).
 #pragma once
 
-#include "latsim/des/stats.hpp"
+#include "latsim/stats/stats.hpp"
 #include "latsim/display/display.hpp"
 #include "latsim/results/latency_recorder.hpp"
 #include "latsim/tracker/motion_source.hpp"
@@ -25,7 +25,7 @@ class SmearRecorder final : public display::ScanoutListener {
   void on_scanout(const display::ScanoutSpan& span) override;
 
  private:
-  des::Distribution& smear_;
+  stats::Distribution& smear_;
   const tracker::MotionSource& motion_;
   bool still_;
 };

@@ -12,7 +12,7 @@
 #include "latsim/des/run_clocks.hpp"
 #include "latsim/des/simulator.hpp"
 #include "latsim/display/display.hpp"
-#include "latsim/params/shared.hpp"
+#include "latsim/sections/shared.hpp"
 #include "latsim/pipelines/pipeline.hpp"
 #include "latsim/results/frame_capture.hpp"
 #include "latsim/results/frame_recorder.hpp"
@@ -35,7 +35,7 @@ namespace latsim::run {
 /// Everything one run builds from its scenario.
 struct Run {
   des::Simulator sim;
-  params::SharedParams shared;
+  sections::SharedParams shared;
   std::vector<std::string> input_warnings;
   std::unique_ptr<tracker::MotionSource> motion;
   std::unique_ptr<tracker::MotionSource> controller_motion;  ///< /controller's (null without one)

@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "latsim/params/shared.hpp"
+#include "latsim/sections/shared.hpp"
 #include "latsim/pipelines/pipeline.hpp"
 
 namespace latsim::run {
@@ -27,7 +27,7 @@ struct EventEstimate {
 };
 
 /// Sums the shared models' rates and the pipeline's over p.duration_s.
-EventEstimate estimate_events(const params::SharedParams& p, const pipelines::Pipeline& pipeline);
+EventEstimate estimate_events(const sections::SharedParams& p, const pipelines::Pipeline& pipeline);
 
 /// Throws scenario::ScenarioError at the dominant key when the estimate is
 /// above `max_events` ("about 1.0e13 events over 10 s (limit 2e9; --max-events

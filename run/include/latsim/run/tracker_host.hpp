@@ -9,6 +9,7 @@
 
 #include "latsim/des/simulator.hpp"
 #include "latsim/results/image_record.hpp"
+#include "latsim/tracker/host_feed.hpp"
 #include "latsim/tracker/host_prediction.hpp"
 #include "latsim/tracker/tracker.hpp"
 #include "latsim/tracker/transport.hpp"
@@ -29,7 +30,7 @@ namespace latsim::run {
 /// events; a record pushed out of the buffer never reaches the host, so the
 /// predictor never sees it; an estimate is used only once its sample is
 /// visible, so nothing is known early).
-class TrackerHost final : public results::HostFeed {
+class TrackerHost final : public tracker::HostFeed {
  public:
   TrackerHost(des::Simulator& sim, tracker::Tracker& tracker, tracker::Transport& transport,
               results::Timeline* timeline = nullptr,

@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "latsim/params/shared.hpp"
+#include "latsim/sections/shared.hpp"
 #include "latsim/scenario/config.hpp"
 
 namespace latsim::sweep {
@@ -15,7 +15,7 @@ namespace latsim::sweep {
 /// or active pixels per field over pixel_stride (pixel); two displays when
 /// stereo. Event counts grow exactly so with fidelity (BENCHMARKS.md,
 /// "Sweeps and fidelity"), and wall time with events.
-double expected_cost(const params::SharedParams& p);
+double expected_cost(const sections::SharedParams& p);
 
 /// The same for a scenario: its shared sections read through their
 /// declarations (every default as a run takes it). Throws

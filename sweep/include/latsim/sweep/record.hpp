@@ -12,7 +12,7 @@ namespace latsim::sweep {
 /// A run's record: two lines of JSON. The first is the summary
 /// (summary.json's content) without its resolved scenario, where a histogram
 /// whose bucket edges are those of its distribution's min and max (the equal
-/// widths of des::Distribution::plot_histogram, edge b = min + (max - min) /
+/// widths of stats::Distribution::plot_histogram, edge b = min + (max - min) /
 /// n * b) keeps its counts alone, as "histogram_counts". The second is the
 /// scenario: whole (an object) for the first record of a segment, otherwise
 /// what it changes in that first one's, as an array of ["=", pointer, value]

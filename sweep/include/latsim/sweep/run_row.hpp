@@ -16,7 +16,7 @@
 
 namespace latsim::sweep {
 
-/// The statistics every distribution figure has (des::Distribution::Summary), in this order.
+/// The statistics every distribution figure has (stats::Distribution::Summary), in this order.
 inline constexpr std::array<const char*, 9> kDistributionStats = {"count", "mean", "stddev", "min", "p50",
                                                                   "p90",   "p99",  "p999",   "max"};
 

@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "latsim/scenario/params.hpp"
+#include "latsim/scenario/section.hpp"
 
 namespace latsim::sweep {
 

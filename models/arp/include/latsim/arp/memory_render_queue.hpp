@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "latsim/des/simulator.hpp"
-#include "latsim/des/stats.hpp"
+#include "latsim/stats/stats.hpp"
 
 namespace latsim::arp {
 
@@ -73,7 +73,7 @@ class MemoryRenderQueue {
   int memory_count() const { return static_cast<int>(memories_.size()); }
   /// Request (of the first request a started one replaced) to start of every
   /// render started so far, in milliseconds.
-  const des::Distribution& queue_ms() const { return queue_ms_; }
+  const stats::Distribution& queue_ms() const { return queue_ms_; }
   int64_t skipped(int memory) const { return memories_.at(static_cast<size_t>(memory)).skipped; }
   int64_t finished(int memory) const { return memories_.at(static_cast<size_t>(memory)).finished; }
   /// Renderer time spent up to now, renders in progress included.
@@ -116,7 +116,7 @@ class MemoryRenderQueue {
   std::map<int64_t, Job> jobs_;  // unresolved requests by id
   int64_t next_id_ = 0;
   des::Time busy_done_;                                 // renderer time of finished renders
-  des::Distribution queue_ms_;
+  stats::Distribution queue_ms_;
 };
 
 }  // namespace latsim::arp

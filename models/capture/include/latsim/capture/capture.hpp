@@ -25,22 +25,36 @@ class CaptureError : public std::runtime_error {
   int64_t line_;
 };
 
-/// Which of PresentMon's column sets a header is, or a CSV of any other origin.
+/// Which of PresentMon's column sets a header is, which runtime statistics a
+/// file holds, or a CSV of any other origin.
 enum class Generation {
-  current,  ///< PresentMon 2: MsBetweenPresents, MsCPUBusy, MsGPUBusy, MsUntilDisplayed, TimeInQPC, ...
-  v1,       ///< PresentMon 1: TimeInSeconds, msBetweenPresents, msUntilDisplayed, Dropped, ...
-  v2,       ///< PresentMon 2's --v2_metrics: CPUStartQPC, CPUBusy, GPUBusy, DisplayLatency, ...
-  generic,  ///< any other CSV with a header line
+  current,      ///< PresentMon 2: MsBetweenPresents, MsCPUBusy, MsGPUBusy, MsUntilDisplayed, TimeInQPC, ...
+  v1,           ///< PresentMon 1: TimeInSeconds, msBetweenPresents, msUntilDisplayed, Dropped, ...
+  v2,           ///< PresentMon 2's --v2_metrics: CPUStartQPC, CPUBusy, GPUBusy, DisplayLatency, ...
+  ovr_metrics,  ///< OVR Metrics Tool's CSV export: one row a second (average_frame_rate, app_gpu_time_microseconds, ...)
+  vrapi,        ///< the VrApi statistics lines of a Quest's logcat: one a second (FPS=72/72,Prd=28ms,...)
+  steamvr,      ///< SteamVR's Compositor_FrameTiming, one row a frame, the struct's field names as the header
+  generic,      ///< any other CSV with a header line
 };
 
-/// "current", "v1", "v2" or "generic".
+/// "current", "v1", "v2", "ovr_metrics", "vrapi", "steamvr" or "generic".
 const char* generation_name(Generation g);
+
+/// Whether a generation is one of PresentMon's (current, v1, v2).
+bool is_presentmon(Generation g);
 
 /// The generation a header's column names show (tested in the order current,
 /// v1, v2: the current set also has CPUStartQPC, but only it has MsCPUBusy or
 /// MsBetweenPresents; v1 alone has TimeInSeconds or msBetweenPresents; v2
-/// alone has CPUBusy without a prefix).
+/// alone has CPUBusy without a prefix; then OVR Metrics Tool's
+/// average_frame_rate or app_gpu_time_microseconds, SteamVR's m_nFrameIndex
+/// or m_flClientFrameIntervalMs). A VrApi log has no header: the reader
+/// tells it by its lines.
 Generation detect_generation(const std::vector<std::string>& header);
+
+/// The generation of a capture file, from its header or its VrApi lines
+/// (throws CaptureError for a file that cannot be read).
+Generation file_generation(const std::filesystem::path& file);
 
 /// Whose rows to keep, by the `Application` and `ProcessID` columns. Empty
 /// application and no process_id: the capture must hold one process only.
@@ -100,8 +114,11 @@ bool is_display_column(const std::string& name);
 /// order, extra columns ignored, a row may lack trailing columns nobody asked
 /// for.
 ///
-/// Cells: a number of milliseconds (finite, |x| <= 1e9); `NA` or empty skips
-/// that row for that column only (counted in skipped_na); in a display column
+/// Cells: a number of milliseconds (finite, |x| <= 1e9); in an OVR Metrics
+/// export a column's unit is its name's (_microseconds, _milliseconds; other
+/// columns are not durations) and 9999 means "not available"; a VrApi field
+/// is a number of ms written with its unit ("App=1.73ms"). `NA` or empty
+/// skips that row for that column only (counted in skipped_na); in a display column
 /// a frame never displayed is skipped too (v1: `Dropped` is 1; the other
 /// generations write NA there), counted in skipped_not_displayed. Values that
 /// are merely large (spikes of hundreds of ms) are kept: they happened.

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "latsim/des/simulator.hpp"
-#include "latsim/des/tick_run.hpp"
+#include "latsim/stats/tick_run.hpp"
 #include "latsim/display/persistence.hpp"
 #include "latsim/display/raster_timing.hpp"
 
@@ -32,7 +32,7 @@ struct ScanoutSpan {
   /// A span of one eye (eye 0, no image yet) with every other member given;
   /// built member by member, without clearing the whole span first.
   ScanoutSpan(int64_t field_index, int first_line, int end_line, int first_row, int first_x, int end_x, int step_x,
-              des::Time lit, const des::TickRun& photon_run, const des::TickRun& written_run)
+              des::Time lit, const stats::TickRun& photon_run, const stats::TickRun& written_run)
       : field(field_index),
         line(first_line),
         line_end(end_line),
@@ -57,8 +57,8 @@ struct ScanoutSpan {
   des::Time photon_time;   ///< photons of the first sample
   des::Time written_at;    ///< written of the first sample
   des::Time lit_duration;  ///< how long each pixel stays lit; 0 without persistence (an impulse)
-  des::TickRun photons;    ///< middle of each sample's lit interval
-  des::TickRun written;    ///< when each sample was written
+  stats::TickRun photons;    ///< middle of each sample's lit interval
+  stats::TickRun written;    ///< when each sample was written
   int64_t image_id = -1;   ///< what the front buffer held; -1 = nothing yet
 };
 
@@ -143,7 +143,7 @@ class Display {
     int64_t field = -1;
     int line = -1;         // -1: none
     int next_unit = 0;     // first sample (pixel_stride pixels) not handed over
-    des::TickStepper at;   // photon time of next_unit
+    stats::TickStepper at;   // photon time of next_unit
   };
 
   void retrace(int64_t field);
@@ -154,7 +154,7 @@ class Display {
   // Hands over the open line's samples [next_unit, end_unit).
   void emit_open(int end_unit);
   // Hands a span of samples written at `written` to every listener, once per eye.
-  void emit(int64_t field, int line, int line_end, int x_begin, int x_end, const des::TickRun& written);
+  void emit(int64_t field, int line, int line_end, int x_begin, int x_end, const stats::TickRun& written);
   // The same for the whole line at line_start_, built in place (line_span_).
   void emit_line(int64_t field, int line);
   // Hands `span` to every listener, once per eye.
@@ -188,10 +188,10 @@ class Display {
   // Exact steppers (no division per line or pixel): line starts and last
   // samples of the current field, the pixel sample within a line, and the
   // paces of one line and of one sample.
-  des::TickStepper line_start_, line_last_, pixel_;
-  des::TickStepper line_pace_, unit_pace_;
-  des::i128 unit_step_ = 0;  // ticks per sample, times the raster's D
-  des::i128 line_step_ = 0;  // ticks per line, times the raster's D
+  stats::TickStepper line_start_, line_last_, pixel_;
+  stats::TickStepper line_pace_, unit_pace_;
+  stats::i128 unit_step_ = 0;  // ticks per sample, times the raster's D
+  stats::i128 line_step_ = 0;  // ticks per line, times the raster's D
   OpenLine open_;
   // Line scanout's span, filled in place for each line: copying a just-built
   // 80-byte TickRun costs a failed store-to-load forward on every 16-byte

@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-#include "latsim/des/tick_run.hpp"
+#include "latsim/stats/tick_run.hpp"
 #include "latsim/des/time.hpp"
 #include "latsim/display/raster_timing.hpp"
 
@@ -54,7 +54,7 @@ class Persistence {
   /// The middles of the lit intervals of pixels of `field` written at the
   /// instants of `written`: those instants moved by one constant of the
   /// field, or, for a global flash, one instant for all.
-  des::TickRun photons(int64_t field, const des::TickRun& written) const;
+  stats::TickRun photons(int64_t field, const stats::TickRun& written) const;
 
  private:
   PersistenceParams params_;

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <memory>
 
-#include "latsim/des/tick_run.hpp"
+#include "latsim/stats/tick_run.hpp"
 #include "latsim/des/time.hpp"
 #include "latsim/display/clock_noise.hpp"
 
@@ -30,7 +30,7 @@ struct RasterParams {
 /// A pixel's offset from its field's start is floor(slot · K / D) ticks, slot
 /// counting pixel times from the retrace (blanking included), K / D the pixel
 /// time in ticks as a reduced fraction. Runs of evenly spaced pixels or lines
-/// are des::TickRun values, which a des::TickStepper walks without dividing.
+/// are stats::TickRun values, which a stats::TickStepper walks without dividing.
 class RasterTiming {
  public:
   RasterTiming() = default;
@@ -71,12 +71,12 @@ class RasterTiming {
   int64_t pixels_per_line() const { return static_cast<int64_t>(p_.width_px) + p_.hblank_px; }
   /// Photon times of `count` samples from pixel x of the field's j-th line on,
   /// `slot_step` pixel times apart (pixels_per_line() steps line by line).
-  des::TickRun photon_run(int64_t field, int j, int x, int64_t slot_step, uint64_t count) const;
+  stats::TickRun photon_run(int64_t field, int j, int x, int64_t slot_step, uint64_t count) const;
 
 
   /// Ticks per pixel time, K / D; the numerator K (what a pixel or line step
   /// is a multiple of).
-  des::i128 ticks_per_slot_num() const { return k_; }
+  stats::i128 ticks_per_slot_num() const { return k_; }
   /// The field whose retrace is the first at or after t.
   int64_t field_at_or_after(des::Time t) const {
     return noise_ ? noisy_index_at_or_after(t) : schedule_.index_at_or_after(t);
@@ -97,8 +97,8 @@ class RasterTiming {
 
   RasterParams p_;
   des::PeriodicSchedule schedule_;
-  des::i128 k_ = 1;  // ticks per pixel time = k_ / d_, reduced
-  des::i128 d_ = 1;
+  stats::i128 k_ = 1;  // ticks per pixel time = k_ / d_, reduced
+  stats::i128 d_ = 1;
   std::shared_ptr<const ClockNoise> noise_;
 };
 

@@ -53,6 +53,9 @@ struct RegionWrite {
 struct EngineHooks {
   /// The newest host sample at time t as an opaque token, -1 if none yet.
   std::function<int64_t(des::Time)> newest_sample;
+  /// The tracker index of the newest sample the host can see at time t, -1 if
+  /// none (for a host that waits for a new sample).
+  std::function<int64_t(des::Time)> newest_index;
   /// How much newer sample `newer` was measured than sample `older`, in ms.
   std::function<double(int64_t older, int64_t newer)> sample_age_ms;
   /// A frame is complete; called at its last COPY end (before its retrace).

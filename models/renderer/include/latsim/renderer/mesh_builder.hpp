@@ -27,6 +27,14 @@ void add_tiled_box(Scene& scene, const glm::dvec3& min_m, const glm::dvec3& max_
 void add_box(Scene& scene, const glm::dvec3& min_m, const glm::dvec3& max_m,
              const glm::vec3& colour);
 
+/// Appends a sphere as a subdivided octahedron pushed out onto it: 8 x
+/// divisions^2 triangles (divisions >= 1) in the sphere's colour.
+void add_sphere_mesh(Scene& scene, const Sphere& sphere, int divisions);
+
+/// The scene with its spheres drawn as triangles (add_sphere_mesh, 72 each),
+/// all in one object "spheres" after the others; a scene without spheres unchanged.
+Scene tessellate_spheres(const Scene& scene);
+
 /// A saturated colour that differs clearly between consecutive indices (golden-angle hues).
 glm::vec3 distinct_colour(int index);
 

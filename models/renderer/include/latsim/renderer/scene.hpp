@@ -25,6 +25,15 @@ struct Triangle {
   std::array<glm::vec3, 3> colour;
 };
 
+/// A sphere primitive (Pixel-Planes renderers draw spheres natively): centre
+/// and radius in world metres, one linear RGB colour. Pipelines that draw
+/// triangles only see it tessellated (make_scene, SphereForm::tessellated).
+struct Sphere {
+  glm::vec3 centre_m{0.0f};
+  float radius_m = 0.0f;
+  glm::vec3 colour{1.0f};
+};
+
 /// A named, contiguous range of the scene's triangles (the unit that models update and cull).
 struct SceneObject {
   std::string name;
@@ -34,7 +43,8 @@ struct SceneObject {
   bool animated = false;
 };
 
-/// A triangle soup partitioned into objects; objects are appended one after another.
+/// A triangle soup partitioned into objects; objects are appended one after
+/// another. Spheres, when there are any, stand beside the objects.
 class Scene {
  public:
   /// Starts a new object; following add_triangle calls belong to it. Returns its id.
@@ -45,7 +55,11 @@ class Scene {
   void add_triangle(const glm::vec3& a_m, const glm::vec3& b_m, const glm::vec3& c_m,
                     const glm::vec3& colour);
 
+  /// Appends a sphere (radius above zero; throws SceneError otherwise).
+  void add_sphere(const Sphere& sphere);
+
   const std::vector<Triangle>& triangles() const { return triangles_; }
+  const std::vector<Sphere>& spheres() const { return spheres_; }
   const std::vector<SceneObject>& objects() const { return objects_; }
   const Aabb& bounds() const { return bounds_; }
   uint32_t object_count() const { return static_cast<uint32_t>(objects_.size()); }
@@ -55,6 +69,7 @@ class Scene {
 
  private:
   std::vector<Triangle> triangles_;
+  std::vector<Sphere> spheres_;
   std::vector<SceneObject> objects_;
   Aabb bounds_;
 };

@@ -70,7 +70,7 @@ Trace load_trace(const std::filesystem::path& file);
 
 /// The largest trace file load_trace reads: about three hours of a 1000 Hz
 /// recording in either format. A larger file, a FIFO or a device is refused
-/// before anything is read (des::read_input_file).
+/// before anything is read (io::read_input_file).
 inline constexpr size_t kMaxTraceBytes = size_t{256} << 20;
 
 }  // namespace latsim::tracker

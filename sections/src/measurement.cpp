@@ -1,0 +1,67 @@
+// Bindings of /apparent_latency and /measurement.
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "latsim/sections/shared.hpp"
+
+namespace latsim::sections {
+
+using scenario::Section;
+
+void bind(Section& s, measurement::ApparentLatencyParams& p) {
+  s.doc(
+      "Apparent latency: the time shift that best aligns the orientation shown at the centre of eye 0's display "
+      "with the true head orientation, fitted by least squares over a sliding window of refreshes, split by motion "
+      "phase (`/motion_phases`, its defaults when absent) into `apparent_latency_ms_onset`, `_steady` and `_stop`, "
+      "with `prediction_catch_up_ms` (docs/figures.md). Keeps one sample per refresh while the run lasts.");
+  s.duration("window_ms", p.window,
+             {.unit = "ms", .min = 0.0, .max = 1e4, .above_min = true, .doc = "length of the sliding window"});
+  s.duration("step_ms", p.step,
+             {.unit = "ms", .min = 0.0, .max = 1e4, .above_min = true, .doc = "spacing of the window centres"});
+  s.duration("max_shift_ms", p.max_shift,
+             {.unit = "ms", .min = 0.0, .max = 1e4, .above_min = true, .doc = "shifts searched: ±max_shift_ms"});
+  s.number("catch_up_tolerance_ms", p.catch_up_tolerance_ms,
+           {.unit = "ms", .min = 0.0, .max = 1e4,
+            .doc = "prediction has caught up once a window's shift is at most the steady value plus this"});
+}
+
+void bind(Section& s, measurement::CameraRigParams& p, bool controller) {
+  s.doc(
+      "A simulated latency-measurement rig: a high-speed camera films the real head (or object) and one point of "
+      "eye 0's display, and latency is estimated per movement by frame counting (`measured_latency_ms`) and by the "
+      "least-squares shift of the two filmed trajectories (`measured_latency_shift_ms`); "
+      "`measurement_resolution_ms` is half a camera frame (docs/figures.md).");
+  using Object = measurement::CameraRigParams::Object;
+  s.choice("object", p.object, {{"head", Object::head}, {"controller", Object::controller}},
+           {.doc = "what the camera films beside the display: the head, or the controller of /controller (drawn at "
+                   "the display point)"});
+  s.check("object", controller || p.object == Object::head,
+          "the controller is filmed only in a scenario with /controller");
+  s.rate("fps", p.frame_period, {.unit = "Hz", .doc = "camera frame rate (120, 240, 1000 …)"});
+  clock(s, "", p.clock, "camera");
+  s.duration("exposure_ms", p.exposure,
+             {.unit = "ms", .min = 0.0, .max = 1e4, .doc = "shutter open per frame",
+              .default_doc = "the whole frame period"});
+  std::vector<double> point{p.display_point.x, p.display_point.y};
+  s.numbers("display_point", point,
+            {.min = 0.0, .max = 1.0, .count = 2,
+             .doc = "the filmed pixel [x, y] as fractions of the width and of a field's lines (0, 0: top left)"});
+  if (point.size() == 2) p.display_point = measurement::ScreenPoint{point[0], point[1]};
+  vec3(s, "axis", p.axis, {.doc = "angles are read about this world axis ([0, 1, 0]: yaw)"});
+  s.check("axis", p.axis != glm::dvec3(0.0), "the axis must not be zero");
+  if (p.axis != glm::dvec3(0.0)) p.axis = glm::normalize(p.axis);
+  s.number("threshold_deg", p.threshold_deg,
+           {.unit = "deg", .min = 0.0, .max = 360.0, .above_min = true,
+            .doc = "a reading this far from its rest value shows movement"});
+  s.duration("rest_ms", p.rest,
+             {.unit = "ms", .min = 0.0, .max = 1e5, .above_min = true,
+              .doc = "both readings steady (within threshold_deg / 10) this long: at rest"});
+  s.duration("max_shift_ms", p.max_shift,
+             {.unit = "ms", .min = 0.0, .max = 1e4, .above_min = true, .doc = "trajectory shifts searched: ±max_shift_ms"});
+  if (p.exposure)
+    s.check("exposure_ms", p.exposure->to_seconds() <= p.frame_period.to_seconds(),
+            "the shutter cannot stay open longer than a frame period");
+}
+
+}  // namespace latsim::sections

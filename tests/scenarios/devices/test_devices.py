@@ -1,0 +1,207 @@
+"""The device profiles of scenarios/devices/ (docs/devices.md): every device
+file runs and reports what a headset measurement sees; a higher refresh rate
+of one headset gives a lower motion-to-photon latency, by the part of the
+latency that scales with the refresh period, derived here from the profile;
+the devices sweep holds exactly the device files.
+
+Usage: test_devices.py LATSIM SOURCE_DIR SCRATCH_DIR
+"""
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+from concurrent.futures import ThreadPoolExecutor
+from fractions import Fraction
+
+LATSIM, SOURCE_DIR, SCRATCH = sys.argv[1], sys.argv[2], sys.argv[3]
+DEVICES = os.path.join(SOURCE_DIR, "scenarios", "devices")
+OUT = os.path.join(SCRATCH, "device_profiles")  # not tests/scenarios/devices: that is this directory's build directory
+
+failures = []
+
+
+def check(condition, message):
+    if not condition:
+        failures.append(message)
+        print("FAILED:", message)
+
+
+def merge(base, over):
+    """As the scenario reader merges includes: objects key by key, an object whose type changes replaces."""
+    for key, value in over.items():
+        if key in base and isinstance(base[key], dict) and isinstance(value, dict) and \
+                value.get("type", base[key].get("type")) == base[key].get("type"):
+            merge(base[key], value)
+        else:
+            base[key] = value
+
+
+def load(path):
+    doc = json.load(open(path, encoding="utf-8"))
+    include = doc.pop("include", None)
+    if include is None:
+        return doc
+    merged = {}
+    for name in include if isinstance(include, list) else [include]:
+        merge(merged, load(os.path.join(os.path.dirname(path), name)))
+    merge(merged, doc)
+    return merged
+
+
+FAMILIES = {
+    "index": ["index_80hz.json", "index_90hz.json", "index_120hz.json", "index_144hz.json"],
+    "quest2": ["quest2_72hz.json", "quest2_90hz.json", "quest2_120hz.json"],
+}
+OTHERS = ["vive_90hz.json", "rift_cv1_90hz.json", "rift_s_80hz.json"]
+FILES = [f for fam in FAMILIES.values() for f in fam] + OTHERS
+
+shutil.rmtree(OUT, ignore_errors=True)
+os.makedirs(OUT)
+
+
+# The sample's age when the application reads it (the tracker's report interval, the
+# USB poll, the phase of the read) depends on the drawn clock phases, not on the
+# refresh period. The ideal-tracker runs make it vanish (a 20 kHz tracker on a direct
+# link: under 0.05 ms), so that their motion-to-photon is the read-to-photon time the
+# refresh period changes, exactly.
+IDEAL_TRACKER = ["--set", "/tracker/rate_hz=20000", "--set", '/transport={"type":"direct"}']
+
+
+def run(job):
+    name, ideal = job
+    out = os.path.join(OUT, name[:-5] + ("_ideal" if ideal else ""))
+    proc = subprocess.run([LATSIM, "run", os.path.join(DEVICES, name), "--out", out, "-q"] +
+                          (IDEAL_TRACKER if ideal else []), capture_output=True, text=True)
+    return name, ideal, proc, out
+
+
+FAMILY_FILES = [f for fam in FAMILIES.values() for f in fam]
+with ThreadPoolExecutor(max_workers=2) as pool:
+    results = list(pool.map(run, [(f, False) for f in FILES] + [(f, True) for f in FAMILY_FILES]))
+
+figures, ideal = {}, {}
+for name, is_ideal, proc, out in results:
+    check(proc.returncode == 0, f"{name} runs{' (ideal tracker)' if is_ideal else ''}: {proc.stderr.strip()}")
+    if proc.returncode != 0:
+        continue
+    f = json.load(open(os.path.join(out, "figures.json"), encoding="utf-8"))
+    f = f.get("figures", f)
+    if is_ideal:
+        ideal[name] = f
+        continue
+    figures[name] = f
+    for figure in ["motion_to_photon_ms", "apparent_latency_ms_onset",
+                   "apparent_latency_ms_steady", "measured_latency_ms"]:
+        check(isinstance(f.get(figure), dict) and f[figure].get("count", 0) > 0, f"{name} reports {figure}")
+    check(f.get("frames_missed", 0) == 0, f"{name}: the application makes every refresh")
+
+
+def period_ms(scenario):
+    return float(1000 / Fraction(str(scenario["display"]["refresh_hz"])))
+
+
+def periods_of_pacing(scenario):
+    """Refresh periods between the pose read and the retrace its image is shown from.
+
+    SteamVR's running start reads the pose a fixed 3 ms before retrace V and shows
+    the image from retrace V + T: one period plus a constant. Phase Sync wakes the
+    application a measured frame time plus margins before the compositor's latch
+    of retrace V: a constant, no period."""
+    pacing = scenario["pipeline"].get("pacing", {}).get("application", "fixed")
+    return 0 if pacing == "just_in_time" else 1
+
+
+def periods_of_illumination(scenario):
+    """Refresh periods from the retrace to the centre pixel's photon, besides the flash.
+
+    Global illumination lights the panel once every row (the whole field) is written:
+    one period; rolling illumination lights the centre row after the blank lines and half
+    the active ones."""
+    display = scenario["display"]
+    if display["persistence"]["type"] == "global":
+        return 1
+    lines = display["height_px"] + display["vblank_lines"]
+    return (display["vblank_lines"] + display["height_px"] / 2) / lines
+
+
+def scaled_part(scenario):
+    """The part of read-to-photon latency that changes with the refresh rate (ms)."""
+    t = period_ms(scenario)
+    lit = scenario["display"]["persistence"].get("lit_ms", 0)
+    return (periods_of_pacing(scenario) + periods_of_illumination(scenario)) * t + lit / 2
+
+
+TOLERANCE_MS = 0.1  # Phase Sync's estimate before the first measured frame (one period), and the ideal sample's age
+for family, files in FAMILIES.items():
+    for low, high in zip(files, files[1:]):
+        if low not in ideal or high not in ideal or low not in figures or high not in figures:
+            continue
+        s_low, s_high = load(os.path.join(DEVICES, low)), load(os.path.join(DEVICES, high))
+        expected = scaled_part(s_low) - scaled_part(s_high)
+        fall = ideal[low]["motion_to_photon_ms"]["mean"] - ideal[high]["motion_to_photon_ms"]["mean"]
+        check(abs(fall - expected) <= TOLERANCE_MS,
+              f"{low} -> {high}: read-to-photon falls by {fall:.3f} ms, expected {expected:.3f} ms (+- {TOLERANCE_MS})")
+        check(figures[high]["motion_to_photon_ms"]["mean"] < figures[low]["motion_to_photon_ms"]["mean"],
+              f"{family}: {high} has a lower motion-to-photon than {low}")
+
+# The sweep's points are the device files (zip mode: the i-th value of every axis).
+sweep = json.load(open(os.path.join(DEVICES, "devices_sweep.json"), encoding="utf-8"))
+check(sweep.get("mode") == "zip" and sweep.get("replications", 1) >= 4, "the sweep is zipped, 4 replications or more")
+base = load(os.path.join(DEVICES, sweep["base"]))
+pointers = [a["pointer"] for a in sweep["axes"]]
+n = len(sweep["axes"][0]["values"])
+check(n == len(FILES), f"the sweep has one point per device file ({n} of {len(FILES)})")
+for i in range(n):
+    point = json.loads(json.dumps(base))
+    for axis in sweep["axes"]:
+        point[axis["pointer"][1:]] = axis["values"][i]
+    matches = [f for f in FILES
+               if all(load(os.path.join(DEVICES, f)).get(p[1:]) == point.get(p[1:]) for p in pointers if p != "/description")]
+    check(len(matches) == 1, f"sweep point {i} ({point['description']}) is exactly one device file: {matches}")
+
+
+# The report's devices table (analysis/devices_table.py) on hand-made rows: mean and
+# sample standard deviation over replications, [1, 3] -> 2 +- sqrt(2).
+sys.path.insert(0, os.path.join(SOURCE_DIR, "analysis"))
+import latsim_results as lr  # noqa: E402
+import devices_table  # noqa: E402
+
+
+def summary(rate, mtp):
+    dist = lambda m: {"mean": m, "count": 4}  # noqa: E731
+    return {"scenario": {"display": {"refresh_hz": rate}},
+            "figures": {"motion_to_photon_ms": dist(mtp), "apparent_latency_ms_onset": dist(mtp / 10),
+                        "apparent_latency_ms_steady": dist(0.5), "measured_latency_ms": dist(mtp / 2)}}
+
+
+rows = [lr.Row("a", ["a0", "a1"], [summary(90, 1), summary(90, 3)], {"/description": "A 90 Hz"}),
+        lr.Row("b", ["b0"], [summary("60000/1001", 20)], {"/description": "B"})]
+coll = lr.Collection("sweep", SCRATCH, rows, axes=["/description"])
+table = "\n".join(devices_table.markdown(coll))
+check("| A 90 Hz | 90 | 2.00 ± 1.41 | 0.20 ± 0.14 | 0.50 ± 0.00 | 1.00 ± 0.71 |  | 2 |" in table,
+      f"row A: means and standard deviations over two replications:\n{table}")
+check("| B | 59.9401 | 20.00 | 2.00 | 0.50 | 10.00 |  | 1 |" in table, "row B: one replication, no spread; 60000/1001 Hz")
+check(devices_table.markdown(lr.Collection("sweep", SCRATCH, rows[:1], axes=["/description"])) == [],
+      "one row is no comparison: no section")
+
+
+# The report of a directory of two device runs has the devices section, one row each.
+runs = os.path.join(SCRATCH, "devices_report")
+shutil.rmtree(runs, ignore_errors=True)
+os.makedirs(runs)
+for name in ["index_90hz", "quest2_90hz"]:
+    if os.path.isdir(os.path.join(OUT, name)):
+        shutil.copytree(os.path.join(OUT, name), os.path.join(runs, name))
+rep = subprocess.run([sys.executable, os.path.join(SOURCE_DIR, "analysis", "report.py"), runs, "--gantt-limit", "0"],
+                     capture_output=True, text=True)
+check(rep.returncode == 0, f"report of two device runs: {rep.stderr.strip()}")
+md = open(os.path.join(runs, "report.md"), encoding="utf-8").read() if rep.returncode == 0 else ""
+check("## Devices: what a headset measurement sees" in md, "the report has the devices section")
+check("| index_90hz | 90 |" in md and "| quest2_90hz | 90 |" in md, "one row per device run, with its refresh rate")
+
+if failures:
+    print(f"{len(failures)} failures")
+    sys.exit(1)
+print("ok: device profiles")
