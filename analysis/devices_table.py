@@ -58,20 +58,12 @@ def refresh_hz(row):
     return value
 
 
-def label_of(row, coll):
-    if "/description" in coll.axes:
-        return str(row.axis_values["/description"])
-    if coll.axes:
-        return ", ".join(f"{lr.axis_label(a)}={row.axis_values[a]}" for a in coll.axes)
-    return row.name
-
-
 def rows_of(coll):
     """(label, rate, [cells]) per row, cells as 'mean ± sd' over replications."""
     out = []
     for r in coll.rows:
         rate = refresh_hz(r)
-        out.append((label_of(r, coll), "" if rate is None else f"{float(rate):g}",
+        out.append((lr.point_name(r, coll), "" if rate is None else f"{float(rate):g}",
                     [cell(r.values(path)) for _, path in COLUMNS], r.replications()))
     return out
 

@@ -4,6 +4,7 @@ evenly spaced sample of its points) and what report.md says about the rest."""
 import os
 
 import gantt
+import sweep_labels
 from progress import Progress
 
 
@@ -41,7 +42,7 @@ def draw(coll, limit):
     drawn = []
     progress = Progress("Gantt charts", len(chosen))
     for row, run_dir in chosen:
-        base = gantt.draw(run_dir, title=f"{row.name}: pipeline stages")
+        base = gantt.draw(run_dir, title=f"{sweep_labels.cut(row.name, 100)}: pipeline stages")
         if base:
             drawn.append(os.path.relpath(base, coll.directory))
         progress.advance()

@@ -11,6 +11,7 @@ import math
 import os
 from fractions import Fraction
 
+import sweep_labels
 from latsim_store import SweepStore
 
 # Headline columns of the latency table: (column name, figure path, unit label).
@@ -126,6 +127,16 @@ class Collection:
         self.axes = axes or []
         self.figures = []  # the report's columns a sweep file chose ("figures")
         self.runs = runs or []  # sweep only: one dict per results.csv line
+        self.value_labels = {}  # sweep only: {axis: {value text: tick or legend label}} (sweep_labels)
+        self._point_names = None  # point_name's names, by row identity, made on first use
+
+    def value_label(self, axis, value):
+        """What a plot calls one swept value: never JSON (sweep_labels.value_labels, made from the
+        rows' values on first use where load() did not)."""
+        if axis not in self.value_labels:
+            distinct = list(dict.fromkeys(r.axis_values[axis] for r in self.rows if axis in r.axis_values))
+            self.value_labels[axis] = sweep_labels.value_labels(distinct, axis_label(axis))
+        return self.value_labels[axis].get(value, value)
 
 
 def find_figure(summary, path):
@@ -179,16 +190,23 @@ def axis_label(pointer):
 
 
 def row_name(values, axes):
-    """A sweep point's name from its axis values; values that are whole JSON
-    objects or arrays (a pipeline swapped for another) are left out when some
-    axis has a plain value, such as a label swept along with them."""
-    if not axes:
-        return "base scenario"
-    plain = [a for a in axes if not str(values[a]).lstrip().startswith(("{", "["))]
-    shown = plain or axes
-    if len(shown) == 1 and len(axes) > 1:
-        return str(values[shown[0]])
-    return ", ".join(f"{axis_label(a)}={values[a]}" for a in shown)
+    """A sweep point's name from its axis values alone (sweep_labels.point_labels over one point)."""
+    labels = {a: sweep_labels.value_labels([values[a]], axis_label(a)) for a in axes}
+    return sweep_labels.point_labels([values], axes, axis_label, labels)[0]
+
+
+def point_name(row, coll):
+    """What tables and plots call a row: a sweep point by its axis values (sweep_labels.point_labels:
+    a /description swept beside whole objects names it alone), anything else by its name."""
+    if coll.kind != "sweep" or not coll.axes or not row.axis_values:
+        return row.name
+    if coll._point_names is None:
+        values = [r.axis_values for r in coll.rows]
+        for a in coll.axes:
+            coll.value_label(a, values[0][a])  # makes the axis's labels where load() did not
+        names = sweep_labels.point_labels(values, coll.axes, axis_label, coll.value_labels)
+        coll._point_names = {id(r): name for r, name in zip(coll.rows, names)}
+    return coll._point_names.get(id(row), row.name)
 
 
 def load(directory):
@@ -228,15 +246,19 @@ def _load_sweep(directory):
     for run in runs:
         by_point.setdefault(int(run["point"]), []).append(run)
     read = sweep_summary_reader(directory)
-    rows = []
-    for point in sorted(by_point):
-        members = sorted(by_point[point], key=lambda r: int(r["replication"]))
-        dirs = [os.path.join(directory, "runs", r["run_id"]) for r in members]
-        values = {a: members[0][a] for a in axes}
-        name = row_name(values, axes)
-        rows.append(Row(name, dirs, None, values, members, read))
+    points = [sorted(by_point[p], key=lambda r: int(r["replication"])) for p in sorted(by_point)]
+    values = [{a: members[0][a] for a in axes} for members in points]
+    labels = {}
+    for a in axes:
+        distinct = list(dict.fromkeys(v[a] for v in values))
+        labels[a] = sweep_labels.value_labels(distinct, axis_label(a))
+    names = sweep_labels.point_labels(values, axes, axis_label, labels)
+    rows = [Row(name, [os.path.join(directory, "runs", r["run_id"]) for r in members], None, point_values, members,
+                read)
+            for name, members, point_values in zip(names, points, values)]
     coll = Collection("sweep", directory, rows, axes, runs)
     coll.figures = figures
+    coll.value_labels = labels
     return coll
 
 
@@ -308,3 +330,57 @@ def mean_ci95(values):
         return mean, 0.0
     var = sum((v - mean) ** 2 for v in values) / (n - 1)
     return mean, t975(n - 1) * math.sqrt(var / n)
+
+
+def quantile_of_buckets(edges, counts, fraction):
+    """The value below which `fraction` of a histogram's mass lies, linear within a bucket."""
+    total = sum(counts)
+    target, below = fraction * total, 0.0
+    for lo, hi, count in zip(edges, edges[1:], counts):
+        if count > 0 and below + count >= target:
+            return lo + (hi - lo) * max(0.0, target - below) / count
+        below += count
+    return edges[-1]
+
+
+# The share of each curve's samples a histogram may leave out at either end.
+TAIL_FRACTION = 0.005
+
+
+def mass_range(histograms):
+    """(low, high, clipped) of the x range a plot of these (edges, counts) shows: every curve's
+    samples but TAIL_FRACTION at each end when that range is under half the full one (a long thin
+    tail squashes the mass against one side); else the full range and clipped False."""
+    shown = [(e, c) for e, c in histograms if e and sum(c) > 0]
+    if not shown:
+        return None
+    full_low, full_high = min(e[0] for e, _ in shown), max(e[-1] for e, _ in shown)
+    low = min(quantile_of_buckets(e, c, TAIL_FRACTION) for e, c in shown)
+    high = max(quantile_of_buckets(e, c, 1.0 - TAIL_FRACTION) for e, c in shown)
+    if high - low >= 0.5 * (full_high - full_low) or high <= low:
+        return full_low, full_high, False
+    pad = 0.05 * (high - low)
+    return max(full_low, low - pad), min(full_high, high + pad), True
+
+
+# A bucket drawn lower than this share of the tallest one is barely visible on a linear axis.
+FAINT_SHARE = 0.05
+# A log density axis is chosen when some curve has more of its mass than this in faint buckets.
+FAINT_MASS = 0.25
+
+
+def needs_log_density(histograms, low=None, high=None):
+    """Whether a linear density axis would hide much of some curve's mass: a spike (a still head's
+    near-zero registration error, say) that dwarfs where the rest of the samples lie. Only buckets
+    within [low, high] count, when given."""
+    densities = []
+    for edges, counts in histograms:
+        total = sum(counts)
+        if total <= 0:
+            continue
+        densities.append([(c / total / max(hi - lo, 1e-12), c / total) for lo, hi, c in zip(edges, edges[1:], counts)
+                          if (low is None or hi > low) and (high is None or lo < high)])
+    tallest = max((d for curve in densities for d, _ in curve), default=0.0)
+    if tallest <= 0:
+        return False
+    return any(sum(m for d, m in curve if d < FAINT_SHARE * tallest) > FAINT_MASS for curve in densities)

@@ -11,6 +11,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import latsim_results as lr  # noqa: E402
 import plotting  # noqa: E402
+import sweep_labels  # noqa: E402
 from plotting import plt  # noqa: E402
 
 # Table columns: (header, figure path).
@@ -54,15 +55,6 @@ def pareto_front(points):
     return sorted(front, key=lambda i: points[i][0])
 
 
-def label_of(row, coll):
-    # A sweep that labels its points (a /description axis beside whole objects, zip mode) is shown by its labels.
-    if "/description" in coll.axes:
-        return str(row.axis_values["/description"])
-    if coll.axes:
-        return ", ".join(f"{lr.axis_label(a)}={row.axis_values[a]}" for a in coll.axes)
-    return row.name
-
-
 def plot(coll):
     """Draws pacing_pareto.{png,svg}; returns its base name, or None when there is nothing to compare."""
     if not is_pacing_collection(coll):
@@ -77,11 +69,10 @@ def plot(coll):
         ax.scatter([p[0] for p in pts], [p[1] for p in pts], color="tab:blue", zorder=3)
         front = pareto_front(pts)
         ax.plot([pts[i][0] for i in front], [pts[i][1] for i in front], color="tab:red", label="Pareto front")
-        for (x, y), r in zip(pts, named):
-            ax.annotate(label_of(r, coll), (x, y), textcoords="offset points", xytext=(5, 4), fontsize=7)
         ax.set_xlabel("missed frames per minute")
         ax.set_ylabel(f"{label} motion-to-photon (ms)")
         ax.legend(fontsize=8)
+        plotting.annotate_apart(ax, pts, [sweep_labels.cut(lr.point_name(r, coll)) for r in named])
     fig.suptitle("Latency against missed frames (lower left is better)")
     plotting.save(fig, os.path.join(coll.directory, "pacing_pareto"))
     return "pacing_pareto"
@@ -97,7 +88,7 @@ def markdown(coll, plot_base):
              "frames done after the compositor's latch (docs/pacing.md).", "",
              "| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     for r in coll.rows:
-        cells = [label_of(r, coll), lr_fmt(missed_per_minute(r))] + [lr_fmt(r.mean(p)) for _, p in COLUMNS]
+        cells = [lr.point_name(r, coll), lr_fmt(missed_per_minute(r))] + [lr_fmt(r.mean(p)) for _, p in COLUMNS]
         lines.append("| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |")
     lines.append("")
     if plot_base:

@@ -77,7 +77,8 @@ def markdown(coll):
 
 
 def plot_registration_vs_latency(coll):
-    """One marker per row at (mean motion-to-photon, mean registration error), a line per predictor."""
+    """One marker per row at (mean motion-to-photon, mean registration error): colour by predictor, shape by
+    pipeline; the markers are not joined."""
     rows = [r for r in predicting_rows(coll)
             if r.values("motion_to_photon_ms") and r.values("registration_error_arcmin")]
     if not rows:
@@ -100,13 +101,13 @@ def plot_registration_vs_latency(coll):
 
     fig, ax = plt.subplots(figsize=(8, 5))
     for predictor, colour in zip(predictors, plotting.colours(len(predictors))):
-        members = sorted((r for r in rows if predictor_of(r) == predictor),
-                         key=lambda r: r.mean("motion_to_photon_ms"))
-        xs = [r.mean("motion_to_photon_ms") for r in members]
-        ys = [r.mean("registration_error_arcmin") for r in members]
-        ax.plot(xs, ys, color=colour, linewidth=1.0, alpha=0.6, label=predictor)
-        for r, x, y in zip(members, xs, ys):
-            ax.plot([x], [y], color=colour, linestyle="none", **marker_of(r.pipeline()))
+        # A scatter: the rows are separate designs, and a line through them (in plan order or any
+        # other) would draw a trend that no design has.
+        members = [r for r in rows if predictor_of(r) == predictor]
+        ax.plot([], [], color=colour, marker="s", linestyle="none", label=predictor)
+        for r in members:
+            ax.plot([r.mean("motion_to_photon_ms")], [r.mean("registration_error_arcmin")], color=colour,
+                    linestyle="none", **marker_of(r.pipeline()))
     for pipeline in pipelines:
         ax.plot([], [], color="grey", linestyle="none", label=pipeline, **marker_of(pipeline))
     ax.set_xlabel("mean motion-to-photon latency (ms)")

@@ -7,8 +7,8 @@ runs/*/summary.json) or a directory of run directories (each subdirectory with
 a summary.json is one row). Writes into DIR: report.md, latency_table.csv
 (every row), mtp_cdf.{png,svg}, mtp_histogram.{png,svg}, for sweeps
 sweep_<axis>.{png,svg} (figures against each axis, mean and 95 % t-interval
-over replications) and, over two or more varied axes, heatmap.{png,svg} of
-the chosen figure; registration_vs_latency.{png,svg} and a pose-prediction
+over replications; a zip sweep: sweep_points.{png,svg}, by point label) and,
+over two crossed axes, heatmap.{png,svg} of the chosen figure; registration_vs_latency.{png,svg} and a pose-prediction
 section when any run predicts, and gantt.{png,svg} next to the summaries of
 runs with a timeline.csv: every one, or for a sweep an evenly spaced sample of
 GANTT_SAMPLE points unless --gantt-limit says otherwise. A sweep's table in
@@ -35,6 +35,8 @@ import pacing_plot  # noqa: E402
 import devices_table  # noqa: E402
 import plotting  # noqa: E402
 import prediction  # noqa: E402
+import sweep_labels  # noqa: E402
+import sweep_plots  # noqa: E402
 from plotting import plt  # noqa: E402
 from progress import Progress  # noqa: E402
 
@@ -69,7 +71,7 @@ def chosen_columns():
 
 
 def sweep_figures(coll):
-    """What plot_sweep_axis draws: the chosen columns, else the headline figure first."""
+    """What the sweep plots draw: the chosen columns, else the headline figure first."""
     if CHOSEN:
         return [(path, label) for _, path, label in chosen_columns()]
     return HEADLINE_SWEEP_FIGURES.get(lr.headline_figure(coll.rows), []) + SWEEP_FIGURES
@@ -143,6 +145,28 @@ def _csv(text):
     return '"' + text.replace('"', '""') + '"' if any(c in text for c in ',"\n') else text
 
 
+def shown_range(histograms):
+    """'low to high' over every histogram drawn, for a title that says what clipping left out."""
+    edges = [e for e, c in histograms if e and sum(c) > 0]
+    return f"{fmt(min(e[0] for e in edges), 4)} to {fmt(max(e[-1] for e in edges), 4)}"
+
+
+def histogram_range(ax, histograms):
+    """Sets a histogram's axes to show its mass (x clipped past thin tails, a log density under a spike)
+    and returns what the title says about it."""
+    shown = lr.mass_range(histograms)
+    notes = []
+    if shown and shown[2]:
+        ax.set_xlim(shown[0], shown[1])
+        share = 100 * lr.TAIL_FRACTION
+        notes.append(f"x clipped to each curve's {share:g}\u2013{100 - share:g} % quantiles, "
+                     f"full range {shown_range(histograms)}")
+    if shown and lr.needs_log_density(histograms, shown[0], shown[1]):
+        ax.set_yscale("log")
+        notes.append("log density: a spike would hide the rest")
+    return "\n(" + "; ".join(notes) + ")" if notes else " (full range, linear)"
+
+
 def plot_distributions(coll):
     """A CDF and a histogram (e.g. mtp_cdf, mtp_histogram) of each distribution in DISTRIBUTIONS that
     a row has, from the histogram buckets of replication 0 of each row."""
@@ -156,9 +180,8 @@ def plot_distributions(coll):
         palette = plotting.colours(len(rows))
         fig_cdf, ax_cdf = plt.subplots(figsize=(8, 5))
         fig_hist, ax_hist = plt.subplots(figsize=(8, 5))
-        for row, colour in zip(rows, palette):
-            dist = row.first_summary()["figures"][figure]
-            edges, counts = lr.histogram_edges(dist)
+        histograms = [lr.histogram_edges(row.first_summary()["figures"][figure]) for row in rows]
+        for row, colour, (edges, counts) in zip(rows, palette, histograms):
             total = sum(counts)
             if total <= 0:
                 continue
@@ -167,16 +190,16 @@ def plot_distributions(coll):
                 cumulative += count
                 xs.append(upper)
                 ys.append(cumulative / total)
-            ax_cdf.plot(xs, ys, color=colour, label=row.name, drawstyle="default")
+            ax_cdf.plot(xs, ys, color=colour, label=sweep_labels.cut(row.name), drawstyle="default")
             density = [c / total / max(hi - lo, 1e-12) for lo, hi, c in zip(edges, edges[1:], counts)]
-            ax_hist.stairs(density, edges, color=colour, label=row.name, linewidth=1.2)
+            ax_hist.stairs(density, edges, color=colour, label=sweep_labels.cut(row.name), linewidth=1.2)
         ax_cdf.set_xlabel(xlabel)
         ax_cdf.set_ylabel("fraction of samples at or below")
         ax_cdf.set_ylim(0, 1.02)
         ax_cdf.set_title(f"{title}, cumulative distribution")
         ax_hist.set_xlabel(xlabel)
         ax_hist.set_ylabel(f"probability density (1/{xlabel.rsplit('(', 1)[-1].rstrip(')')})")
-        ax_hist.set_title(f"{title}, histogram")
+        ax_hist.set_title(f"{title}, histogram" + histogram_range(ax_hist, histograms), fontsize=10)
         for ax in (ax_cdf, ax_hist):
             ax.legend(fontsize=7, loc="best")
         base = coll.directory
@@ -184,53 +207,6 @@ def plot_distributions(coll):
         plotting.save(fig_hist, os.path.join(base, f"{prefix}_histogram"))
         drawn += [f"{prefix}_cdf", f"{prefix}_histogram"]
     return drawn
-
-
-def plot_sweep_axis(coll, axis):
-    """Figures against one axis; one line per combination of the other axes' values."""
-    others = [a for a in coll.axes if a != axis]
-    series = {}
-    for row in coll.rows:
-        key = tuple(row.axis_values[a] for a in others)
-        series.setdefault(key, []).append(row)
-    keys = list(series)  # first-appearance order follows the plan
-    axis_values = []
-    for row in coll.rows:
-        if row.axis_values[axis] not in axis_values:
-            axis_values.append(row.axis_values[axis])
-    numeric = all(lr.as_number(v) is not None for v in axis_values)
-    x_of = (lambda v: lr.as_number(v)) if numeric else (lambda v: float(axis_values.index(v)))
-    figures = [(p, label) for p, label in sweep_figures(coll) if any(r.values(p) for r in coll.rows)]
-    if not figures:
-        return None
-    fig, axes = plt.subplots(len(figures), 1, figsize=(8, 3.6 * len(figures)), squeeze=False)
-    palette = plotting.colours(len(keys))
-    name = lr.short_axis_name(axis, coll.axes)
-    for (path, label), ax in zip(figures, axes[:, 0]):
-        for key, colour in zip(keys, palette):
-            points = sorted(((x_of(r.axis_values[axis]), lr.mean_ci95(r.values(path))) for r in series[key]
-                             if r.values(path)), key=lambda p: p[0])
-            if not points:
-                continue
-            xs = [p[0] for p in points]
-            means = [p[1][0] for p in points]
-            half = [p[1][1] for p in points]
-            legend = ", ".join(f"{lr.axis_label(a)}={v}" for a, v in zip(others, key)) or "mean"
-            ax.plot(xs, means, marker="o", color=colour, label=legend)
-            ax.fill_between(xs, [m - h for m, h in zip(means, half)], [m + h for m, h in zip(means, half)],
-                            color=colour, alpha=0.2, linewidth=0)
-        ax.set_ylabel(label)
-        ax.set_xlabel(f"{lr.axis_label(axis)} ({axis})" if lr.axis_label(axis) != axis else axis)
-        if not numeric:
-            ax.set_xticks(range(len(axis_values)))
-            ax.set_xticklabels(axis_values)
-        # Outside the axes: with many series an inside legend hides the lines.
-        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-    reps = max(r.replications() for r in coll.rows)
-    axes[0, 0].set_title(f"Against {lr.axis_label(axis)}: mean over {reps} replication(s), band = 95 % t-interval")
-    base = "sweep_" + name.replace("/", "_").replace(".", "_")
-    plotting.save(fig, os.path.join(coll.directory, base))
-    return base
 
 
 def table_figure(name):
@@ -368,7 +344,12 @@ def write_markdown(coll, drawn, top, figure, title=None):
         if shown < len(coll.rows):
             md += [f"{shown} of {len(coll.rows)} rows drawn, evenly spaced, replication 0 of each.", ""]
         md += [f"![{p}]({p}.png)" for p in plots] + [""]
-    if drawn["sweep"]:
+    if drawn["sweep"] == ["sweep_points"]:
+        md += ["## Figures per point", "",
+               "A zip sweep's axes move together: each point is drawn by its label, a marker at the mean over "
+               "replications with its 95 % Student-t interval; no heat map (no two axes are crossed).", ""]
+        md += ["![sweep_points](sweep_points.png)", ""]
+    elif drawn["sweep"]:
         md += ["## Figures against each swept axis", "",
                "Lines are means over replications; bands are 95 % Student-t intervals.", ""]
         md += [f"![{p}]({p}.png)" for p in drawn["sweep"]] + [""]
@@ -408,12 +389,7 @@ def draw_everything(coll, args, figure):
     write_latency_table(coll)
     drawn = {"distributions": plot_distributions(coll)}
     progress = Progress("plots against the axes", len(coll.axes))
-    drawn["sweep"] = []
-    for axis in coll.axes:
-        base = plot_sweep_axis(coll, axis)
-        if base:
-            drawn["sweep"].append(base)
-        progress.advance()
+    drawn["sweep"] = sweep_plots.draw(coll, sweep_figures(coll), progress)
     progress.finish()
     drawn["heatmap"] = heatmap.draw(coll, figure[1], figure[2]) if coll.kind == "sweep" else None
     limit = args.gantt_limit
