@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <iostream>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -16,14 +17,13 @@
 
 #include "commands.hpp"
 #include "latsim/scenario/readable.hpp"
-#include "latsim/sweep/parallel_for.hpp"
-#include "latsim/sweep/progress_line.hpp"
-#include "stop_signals.hpp"
 #include "latsim/sweep/common.hpp"
-#include "latsim/sweep/cost.hpp"
 #include "latsim/sweep/mpi.hpp"
+#include "latsim/sweep/progress_line.hpp"
+#include "latsim/sweep/runner.hpp"
 #include "latsim/sweep/shard.hpp"
 #include "latsim/sweep/tables.hpp"
+#include "stop_signals.hpp"
 
 namespace latsim::app {
 
@@ -35,36 +35,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Runs the unfinished runs among `selected` on `jobs` threads, longest expected first.
-SweepTally run_here(const SweepPlan& plan, const std::vector<size_t>& selected, const PointCheck& check,
-                    SweepWorkspace& work, const SweepRequest& request, const std::atomic<bool>* stop) {
-  const unsigned jobs = request.jobs;
-  const KeepPolicy& keep = request.keep;
-  SweepTally tally;
-  std::vector<size_t> pending;
-  for (size_t i : selected) {
-    if (work.store.is_finished(plan.runs()[i].run_id)) ++tally.resumed;
-    else pending.push_back(i);
-  }
-  pending = longest_first(pending, check.cost_of_run);
-  ProgressLine progress("sweep", selected.size(), tally.resumed);
-  std::vector<RunAttempt> attempts(pending.size());
-  // Once a stop signal came or the directory cannot take results, starting more runs only fails more.
-  std::atomic<bool> storage_unusable{false};
-  parallel_for(pending.size(), jobs, [&](size_t i) {
-    if (storage_unusable.load() || (stop != nullptr && stop->load())) {
-      attempts[i].result = RunAttempt::Result::not_started;
-      return;
-    }
-    attempts[i] = work.executor.execute(RunTask::of(plan, plan.runs()[pending[i]], keep));
-    if (attempts[i].storage_unusable) storage_unusable.store(true);
-    progress.advance();
-  });
-  progress.finish();
-  tally.add(plan, pending, attempts);
-  return tally;
-}
-
 // Runs the plan's runs that are in `shard` (all of them without one) on this
 // machine's threads, then writes the tables unless this is one shard of many.
 int sweep_here(const SweepRequest& request, const SweepPlan& plan, const std::optional<Shard>& shard,
@@ -73,23 +43,21 @@ int sweep_here(const SweepRequest& request, const SweepPlan& plan, const std::op
   std::vector<size_t> selected;
   for (const auto& run : plan.runs())
     if (!shard || shard->contains(run.index)) selected.push_back(run.index);
-  const PointCheck check = check_points(plan, selected, request.jobs, request.max_events);
-  phases.check_s = check.wall_s;
-  phases.points = check.points;
-  if (check.problem) {
-    std::cerr << request.sweep_file << ": " << *check.problem << "\n";
-    return kExitBadInput;
-  }
-
   StopSignals signals;
   SweepRequest stoppable = request;
   stoppable.stop = &signals.flag();
-  SweepWorkspace work(stoppable);
-  write_file_if_changed(work.store.out_dir() / "plan.json", plan.to_json().dump(2) + "\n");
-  const auto runs_start = std::chrono::steady_clock::now();
-  const SweepTally tally = run_here(plan, selected, check, work, request, &signals.flag());
-  phases.runs_s = seconds_since(runs_start);
-  size_t temporaries = work.executor.temporaries_removed();
+  const bool one_of_many = shard && shard->count > 1;
+  ProgressLine progress("sweep", selected.size());
+  const SweepOutcome out = run_sweep(plan, stoppable, selected, !one_of_many, &progress);
+  phases.check_s = out.phases.check_s;
+  phases.points = out.phases.points;
+  phases.runs_s = out.phases.runs_s;
+  phases.tables_s = out.phases.tables_s;
+  if (out.problem) {
+    std::cerr << request.sweep_file << ": " << *out.problem << "\n";
+    return kExitBadInput;
+  }
+  const SweepTally& tally = out.tally;
   if (signals.requested()) {
     std::fprintf(stderr,
                  "sweep: stopped by %s: %zu of %zu run(s) finished %s, none partly written; run the same command "
@@ -98,35 +66,30 @@ int sweep_here(const SweepRequest& request, const SweepPlan& plan, const std::op
     return signals.exit_code();
   }
   if (tally.storage_problem) {
-    tally.print_notes(temporaries);
+    tally.print_notes(out.temporaries);
     return kExitFailure;
   }
-  if (shard && shard->count > 1) {
+  if (one_of_many) {
     const std::string from = shard->source == request.shard ? "" : " (" + shard->source + ")";
     std::printf("sweep: shard %zu/%zu%s: %zu of %zu runs %s on %u thread(s) in %.2f s; "
                 "latsim sweep --collect writes the tables once every shard is done\n",
                 shard->index, shard->count, from.c_str(), selected.size(), plan.runs().size(),
                 tally.counts().c_str(), request.jobs, seconds_since(start));
-    tally.print_notes(temporaries);
+    tally.print_notes(out.temporaries);
     if (request.timings) phases.print(tally.times, request.jobs);
     return tally.failures.empty() ? kExitOk : kExitFailure;
   }
-  const auto tables_start = std::chrono::steady_clock::now();
-  size_t gathered = 0;
-  try {
-    gathered = write_tables(plan, work.store, request.jobs, temporaries);
-  } catch (const std::exception& e) {
+  if (out.tables_problem) {
     std::fprintf(stderr, "sweep: %s; the %zu finished run(s) are kept: make room and run the same command again "
                          "(or latsim sweep --collect) to write the tables\n",
-                 scenario::readable(e.what()).c_str(), tally.finished());
+                 out.tables_problem->c_str(), tally.finished());
     return kExitFailure;
   }
-  phases.tables_s = seconds_since(tables_start);
   std::printf("sweep: %zu runs %s on %u thread(s) in %.2f s -> %s\n", plan.runs().size(), tally.counts().c_str(),
-              request.jobs, seconds_since(start), (work.store.out_dir() / "results.csv").c_str());
-  tally.print_notes(temporaries);
+              request.jobs, seconds_since(start), (std::filesystem::path(request.out_dir) / "results.csv").c_str());
+  tally.print_notes(out.temporaries);
   if (request.timings) phases.print(tally.times, request.jobs);
-  return tally.failures.empty() && gathered == plan.runs().size() ? kExitOk : kExitFailure;
+  return tally.failures.empty() && out.tabled == plan.runs().size() ? kExitOk : kExitFailure;
 }
 
 // Writes the tables of a sweep that shards ran, and names every run still missing.
@@ -164,8 +127,8 @@ int check_only(const SweepRequest& request, const SweepPlan& plan) {
     return kExitBadInput;
   }
   size_t finished = 0;
-  const std::filesystem::path runs = std::filesystem::path(request.out_dir) / "runs";
-  for (const auto& run : plan.runs()) finished += std::filesystem::exists(runs / run.run_id / "summary.json") ? 1 : 0;
+  const std::set<std::string> done = finished_runs_in(request.out_dir);
+  for (const auto& run : plan.runs()) finished += done.count(run.run_id);
   std::printf("sweep: %s: %zu runs (%zu points x %llu replications), every point valid; %zu finished in %s\n",
               request.sweep_file.c_str(), plan.runs().size(), plan.point_count(),
               static_cast<unsigned long long>(plan.replications()), finished, request.out_dir.c_str());

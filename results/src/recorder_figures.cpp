@@ -81,8 +81,7 @@ std::vector<std::string> LatencyRecorder::default_headline() {
   return {"motion_to_photon_ms", "frame_rate_hz", "missed_refreshes", "registration_error_arcmin"};
 }
 
-std::vector<std::string> LatencyRecorder::headline() const {
-  const nlohmann::json all = figures();
+std::vector<std::string> LatencyRecorder::headline(const nlohmann::json& all) const {
   std::vector<std::string> present;
   for (const std::string& name : headline_.empty() ? default_headline() : headline_) {
     const auto it = all.find(name);

@@ -23,20 +23,13 @@ namespace {
 using Json = nlohmann::json;
 namespace fs = std::filesystem;
 
-Json resolve_defaults(const Json& scenario, const fs::path& base_dir) {
-  auto doc = scenario::ScenarioDocument::from_json(scenario, base_dir);
-  // The event budget is check_points' to judge, with the sweep's own limit.
-  run::validate_scenario(doc, 0.0);
-  return doc.resolved();
-}
-
 // The sweep-file location to blame for a scenario error at `pointer`: the axis
 // value that put something bad there, or else the point as a whole.
 std::string blame(const SweepPlan& plan, const SweepRun& run, const scenario::ScenarioError& e) {
   for (size_t a = 0; a < plan.axes().size(); ++a) {
     const std::string& axis = plan.axes()[a].pointer;
     if (e.pointer() == axis || e.pointer().rfind(axis + "/", 0) == 0)
-      return scenario::readable(plan.value_pointer(a, run.value_indices[a]) + ": " + e.what());
+      return scenario::readable(plan.value_pointer(a, plan.points()[run.point].value_indices[a]) + ": " + e.what());
   }
   return scenario::readable("/axes: at " + plan.describe(run) + ": " + e.what());
 }
@@ -50,9 +43,27 @@ unsigned available_cpus() {
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
+Json resolve_defaults(const Json& scenario, const fs::path& base_dir) {
+  auto doc = scenario::ScenarioDocument::from_json(scenario, base_dir);
+  // The event budget is check_points' to judge, with the sweep's own limit.
+  run::validate_scenario(doc, 0.0);
+  return doc.resolved();
+}
+
+SweepPlan read_plan(const std::string& sweep_file, const std::optional<std::string>& text) {
+  if (!text) return SweepPlan::load(sweep_file, resolve_defaults);
+  Json sweep;
+  try {
+    sweep = scenario::parse_json(*text, sweep_file);
+  } catch (const scenario::ScenarioError& e) {
+    throw SweepError(sweep_file, e.pointer(), e.message());
+  }
+  return SweepPlan::from_json(sweep, sweep_file, resolve_defaults);
+}
+
 std::optional<SweepPlan> load_plan(const SweepRequest& request) {
   try {
-    return SweepPlan::load(request.sweep_file, resolve_defaults);
+    return read_plan(request.sweep_file);
   } catch (const SweepError& e) {
     std::cerr << e.what() << "\n";
     return std::nullopt;
@@ -117,7 +128,7 @@ PointCheck check_points(const SweepPlan& plan, const std::vector<size_t>& run_in
   parallel_for(firsts.size(), jobs, [&](size_t i) {
     const SweepRun& run = plan.runs()[firsts[i]];
     try {
-      auto doc = scenario::ScenarioDocument::from_json(run.scenario, plan.base_dir());
+      auto doc = scenario::ScenarioDocument::from_json(plan.scenario(run), plan.base_dir());
       run::validate_scenario(doc, max_events);
       point_cost[run.point] = expected_cost(doc);
     } catch (const scenario::ScenarioError& e) {
@@ -155,7 +166,7 @@ SweepWorkspace::SweepWorkspace(const SweepRequest& request)
     : store(request.out_dir),
       claims(store.claims_dir(), std::chrono::seconds(request.stale_after_s)),
       journal(store.out_dir(), ClaimHolder::self().host, static_cast<long>(ClaimHolder::self().pid)),
-      executor(store, claims, journal, run_settings(request)) {}
+      executor(store, claims, journal, run_settings(request), request.jobs) {}
 
 void SweepTally::add(const SweepPlan& plan, const std::vector<size_t>& indices, const std::vector<RunAttempt>& attempts) {
   std::vector<size_t> order(indices.size());

@@ -124,7 +124,9 @@ class LatencyRecorder : public display::ScanoutListener {
   /// Pipelines that declare none get default_headline().
   void declare_headline(std::vector<std::string> names) { headline_ = std::move(names); }
   /// The declared headline figures that the run has (after finish()).
-  std::vector<std::string> headline() const;
+  std::vector<std::string> headline() const { return headline(figures()); }
+  /// The same, from the run's figures() already in hand (they take a while to make).
+  std::vector<std::string> headline(const nlohmann::json& figures) const;
   /// The headline of a pipeline that declares none.
   static std::vector<std::string> default_headline();
   /// What a measured cost read and played (summary.json's "captures").

@@ -39,6 +39,14 @@ struct SweepRequest {
 /// schedulers restrict to the allocation), at least 1.
 unsigned available_cpus();
 
+/// The scenario as a run takes it, every default filled in (what the plan
+/// checks axis pointers against); the event budget is left to check_points.
+nlohmann::json resolve_defaults(const nlohmann::json& scenario, const std::filesystem::path& base_dir);
+
+/// Reads a sweep file (or `text`, the sweep as JSON text, `sweep_file`
+/// standing for its file in messages); throws SweepError.
+SweepPlan read_plan(const std::string& sweep_file, const std::optional<std::string>& text = std::nullopt);
+
 /// Reads the sweep file; on bad input prints the one-line error and returns nothing.
 std::optional<SweepPlan> load_plan(const SweepRequest& request);
 
@@ -78,7 +86,7 @@ PointCheck check_points(const SweepPlan& plan, const std::vector<size_t>& run_in
 RunSettings run_settings(const SweepRequest& request);
 
 /// The sweep directory as one process works in it: its claims, its journal
-/// and the executor that runs runs there. Creates the directory.
+/// and the executor that runs runs there on request.jobs threads. Creates the directory.
 struct SweepWorkspace {
   explicit SweepWorkspace(const SweepRequest& request);
 
