@@ -1,7 +1,7 @@
 """Reading latsim result directories: a single run, a sweep, or a directory of runs.
 
-Only result files are read (summary.json, results.csv, timeline.csv); nothing
-here knows how the simulator works. Iteration is always in sorted or file
+Only result files are read (summary.json, results.csv, timeline.csv, a sweep's
+results store); nothing here knows how the simulator works. Iteration is always in sorted or file
 order so that every output derived from it is reproducible.
 """
 
@@ -12,6 +12,7 @@ import os
 from fractions import Fraction
 
 import sweep_labels
+from latsim_store import SweepStore
 
 # Every figure is declared once, in the figure registry of the simulator
 # (results/figure_registry.json): its table columns and plot labels come from
@@ -73,26 +74,27 @@ class Row:
     runs' summary.json files only when asked for something else, so that a
     report of many runs costs what it draws, not what the sweep ran."""
 
-    def __init__(self, name, run_dirs, summaries=None, axis_values=None, table_rows=None):
+    def __init__(self, name, run_dirs, summaries=None, axis_values=None, table_rows=None, read_summary=None):
         self.name = name
         self.run_dirs = run_dirs
         self._summaries = summaries
         self._first = summaries[0] if summaries else None
         self.axis_values = axis_values or {}
         self.table_rows = table_rows  # sweep only: this point's results.csv lines, by replication
+        # A run's summary from its directory (a sweep's from its results store unless the run was kept).
+        self._read = read_summary or (lambda d: read_json(os.path.join(d, "summary.json")))
 
     @property
     def summaries(self):
         """Every replication's summary.json (read on first use)."""
         if self._summaries is None:
-            self._summaries = [read_json(os.path.join(d, "summary.json")) for d in self.run_dirs]
+            self._summaries = [self._read(d) for d in self.run_dirs]
         return self._summaries
 
     def first_summary(self):
-        """Replication 0's summary.json: one file, whatever the replications."""
+        """Replication 0's summary.json: one run's, whatever the replications."""
         if self._first is None:
-            self._first = self._summaries[0] if self._summaries else \
-                read_json(os.path.join(self.run_dirs[0], "summary.json"))
+            self._first = self._summaries[0] if self._summaries else self._read(self.run_dirs[0])
         return self._first
 
     def replications(self):
@@ -244,6 +246,7 @@ def _load_sweep(directory):
     by_point = {}
     for run in runs:
         by_point.setdefault(int(run["point"]), []).append(run)
+    read = sweep_summary_reader(directory)
     points = [sorted(by_point[p], key=lambda r: int(r["replication"])) for p in sorted(by_point)]
     values = [{a: members[0][a] for a in axes} for members in points]
     labels = {}
@@ -251,12 +254,32 @@ def _load_sweep(directory):
         distinct = list(dict.fromkeys(v[a] for v in values))
         labels[a] = sweep_labels.value_labels(distinct, axis_label(a))
     names = sweep_labels.point_labels(values, axes, axis_label, labels)
-    rows = [Row(name, [os.path.join(directory, "runs", r["run_id"]) for r in members], None, point_values, members)
+    rows = [Row(name, [os.path.join(directory, "runs", r["run_id"]) for r in members], None, point_values, members,
+                read)
             for name, members, point_values in zip(names, points, values)]
     coll = Collection("sweep", directory, rows, axes, runs)
     coll.figures = figures
     coll.value_labels = labels
     return coll
+
+
+def sweep_summary_reader(directory):
+    """Reads a sweep run's summary: its summary.json where the run was kept in
+    full, else its record in the sweep's results store (opened on first use)."""
+    store = []
+
+    def read(run_dir):
+        file = os.path.join(run_dir, "summary.json")
+        if os.path.isfile(file):
+            return read_json(file)
+        if not store:
+            store.append(SweepStore(directory))
+        summary = store[0].summary(os.path.basename(run_dir))
+        if summary is None:
+            raise ValueError(f"{directory}: run {os.path.basename(run_dir)} is in results.csv but not in the "
+                             "results store (store/) nor in runs/")
+        return summary
+    return read
 
 
 def histogram_edges(distribution):

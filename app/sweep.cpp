@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <iostream>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -16,12 +17,13 @@
 
 #include "commands.hpp"
 #include "latsim/scenario/readable.hpp"
-#include "stop_signals.hpp"
 #include "latsim/sweep/common.hpp"
 #include "latsim/sweep/mpi.hpp"
+#include "latsim/sweep/progress_line.hpp"
+#include "latsim/sweep/runner.hpp"
 #include "latsim/sweep/shard.hpp"
 #include "latsim/sweep/tables.hpp"
-#include "latsim/sweep/thread_runs.hpp"
+#include "stop_signals.hpp"
 
 namespace latsim::app {
 
@@ -41,24 +43,21 @@ int sweep_here(const SweepRequest& request, const SweepPlan& plan, const std::op
   std::vector<size_t> selected;
   for (const auto& run : plan.runs())
     if (!shard || shard->contains(run.index)) selected.push_back(run.index);
-  const PointCheck check = check_points(plan, selected, request.jobs, request.max_events);
-  phases.check_s = check.wall_s;
-  phases.points = check.points;
-  if (check.problem) {
-    std::cerr << request.sweep_file << ": " << *check.problem << "\n";
-    return kExitBadInput;
-  }
-
   StopSignals signals;
   SweepRequest stoppable = request;
   stoppable.stop = &signals.flag();
-  SweepWorkspace work(stoppable);
-  write_file_if_changed(work.store.out_dir() / "plan.json", plan.to_json().dump(2) + "\n");
-  const auto runs_start = std::chrono::steady_clock::now();
-  const SweepTally tally =
-      run_on_threads(plan, selected, check.cost_of_run, work, request.keep, request.jobs, &signals.flag());
-  phases.runs_s = seconds_since(runs_start);
-  size_t temporaries = work.executor.temporaries_removed();
+  const bool one_of_many = shard && shard->count > 1;
+  ProgressLine progress("sweep", selected.size());
+  const SweepOutcome out = run_sweep(plan, stoppable, selected, !one_of_many, &progress);
+  phases.check_s = out.phases.check_s;
+  phases.points = out.phases.points;
+  phases.runs_s = out.phases.runs_s;
+  phases.tables_s = out.phases.tables_s;
+  if (out.problem) {
+    std::cerr << request.sweep_file << ": " << *out.problem << "\n";
+    return kExitBadInput;
+  }
+  const SweepTally& tally = out.tally;
   if (signals.requested()) {
     std::fprintf(stderr,
                  "sweep: stopped by %s: %zu of %zu run(s) finished %s, none partly written; run the same command "
@@ -67,35 +66,30 @@ int sweep_here(const SweepRequest& request, const SweepPlan& plan, const std::op
     return signals.exit_code();
   }
   if (tally.storage_problem) {
-    tally.print_notes(temporaries);
+    tally.print_notes(out.temporaries);
     return kExitFailure;
   }
-  if (shard && shard->count > 1) {
+  if (one_of_many) {
     const std::string from = shard->source == request.shard ? "" : " (" + shard->source + ")";
     std::printf("sweep: shard %zu/%zu%s: %zu of %zu runs %s on %u thread(s) in %.2f s; "
                 "latsim sweep --collect writes the tables once every shard is done\n",
                 shard->index, shard->count, from.c_str(), selected.size(), plan.runs().size(),
                 tally.counts().c_str(), request.jobs, seconds_since(start));
-    tally.print_notes(temporaries);
+    tally.print_notes(out.temporaries);
     if (request.timings) phases.print(tally.times, request.jobs);
     return tally.failures.empty() ? kExitOk : kExitFailure;
   }
-  const auto tables_start = std::chrono::steady_clock::now();
-  size_t gathered = 0;
-  try {
-    gathered = write_tables(plan, work.store, request.jobs, temporaries);
-  } catch (const std::exception& e) {
+  if (out.tables_problem) {
     std::fprintf(stderr, "sweep: %s; the %zu finished run(s) are kept: make room and run the same command again "
                          "(or latsim sweep --collect) to write the tables\n",
-                 scenario::readable(e.what()).c_str(), tally.finished());
+                 out.tables_problem->c_str(), tally.finished());
     return kExitFailure;
   }
-  phases.tables_s = seconds_since(tables_start);
   std::printf("sweep: %zu runs %s on %u thread(s) in %.2f s -> %s\n", plan.runs().size(), tally.counts().c_str(),
-              request.jobs, seconds_since(start), (work.store.out_dir() / "results.csv").c_str());
-  tally.print_notes(temporaries);
+              request.jobs, seconds_since(start), (std::filesystem::path(request.out_dir) / "results.csv").c_str());
+  tally.print_notes(out.temporaries);
   if (request.timings) phases.print(tally.times, request.jobs);
-  return tally.failures.empty() && gathered == plan.runs().size() ? kExitOk : kExitFailure;
+  return tally.failures.empty() && out.tabled == plan.runs().size() ? kExitOk : kExitFailure;
 }
 
 // Writes the tables of a sweep that shards ran, and names every run still missing.
@@ -133,8 +127,8 @@ int check_only(const SweepRequest& request, const SweepPlan& plan) {
     return kExitBadInput;
   }
   size_t finished = 0;
-  const std::filesystem::path runs = std::filesystem::path(request.out_dir) / "runs";
-  for (const auto& run : plan.runs()) finished += std::filesystem::exists(runs / run.run_id / "summary.json") ? 1 : 0;
+  const std::set<std::string> done = finished_runs_in(request.out_dir);
+  for (const auto& run : plan.runs()) finished += done.count(run.run_id);
   std::printf("sweep: %s: %zu runs (%zu points x %llu replications), every point valid; %zu finished in %s\n",
               request.sweep_file.c_str(), plan.runs().size(), plan.point_count(),
               static_cast<unsigned long long>(plan.replications()), finished, request.out_dir.c_str());

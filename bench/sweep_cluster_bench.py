@@ -154,10 +154,10 @@ for label, wall, cpu, before, after in rows:
 print()
 print(timings.strip())
 phase = re.search(r"checking (\d+) point\(s\) [\d.]+ s \(([\d.]+) ms each.*runs ([\d.]+) s, tables ([\d.]+) s", timings)
-per = re.search(r"per run: ([\d.]+) ms simulating, ([\d.]+) ms building models and writing results, ([\d.]+) ms "
-                r"reading the scenario, ([\d.]+) ms claiming", timings)
+per = re.search(r"per run: ([\d.]+) ms simulating, ([\d.]+) ms building models and figures \(and a kept run's files\), "
+                r"([\d.]+) ms recording, ([\d.]+) ms reading the scenario, ([\d.]+) ms claiming", timings)
 build_ms = float(phase[2])
-simulate, build_write, read, claim = (float(x) for x in per.groups())
+simulate, build_figures, record, read, claim = (float(x) for x in per.groups())
 starts = []
 for _ in range(50):
     t0 = time.monotonic()
@@ -168,10 +168,11 @@ start_ms = 1e3 * starts[len(starts) // 2]
 print()
 print("| per run | ms | share of a run in a sweep |")
 print("|---|---:|---:|")
-total = simulate + build_write + read + claim + 1e3 * float(phase[4]) / RUNS
+total = simulate + build_figures + record + read + claim + 1e3 * float(phase[4]) / RUNS
 for label, ms in (("simulating (the run's own wall_s)", simulate),
                   ("resolving the scenario: reading it and building the models", read + build_ms),
-                  ("writing the results (summary, figures, timeline)", build_write - build_ms),
+                  ("the figures (and a kept run's files)", build_figures - build_ms),
+                  ("writing the run's record into the store, and its mark", record),
                   ("claiming, journal, temporaries", claim),
                   ("the tables (results.csv, results.sqlite), per run", 1e3 * float(phase[4]) / RUNS)):
     print(f"| {label} | {ms:.2f} | {100 * ms / total:.0f} % |")

@@ -8,7 +8,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 PACKAGES=(g++ cmake make pkg-config git python3 python3-matplotlib
           libglm-dev libeigen3-dev nlohmann-json3-dev catch2 libembree-dev
-          libcli11-dev libpng-dev libtbb-dev libsqlite3-dev libopenmpi-dev openmpi-bin
+          libcli11-dev libpng-dev zlib1g-dev libtbb-dev libsqlite3-dev libopenmpi-dev openmpi-bin
           python3-jsonschema
           # The Python module (python/) and its example notebook's test.
           pybind11-dev python3-dev python3-pandas python3-nbclient python3-nbconvert python3-ipykernel

@@ -4,20 +4,15 @@
 #include <limits>
 #include <numeric>
 
+#include "double_buffer/phase_grid.hpp"
+#include "latsim/des/run_clocks.hpp"
+#include "latsim/display/display.hpp"
+
 namespace latsim::pipelines {
 
-namespace {
+namespace analytic {
 
 using i128 = __int128;
-
-constexpr int64_t kMaxFrames = 2'000'000;  // frames enumerated at most, over all phase points
-
-/// The link's fixed delay after a sample is ready, and its poll timer.
-struct Link {
-  std::string name = "direct";
-  des::Time delay;  // internal delay (+ transmit time on a serial line)
-  std::optional<des::RationalSeconds> poll;
-};
 
 std::optional<Link> link_of(const AnalyticInputs& in) {
   Link l;
@@ -41,22 +36,7 @@ std::optional<Link> link_of(const AnalyticInputs& in) {
   return l;
 }
 
-/// Newest sample visible at time r under one phase configuration: ready at
-/// t_k + delay; polled: the last poll at or before r delivers what is ready then.
-struct Visibility {
-  des::PeriodicSchedule samples;
-  des::Time delay;
-  std::optional<des::PeriodicSchedule> polls;
-  int64_t first_index = std::numeric_limits<int64_t>::min();  // no samples before the run
-
-  std::optional<des::Time> newest_measured(des::Time r) const {
-    des::Time cutoff = r;
-    if (polls) cutoff = polls->at(polls->index_at_or_before(r));
-    const int64_t k = samples.index_at_or_before(cutoff - delay);
-    if (k < first_index) return std::nullopt;
-    return samples.at(k);
-  }
-};
+namespace {
 
 // Least common multiple of two positive rationals (reduced), if it fits.
 std::optional<des::RationalSeconds> rational_lcm(des::RationalSeconds x, des::RationalSeconds y) {
@@ -73,85 +53,10 @@ std::optional<des::RationalSeconds> rational_lcm(des::RationalSeconds x, des::Ra
   return des::RationalSeconds{static_cast<int64_t>(num), den};
 }
 
-/// Per-line latencies summed exactly in picoseconds. Every field has the
-/// same photon offsets of its lines from its retrace (the middle of each
-/// line's lit interval under the display's persistence: the line's scanout
-/// instant on an impulse display, a constant later on full or rolling
-/// persistence, one instant after the field's last line for a global flash),
-/// so a displayed field adds lines x (retrace - measured) + the sum of the
-/// offsets. At most `max_fields` fields are taken: the work follows what the
-/// run can afford, not the render time (one frame of a long render spans
-/// many fields).
-class Tally {
- public:
-  Tally(const display::RasterTiming& t, const display::PersistenceParams& persistence, int64_t max_fields)
-      : lines_(t.lines_per_field()), max_fields_(max_fields) {
-    const display::Persistence lit(persistence, t);
-    first_ = des::Time::max();
-    last_ = -des::Time::max();
-    for (int j = 0; j < lines_; ++j) {
-      const des::Time offset = lit.lit(0, t.line_time(0, j)).middle() - t.field_start(0);
-      offsets_sum_ += offset.ticks();
-      first_ = std::min(first_, offset);
-      last_ = std::max(last_, offset);
-    }
-  }
-  /// False, and nothing added, once the budget of fields is spent.
-  bool field(des::Time retrace, des::Time measured) {
-    if (fields_ >= max_fields_) {
-      truncated_ = true;
-      return false;
-    }
-    ++fields_;
-    const des::Time base = retrace - measured;
-    sum_ += static_cast<i128>(lines_) * base.ticks() + offsets_sum_;
-    count_ += lines_;
-    min_ = std::min(min_, base + first_);
-    max_ = std::max(max_, base + last_);
-    return true;
-  }
-  double mean_ms() const { return static_cast<double>(sum_) / static_cast<double>(count_) * 1e-9; }
-  double min_ms() const { return min_.to_ms(); }
-  double max_ms() const { return max_.to_ms(); }
-  bool empty() const { return count_ == 0; }
-  bool truncated() const { return truncated_; }
+}  // namespace
 
- private:
-  int lines_;
-  i128 offsets_sum_ = 0;
-  des::Time first_, last_;
-  i128 sum_ = 0;
-  int64_t count_ = 0;
-  int64_t max_fields_;
-  int64_t fields_ = 0;
-  bool truncated_ = false;
-  des::Time min_ = des::Time::max(), max_ = -des::Time::max();
-};
-
-/// The renderer starts at the first retrace with a sample and afterwards at
-/// each swap; an image is shown from its swap until the next one.
-struct Frames {
-  const display::RasterTiming& timing;
-  des::Time render_time;
-
-  int64_t swap_after(int64_t start_field) const {
-    if (render_time == des::Time::zero()) return start_field + 1;
-    return std::max(start_field + 1, timing.field_at_or_after(timing.field_start(start_field) + render_time));
-  }
-  /// Adds the frame rendered at field s (shown from its swap until the next) and returns its swap.
-  int64_t add(int64_t s, const Visibility& vis, Tally& tally) const {
-    const des::Time measured = *vis.newest_measured(timing.field_start(s));
-    const int64_t swap = swap_after(s), next = swap_after(swap);
-    for (int64_t f = swap; f < next; ++f)
-      if (!tally.field(timing.field_start(f), measured)) break;
-    return swap;
-  }
-};
-
-/// Fields in one repeat cycle of the display (frames of m fields), the
-/// tracker and the poll timer, or nothing when it does not fit 64 bits.
 std::optional<int64_t> cycle_fields(des::RationalSeconds field, int64_t m, std::optional<des::RationalSeconds> tracker,
-                                    std::optional<des::RationalSeconds> poll, double& cycle_s) {
+                                    std::optional<des::RationalSeconds> poll, int64_t max_frames, double& cycle_s) {
   std::optional<des::RationalSeconds> h = des::RationalSeconds{field.num * m, field.den};
   if (tracker) h = rational_lcm(*h, *tracker);
   if (h && poll) h = rational_lcm(*h, *poll);
@@ -160,36 +65,49 @@ std::optional<int64_t> cycle_fields(des::RationalSeconds field, int64_t m, std::
   // hyper / field, exact: the cycle is a whole number of fields.
   const i128 n = static_cast<i128>(h->num) * field.den;
   const i128 d = static_cast<i128>(h->den) * field.num;
-  if (n % d != 0 || n / d > kMaxFrames * 64) return std::nullopt;
+  if (n % d != 0 || n / d > max_frames * 64) return std::nullopt;
   return static_cast<int64_t>(n / d);
+}
+
+}  // namespace analytic
+
+namespace {
+
+using analytic::Link;
+using analytic::PhaseGrid;
+using analytic::PhaseSet;
+
+std::optional<int64_t> cycle_fields(des::RationalSeconds field, int64_t m, std::optional<des::RationalSeconds> tracker,
+                                    std::optional<des::RationalSeconds> poll, double& cycle_s) {
+  return analytic::cycle_fields(field, m, tracker, poll, analytic::kMaxFrames, cycle_s);
+}
+
+void set_latency(AnalyticLatency& a, const analytic::GridTally& tally) {
+  a.frames = tally.frames;
+  a.min_ms = tally.min_ms();
+  a.mean_ms = tally.mean_ms();
+  a.max_ms = tally.max_ms();
 }
 
 // Fixed phases: one repeat cycle of the run's own phases, frame after frame.
 std::optional<AnalyticLatency> enumerate_fixed(const AnalyticInputs& in, const Link& link) {
   const display::RasterTiming timing(in.raster, in.display_phase);
-  Visibility vis{des::PeriodicSchedule(in.tracker_phase, in.tracker_period), link.delay, std::nullopt, 0};
-  vis.first_index = vis.samples.index_at_or_after(des::Time::zero());
-  if (link.poll) vis.polls = des::PeriodicSchedule(in.poll_phase, *link.poll);
-  const Frames frames{timing, in.render_time};
+  PhaseGrid grid{timing, in.render_time, in.tracker_period, link.delay, PhaseSet::fixed(in.tracker_phase),
+                 link.poll, link.poll ? PhaseSet::fixed(in.poll_phase) : PhaseSet::fixed(des::Time::zero())};
+  // Samples measured before the run began do not exist.
+  const int64_t first_sample = des::PeriodicSchedule(in.tracker_phase, in.tracker_period).index_at_or_after(des::Time::zero());
   int64_t s = timing.field_at_or_after(des::Time::zero());
   const int64_t limit = s + 1'000'000;
-  while (!vis.newest_measured(timing.field_start(s)))
+  while (grid.newest_sample_index(timing.field_start(s)) < first_sample)
     if (++s > limit) return std::nullopt;
   AnalyticLatency a;
-  const auto fields = cycle_fields(in.raster.field_period, frames.swap_after(s) - s, in.tracker_period, link.poll,
+  const auto fields = cycle_fields(in.raster.field_period, grid.swap_after(s) - s, in.tracker_period, link.poll,
                                    a.hyperperiod_s);
   if (!fields) return std::nullopt;
-  Tally tally(timing, in.persistence, in.max_fields);
-  const int64_t s0 = s;
-  while (s - s0 < *fields && a.frames < kMaxFrames && !tally.truncated()) {
-    s = frames.add(s, vis, tally);
-    ++a.frames;
-  }
-  a.complete = s - s0 >= *fields && !tally.truncated();
+  const analytic::GridTally tally = grid.enumerate(s, *fields, in.persistence, in.max_fields);
+  a.complete = tally.frames == tally.frames_per_point && !tally.truncated;
   a.method = "phase enumeration over one repeat cycle of the fixed phases (no events)";
-  a.min_ms = tally.min_ms();
-  a.mean_ms = tally.mean_ms();
-  a.max_ms = tally.max_ms();
+  set_latency(a, tally);
   return a;
 }
 
@@ -198,45 +116,35 @@ std::optional<AnalyticLatency> enumerate_fixed(const AnalyticInputs& in, const L
 // per grid point suffices, otherwise a repeat cycle of the fixed ones.
 std::optional<AnalyticLatency> integrate(const AnalyticInputs& in, const Link& link) {
   const display::RasterTiming timing(in.raster, des::Time::zero());
-  const Frames frames{timing, in.render_time};
   const bool poll_integrated = link.poll && in.integrate_poll;
   const bool stationary = in.integrate_tracker && (!link.poll || in.integrate_poll);
   AnalyticLatency a;
   a.phase_grid = stationary ? (link.poll ? 256 : 4096) : 64;
-  const int64_t m = frames.swap_after(0);
+  const des::Time tracker_step = des::PeriodicSchedule(des::Time::zero(), in.tracker_period).nominal_period();
+  const des::Time poll_step = link.poll ? des::PeriodicSchedule(des::Time::zero(), *link.poll).nominal_period() : des::Time{};
+  PhaseGrid grid{timing,
+                 in.render_time,
+                 in.tracker_period,
+                 link.delay,
+                 in.integrate_tracker ? PhaseSet::midpoints(tracker_step, a.phase_grid)
+                                      : PhaseSet::fixed(in.tracker_phase - in.display_phase),
+                 link.poll,
+                 poll_integrated ? PhaseSet::midpoints(poll_step, a.phase_grid)
+                                 : PhaseSet::fixed(link.poll ? in.poll_phase - in.display_phase : des::Time::zero())};
+  const int64_t m = grid.swap_after(0);
   std::optional<int64_t> fields = 1;
   if (!stationary) {
     fields = cycle_fields(in.raster.field_period, m, in.integrate_tracker ? std::nullopt : std::optional(in.tracker_period),
                           poll_integrated ? std::nullopt : link.poll, a.hyperperiod_s);
     if (!fields) return std::nullopt;
   }
-  const des::Time tracker_step = des::PeriodicSchedule(des::Time::zero(), in.tracker_period).nominal_period();
-  const des::Time poll_step = link.poll ? des::PeriodicSchedule(des::Time::zero(), *link.poll).nominal_period() : des::Time{};
-  // The midpoint of step i of a period divided into n.
-  auto midpoint = [](des::Time period, int64_t i, int64_t n) {
-    return des::Time::ps(static_cast<int64_t>((static_cast<i128>(period.ticks()) * (2 * i + 1)) / (2 * n)));
-  };
-  const int64_t nt = in.integrate_tracker ? a.phase_grid : 1;
-  const int64_t np = poll_integrated ? a.phase_grid : 1;
-  Tally tally(timing, in.persistence, in.max_fields);
-  for (int64_t i = 0; i < nt; ++i)
-    for (int64_t j = 0; j < np; ++j) {
-      const des::Time tp = in.integrate_tracker ? midpoint(tracker_step, i, nt) : in.tracker_phase - in.display_phase;
-      Visibility vis{des::PeriodicSchedule(tp, in.tracker_period), link.delay, std::nullopt};
-      if (link.poll)
-        vis.polls = des::PeriodicSchedule(poll_integrated ? midpoint(poll_step, j, np) : in.poll_phase - in.display_phase,
-                                          *link.poll);
-      for (int64_t s = 0; s < *fields && a.frames < kMaxFrames && !tally.truncated(); ++a.frames)
-        s = frames.add(s, vis, tally);
-    }
-  a.complete = a.frames < kMaxFrames && !tally.truncated();
+  const analytic::GridTally tally = grid.enumerate(0, *fields, in.persistence, in.max_fields);
+  a.complete = tally.frames < analytic::kMaxFrames && !tally.truncated;
   a.method = std::string("integrated over the phase") + (in.integrate_tracker && poll_integrated ? "s" : "") +
              " of the " + (in.integrate_tracker ? "tracker" : "") + (in.integrate_tracker && poll_integrated ? " and the " : "") +
              (poll_integrated ? "poll timer" : "") + " relative to the display (midpoints of " +
              std::to_string(a.phase_grid) + " steps per period; no events)";
-  a.min_ms = tally.min_ms();
-  a.mean_ms = tally.mean_ms();
-  a.max_ms = tally.max_ms();
+  set_latency(a, tally);
   return a;
 }
 
@@ -244,12 +152,37 @@ std::optional<AnalyticLatency> integrate(const AnalyticInputs& in, const Link& l
 
 std::optional<AnalyticLatency> analytic_double_buffer(const AnalyticInputs& in) {
   if (in.tracker_jitter > des::Time::zero() || in.transport == nullptr) return std::nullopt;
-  const auto link = link_of(in);
+  const auto link = analytic::link_of(in);
   if (!link) return std::nullopt;
   const bool integrated = in.integrate_tracker || (link->poll && in.integrate_poll);
   auto a = integrated ? integrate(in, *link) : enumerate_fixed(in, *link);
   if (a) a->link = link->name;
   return a;
+}
+
+AnalyticInputs analytic_inputs(const RunContext& ctx, des::Time render_time) {
+  const des::Clock* display = ctx.clocks.find("display");
+  const des::Clock* tracker = ctx.clocks.find("tracker");
+  const des::Clock* poll = ctx.clocks.find("poll");
+  auto varies = [](const des::Clock* c) { return c && (c->drawn || c->rate_error_ppm != 0.0); };
+  AnalyticInputs in;
+  in.raster = ctx.display_params.raster;  // the nominal periods
+  in.persistence = ctx.display.persistence().params();
+  in.tracker_period = ctx.tracker.period;
+  in.tracker_delay = ctx.tracker.internal_delay;
+  in.tracker_jitter = ctx.tracker.jitter;
+  in.transport = &ctx.transport;
+  in.render_time = render_time;
+  in.display_phase = display ? display->phase : des::Time::zero();
+  in.tracker_phase = ctx.tracker.clock.phase.value_or(des::Time::zero());
+  in.poll_phase = poll ? poll->phase : des::Time::zero();
+  in.integrate_tracker = varies(tracker) || varies(display);
+  in.integrate_poll = poll && (varies(poll) || varies(display));
+  // As many fields as the run itself scans out, within bounds: enough for
+  // every repeat cycle a real configuration has, and never minutes of work.
+  const double run_fields = ctx.duration.to_seconds() / in.raster.field_period.to_seconds();
+  in.max_fields = static_cast<int64_t>(std::clamp(run_fields, 4e6, 4e7));
+  return in;
 }
 
 }  // namespace latsim::pipelines

@@ -1,6 +1,8 @@
 // Motion-to-photon latency of the double-buffered pipeline worked out from
 // the sampling phases alone, without simulating events: a self-check and an
-// explanation of the simulated distribution.
+// explanation of the simulated distribution. Its cost does not grow with the
+// run: one frame (integrated phases) or one repeat cycle of frames (fixed
+// ones), each a few 128-bit divisions per poll timer phase (docs/figures.md).
 #pragma once
 
 #include <optional>
@@ -8,6 +10,7 @@
 
 #include "latsim/display/persistence.hpp"
 #include "latsim/display/raster_timing.hpp"
+#include "latsim/pipelines/run_context.hpp"
 #include "latsim/tracker/tracker.hpp"
 #include "latsim/tracker/transport.hpp"
 
@@ -54,5 +57,31 @@ struct AnalyticLatency {
 /// when the configuration is not tractable (jitter, render-ahead, no vsync,
 /// records queueing on the serial line, interrupt handler costs).
 std::optional<AnalyticLatency> analytic_double_buffer(const AnalyticInputs& in);
+
+namespace analytic {
+
+/// The link's fixed delay after a sample is ready, and its poll timer.
+struct Link {
+  std::string name = "direct";
+  des::Time delay;  ///< internal delay (+ transmit time on a serial line)
+  std::optional<des::RationalSeconds> poll;
+};
+
+/// The link as the calculation takes it, or nothing where it needs the
+/// event model (records queueing on a serial line, interrupt handler costs).
+std::optional<Link> link_of(const AnalyticInputs& in);
+
+/// Fields in one repeat cycle of the display (frames of m fields), the
+/// tracker and the poll timer (each when given), or nothing when it does not
+/// fit 64 bits or holds more than 64 x `max_frames` fields; `cycle_s` its length.
+std::optional<int64_t> cycle_fields(des::RationalSeconds field, int64_t m, std::optional<des::RationalSeconds> tracker,
+                                    std::optional<des::RationalSeconds> poll, int64_t max_frames, double& cycle_s);
+
+}  // namespace analytic
+
+/// A run's clocks as the analytic calculation sees them: nominal periods, the
+/// phases used, which relative phases vary from run to run, and as many fields
+/// as the run scans out (within bounds), for a renderer taking `render_time`.
+AnalyticInputs analytic_inputs(const RunContext& ctx, des::Time render_time);
 
 }  // namespace latsim::pipelines

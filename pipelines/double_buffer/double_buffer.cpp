@@ -62,7 +62,7 @@ class DoubleBufferPipeline final : public Pipeline {
       for (const std::string& w : sections::trace_warnings(p_.cost, refresh_hz)) ctx.figures.warn(w);
     }
     if (!p_.vsync || p_.queued_frames != 0 || p_.cost.varies()) return;
-    const auto a = analytic_double_buffer(analytic_inputs(ctx));
+    const auto a = analytic_double_buffer(analytic_inputs(ctx, p_.cost.nominal_frame_time()));
     if (!a) return;
     results::FigureWriter& r = ctx.figures;
     r.set("analytic.method", a->method);
@@ -77,33 +77,6 @@ class DoubleBufferPipeline final : public Pipeline {
   }
 
  private:
-  // The run's clocks as the analytic calculation sees them: nominal periods,
-  // the phases used, and which relative phases vary from run to run.
-  AnalyticInputs analytic_inputs(const RunContext& ctx) const {
-    const des::Clock* display = ctx.clocks.find("display");
-    const des::Clock* tracker = ctx.clocks.find("tracker");
-    const des::Clock* poll = ctx.clocks.find("poll");
-    auto varies = [](const des::Clock* c) { return c && (c->drawn || c->rate_error_ppm != 0.0); };
-    AnalyticInputs in;
-    in.raster = ctx.display_params.raster;  // the nominal periods
-    in.persistence = ctx.display.persistence().params();
-    in.tracker_period = ctx.tracker.period;
-    in.tracker_delay = ctx.tracker.internal_delay;
-    in.tracker_jitter = ctx.tracker.jitter;
-    in.transport = &ctx.transport;
-    in.render_time = p_.cost.nominal_frame_time();
-    in.display_phase = display ? display->phase : des::Time::zero();
-    in.tracker_phase = ctx.tracker.clock.phase.value_or(des::Time::zero());
-    in.poll_phase = poll ? poll->phase : des::Time::zero();
-    in.integrate_tracker = varies(tracker) || varies(display);
-    in.integrate_poll = poll && (varies(poll) || varies(display));
-    // As many fields as the run itself scans out, within bounds: enough for
-    // every repeat cycle a real configuration has, and never minutes of work.
-    const double run_fields = ctx.duration.to_seconds() / in.raster.field_period.to_seconds();
-    in.max_fields = static_cast<int64_t>(std::clamp(run_fields, 4e6, 4e7));
-    return in;
-  }
-
   struct Done {
     std::vector<int64_t> ids;
     int64_t frame;

@@ -19,7 +19,7 @@ namespace {
 using scenario::Section;
 
 /// How a stage's start is written; `automatic` resolves by position.
-enum class StartKey { automatic, after, stream, retrace, late };
+enum class StartKey { automatic, after, stream, retrace, late, next_frame };
 
 struct ProcessorKeys {
   std::string name;
@@ -44,6 +44,7 @@ struct WarpKeys {
   int strips = 1;
   bool asynchronous = true;
   bool half_rate = false;
+  bool reproject_new_frames = true;
   int eye_buffers = 2;
   std::vector<StageKeys> stages;
 };
@@ -70,11 +71,14 @@ void bind(Section& s, StageKeys& st) {
             {"after", StartKey::after},
             {"stream", StartKey::stream},
             {"retrace", StartKey::retrace},
-            {"late", StartKey::late}},
+            {"late", StartKey::late},
+            {"next_frame", StartKey::next_frame}},
            {.doc = "after: when the previous stage ends; stream: lag_ms after the previous stage starts (commands "
                    "executed as issued); retrace: at the first retrace after the previous stage ends; late: as late "
-                   "as the measured span to the end of `until` still meets its deadline; auto: retrace for an "
-                   "application's first stage with vsync (else after), late for a warp's first stage, else after"});
+                   "as the measured span to the end of `until` still meets its deadline; next_frame: when the next "
+                   "frame's first stage begins, once the previous stage has ended (an engine's render thread a "
+                   "frame behind its game thread); auto: retrace for an application's first stage with vsync (else "
+                   "after), late for a warp's first stage, else after"});
   s.duration("lag_ms", st.lag, {.unit = "ms", .doc = "stream: how long the previous stage runs first"});
   s.duration("offset_ms", st.offset,
              {.unit = "ms", .doc = "retrace: start this long after the retrace (the render start offset; 0: at it)"});
@@ -134,8 +138,11 @@ std::vector<StageSpec> resolve(Section& s, const std::string& key, const std::ve
       case StartKey::stream: st.start = StartRule::stream; break;
       case StartKey::retrace: st.start = StartRule::retrace; break;
       case StartKey::late: st.start = StartRule::late; break;
+      case StartKey::next_frame: st.start = StartRule::next_frame; break;
     }
     s.check_pointer(at + "/start", !(st.start == StartRule::stream && i == 0), "the first stage has nothing to stream from");
+    s.check_pointer(at + "/start", !(st.start == StartRule::next_frame && i == 0),
+                    "the first stage is what the next frame begins with; next_frame is for a later stage");
     s.check_pointer(at + "/start",
                     !(st.start == StartRule::stream && i > 0 && out[i - 1].processors == st.processors),
                     "a stage streams from a stage on another processor");
@@ -178,6 +185,9 @@ void bind_warp(Section& s, WarpKeys& w) {
   s.flag("half_rate", w.half_rate,
          {.doc = "the application starts frames at every other retrace; the compositor synthesises the others"});
   s.integer("eye_buffers", w.eye_buffers, {.min = 2.0, .max = 16.0, .doc = "application images the compositor reads from"});
+  s.choice("reproject", w.reproject_new_frames, {{"every_refresh", true}, {"repeats", false}},
+           {.doc = "every_refresh: every image is re-projected to the newest pose; repeats: a new frame is shown as "
+                   "rendered (predicted to its photon time) and only a frame shown again is re-projected (SteamVR)"});
   s.objects("stages", w.stages, [](Section& e, StageKeys& v) { bind(e, v); },
             {.required = true, .doc = "the compositor's stages, per warp"});
 }
@@ -233,6 +243,10 @@ void bind(Section& s, FrameStagesPipeline::Params& p, const sections::SharedPara
     total += st.cost.nominal_frame_time();
     paced = paced || st.start == StartRule::retrace || st.start == StartRule::late;
   }
+  int handovers = 0;
+  for (const StageSpec& st : spec.stages) handovers += st.start == StartRule::next_frame ? 1 : 0;
+  s.check("max_frames_in_flight", spec.max_frames_in_flight > handovers,
+          "each next_frame stage keeps one more frame in flight: max_frames_in_flight must exceed their number");
   s.check("vsync", paced || total > des::Time::zero(),
           "frames that take no time and wait for nothing would follow each other without end: give a stage a cost");
   resolve_pacing(s, pacing, spec.stages, warp.has_value());
@@ -243,6 +257,7 @@ void bind(Section& s, FrameStagesPipeline::Params& p, const sections::SharedPara
   w.strips = warp->strips;
   w.asynchronous = warp->asynchronous;
   w.half_rate = warp->half_rate;
+  w.reproject_new_frames = warp->reproject_new_frames;
   w.eye_buffers = warp->eye_buffers;
   const std::string tw = s.pointer() + "/timewarp";
   const int lines = shared.display.raster.interlaced ? shared.display.raster.height_px / 2 : shared.display.raster.height_px;

@@ -15,21 +15,43 @@ constexpr int64_t kRememberImages = 4096;
 }  // namespace
 
 Compositor::Compositor(RunContext& ctx, const WarpSpec& spec, des::Resource& eye_buffers)
-    : ctx_(ctx), spec_(spec), eye_buffers_(eye_buffers), clock_(ctx.display.timing(), spec.strips) {}
+    : ctx_(ctx),
+      spec_(spec),
+      planned_showings_(spec.half_rate ? 2 : 1),
+      eye_buffers_(eye_buffers),
+      clock_(ctx.display.timing(), spec.strips) {}
 
 void Compositor::on_frame_complete(const JobRecord& frame) {
+  if (frame.not_before > ctx_.sim.now() && !frame.skipped) {
+    // Done before the retrace it is predicted for: it waits there, in its eye buffer.
+    held_.push_back(Held{frame.job, *frame.last_pose, frame.not_before});
+    return;
+  }
+  adopt(frame.job, *frame.last_pose);
+}
+
+void Compositor::release_held(des::Time retrace) {
+  size_t n = 0;
+  while (n < held_.size() && held_[n].not_before <= retrace) {
+    adopt(held_[n].job, held_[n].pose);
+    ++n;
+  }
+  held_.erase(held_.begin(), held_.begin() + static_cast<std::ptrdiff_t>(n));
+}
+
+void Compositor::adopt(int64_t job, const tracker::PosePrediction& pose) {
   EyeImage img;
-  img.pose = *frame.last_pose;
+  img.pose = pose;
   for (int eye = 0; eye < ctx_.display.eyes(); ++eye) img.eye_poses.push_back(ctx_.eye_pose(img.pose.pose, eye));
-  if (spec_.mode == Mode::render || (newest_ && frame.job < *newest_)) {
+  if (spec_.mode == Mode::render || (newest_ && job < *newest_)) {
     // Nothing reads it: beam racing renders its own strips, and an image
     // older than the newest (alternate frame rendering) is never warped.
     eye_buffers_.release();
     return;
   }
   const std::optional<int64_t> previous = newest_;
-  images_.emplace(frame.job, std::move(img));
-  newest_ = frame.job;
+  images_.emplace(job, std::move(img));
+  newest_ = job;
   if (previous) {
     images_.at(*previous).superseded = true;
     release_if_unused(*previous);
@@ -50,13 +72,15 @@ void Compositor::count_refresh(EyeImage& src, const JobRecord& warp) {
   const int before = src.refreshes++;
   if (before == 0) return;
   ++frames_rewarped_;
-  // At half rate every image is planned to be shown twice.
-  if (spec_.half_rate && before == 1) ++frames_synthesised_;
+  // At half rate every image is planned to be shown twice (a throttled
+  // runtime: n times); showings beyond that are misses.
+  if (before < planned_showings_) ++frames_synthesised_;
   else ctx_.app_frames.missed();
 }
 
 bool Compositor::on_begin(JobRecord& warp) {
   if (spec_.mode == Mode::render) return true;
+  if (!held_.empty()) release_held(ctx_.display.timing().field_start(clock_.slot_of(warp.deadline).field));
   if (!newest_) {
     if (clock_.slot_of(warp.deadline).strip == 0) ++refreshes_without_image_;
     return false;
@@ -86,6 +110,10 @@ results::ImageRecord Compositor::warped_record(const JobRecord& warp, int64_t fr
     results::ImageRecord rec = ctx_.image_record(warp.job, eye, now_pose, warp.last_sample_at, now);
     rec.shows_app_frame = false;
     return rec;
+  }
+  if (!spec_.reproject_new_frames && src->refreshes == 1) {
+    // Its first showing, as rendered: only frames shown again are re-projected.
+    return ctx_.image_record(frame, eye, src->pose, warp.last_sample_at, now);
   }
   if (spec_.mode == Mode::positional) {
     results::ImageRecord rec = ctx_.image_record(frame, eye, now_pose, warp.last_sample_at, now);

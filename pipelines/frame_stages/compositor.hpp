@@ -25,7 +25,10 @@ class Compositor {
 
   const WarpClock& clock() const { return clock_; }
   /// Half rate from now on (or not): a second showing of an image is synthesised, not missed.
-  void set_half_rate(bool on) { spec_.half_rate = on; }
+  void set_half_rate(bool on) { planned_showings_ = on ? 2 : 1; }
+  /// Each image is planned for n refreshes from now on (a runtime's throttle
+  /// level): its showings after the first, up to n, are synthesised, not missed.
+  void set_planned_showings(int n) { planned_showings_ = n; }
 
   /// An application frame is complete: it becomes the newest image.
   void on_frame_complete(const JobRecord& frame);
@@ -53,16 +56,28 @@ class Compositor {
     int readers = 0;                       ///< warps reading it now
     bool superseded = false;
   };
+  /// A completed frame held until its retrace (JobRecord::not_before).
+  struct Held {
+    int64_t job;
+    tracker::PosePrediction pose;
+    des::Time not_before;
+  };
+  /// Makes a completed frame the newest image.
+  void adopt(int64_t job, const tracker::PosePrediction& pose);
+  /// Adopts the held frames whose retrace has come by `retrace`.
+  void release_held(des::Time retrace);
   void count_refresh(EyeImage& src, const JobRecord& warp);
   void release_if_unused(int64_t frame);
   results::ImageRecord warped_record(const JobRecord& warp, int64_t frame, const EyeImage* src, int eye) const;
 
   RunContext& ctx_;
   WarpSpec spec_;
+  int planned_showings_ = 1;  ///< refreshes each image is planned for (2 at half rate)
   des::Resource& eye_buffers_;
   WarpClock clock_;
   std::map<int64_t, EyeImage> images_;  ///< by application frame
   std::optional<int64_t> newest_;
+  std::vector<Held> held_;  ///< in job order
   std::map<int64_t, int> rewarps_;      ///< image id -> rewarps (recent images only)
   int64_t warps_ = 0;
   int64_t frames_rewarped_ = 0;

@@ -58,6 +58,7 @@ FlowHooks FrameStagesPipeline::app_hooks() {
   };
   if (app_pacing_) h.wake_up = [this](JobRecord& frame, des::Time now) { return app_pacing_->wake_up(frame, now); };
   h.retrace_divider = spec_.warp && spec_.warp->half_rate ? 2 : 1;
+  h.frame_period = (timing->field_start(1) - timing->field_start(0)) * h.retrace_divider;
   return h;
 }
 
@@ -164,8 +165,12 @@ void FrameStagesPipeline::start_pacing(RunContext& ctx) {
     if (compositor_pacer_) return compositor_pacer_->lead();
     return warp_ ? warp_->late_lead(0) : des::Time::zero();
   };
+  for (const StageSpec& st : spec_.stages) clock.handovers += st.start == StartRule::next_frame ? 1 : 0;
   std::function<void(bool)> set_half_rate;
-  if (compositor_) set_half_rate = [this](bool on) { compositor_->set_half_rate(on); };
+  if (compositor_) {
+    set_half_rate = [this](bool on) { compositor_->set_half_rate(on); };
+    clock.set_planned_showings = [this](int n) { compositor_->set_planned_showings(n); };
+  }
   app_pacing_ = std::make_unique<AppPacing>(spec_.pacing, spec_.stages, std::move(clock), ctx.figures, ctx.timeline,
                                             std::move(set_half_rate));
 }

@@ -4,9 +4,14 @@
 // retrace times, never the costs of frames to come.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
+#include "frame_stages/pacing_runtimes.hpp"
 #include "latsim/des/time.hpp"
 
 namespace latsim::pipelines::frame_stages {
@@ -17,6 +22,8 @@ enum class AppPolicy {
   monado,        ///< Monado's u_pacing_app: IIR-smoothed CPU, draw and GPU times
   just_in_time,  ///< a percentile of the last measured frame times plus a margin (Phase Sync, Reflex)
   miss_rate,     ///< the median frame time plus a margin raised and lowered to hold a miss rate
+  steamvr,       ///< SteamVR: running start, throttling (pacing_steamvr.cpp)
+  oculus,        ///< Oculus PC and Quest: Phase Sync with ASW (pacing_oculus.cpp)
 };
 
 /// Monado-style application pacing (u_pacing_app). Monado's pa_create sets
@@ -87,6 +94,8 @@ struct PacingSpec {
   HalfRateFallbackParams half_rate;
   CompositorPacingParams compositor;
   PacingStages stages;
+  SteamVrParams steamvr;
+  OculusParams oculus;
 };
 
 /// What the runtime measured of one application frame.
@@ -109,6 +118,12 @@ struct PacingClock {
   std::function<des::Time(des::Time)> next_display;  ///< first retrace at or after t
   std::function<des::Time()> compositor_time;    ///< how long before a retrace the compositor latches
   int period_multiple = 1;                       ///< 2 at half rate: frames at least two refreshes apart
+  /// Stages that start with the next frame (next_frame): each puts the
+  /// frame's display one more refresh after its wake-up.
+  int handovers = 0;
+  /// Tells the compositor how many refreshes each new frame is planned to be
+  /// shown in (the extra ones synthesised, not missed); absent without one.
+  std::function<void(int)> set_planned_showings;
 };
 
 /// One frame's plan: when it wakes, when it should be done, where it is shown.
@@ -118,6 +133,10 @@ struct FramePlan {
   des::Time latch;           ///< display minus the compositor's time
   des::Time display;         ///< the retrace it is meant for
   int frame_periods = 1;     ///< refreshes the policy spaces frames by
+  /// The frame is shown from `display` and not before, even when done
+  /// earlier, and is predicted for it (SteamVR: "a frame will never be
+  /// displayed before the vsync interval it was predicted to").
+  bool hold = false;
 };
 
 /// A pacing policy: plans each frame, learns from each measured one.
@@ -127,6 +146,8 @@ class AppPacer {
   /// The plan for the next frame, asked at `now` when its thread is ready.
   virtual FramePlan plan(des::Time now, const PacingClock& clock) = 0;
   virtual void measured(const FrameSample& sample) = 0;
+  /// Counters the policy reports at the end of the run (name, value).
+  virtual std::vector<std::pair<std::string, int64_t>> counters() const { return {}; }
 };
 
 /// The plan for a frame that needs `lead` before its latch and a frame period

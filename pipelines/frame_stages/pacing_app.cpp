@@ -6,6 +6,7 @@
 
 #include "frame_stages/pacing.hpp"
 #include "frame_stages/pacing_jit.hpp"
+#include "frame_stages/pacing_runtime_pacers.hpp"
 
 namespace latsim::pipelines::frame_stages {
 
@@ -77,6 +78,8 @@ std::unique_ptr<AppPacer> make_app_pacer(const PacingSpec& spec) {
     case AppPolicy::monado: return std::make_unique<MonadoAppPacer>(spec.monado);
     case AppPolicy::just_in_time: return make_just_in_time_pacer(spec.just_in_time);
     case AppPolicy::miss_rate: return make_miss_rate_pacer(spec.miss_rate);
+    case AppPolicy::steamvr: return make_steamvr_pacer(spec.steamvr);
+    case AppPolicy::oculus: return make_oculus_pacer(spec.oculus);
   }
   return nullptr;
 }

@@ -1,4 +1,5 @@
 #include "frame_stages/pacing_bind.hpp"
+#include "frame_stages/pacing_runtime_bind.hpp"
 
 namespace latsim::pipelines::frame_stages {
 
@@ -64,15 +65,19 @@ void bind_pacing(Section& s, PacingKeys& k) {
            {{"fixed", AppPolicy::fixed},
             {"monado", AppPolicy::monado},
             {"just_in_time", AppPolicy::just_in_time},
-            {"miss_rate", AppPolicy::miss_rate}},
+            {"miss_rate", AppPolicy::miss_rate},
+            {"steamvr", AppPolicy::steamvr},
+            {"oculus", AppPolicy::oculus}},
            {.doc = "fixed: the first stage's own start rule (today's behaviour); monado: Monado's u_pacing_app (IIR "
                    "CPU, draw and GPU times); just_in_time: a percentile of recent frame times plus a margin before "
                    "the latch (Phase Sync, Reflex); miss_rate: a margin controlled to hold missed latches per minute "
-                   "below a target. See docs/pacing.md"});
+                   "below a target; steamvr: SteamVR's running start and throttling; oculus: Phase Sync with ASW. "
+                   "See docs/pacing.md"});
   s.object("monado", p.monado, [](Section& e, MonadoAppParams& v) { bind(e, v); }, {.doc = "application: monado"});
   s.object("just_in_time", p.just_in_time, [](Section& e, JustInTimeParams& v) { bind(e, v); },
            {.doc = "application: just_in_time"});
   s.object("miss_rate", p.miss_rate, [](Section& e, MissRateParams& v) { bind(e, v); }, {.doc = "application: miss_rate"});
+  bind_runtime_pacing(s, p);
   s.text("draw_stage", k.draw_stage,
          {.doc = "first stage of the measured draw span (default: the first of the run before the GPU span's)"});
   s.text("gpu_stage", k.gpu_stage, {.doc = "first stage of the measured GPU span (default: the first of the last run)"});

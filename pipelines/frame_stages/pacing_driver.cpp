@@ -39,6 +39,7 @@ des::Time AppPacing::wake_up(JobRecord& rec, des::Time now) {
   plans_[rec.job] = plan;
   planned_half_[rec.job] = half_rate();
   rec.deadline = plan.latch;
+  if (plan.hold) rec.not_before = plan.display;
   return plan.wake_up;
 }
 
@@ -110,6 +111,7 @@ des::Time AppPacing::return_threshold() const {
 
 void AppPacing::finish(results::FigureWriter& r) const {
   r.set("frames_late_to_latch", misses_);
+  for (const auto& [name, value] : pacer_->counters()) r.set(name, value);
   if (!fallback_.enabled) return;
   r.set("half_rate_periods", half_rate_periods_);
   r.set("half_rate_frames", half_rate_frames_);

@@ -90,6 +90,8 @@ class PrefixProgress {
     progress_.raise_to(v);
   }
   Progress::Awaiter reached(int64_t target) { return progress_.reached(target); }
+  /// The count itself, for waits that take any Progress.
+  Progress& progress() { return progress_; }
 
  private:
   Progress progress_;

@@ -31,6 +31,11 @@ enum class StartRule {
             ///< they are issued); it ends no earlier than that stage
   retrace,  ///< at the first retrace once the previous stage has ended (a vsync-paced thread)
   late,     ///< as late as the measured span up to the end of stage `until` still meets a deadline
+  /// when the next job's first stage begins (and the previous stage has
+  /// ended): an engine's render thread, handed its frame by the game thread
+  /// starting the next one, so that game thread, render thread and GPU work
+  /// on three frames at once
+  next_frame,
 };
 
 /// One timed step of a job.
@@ -43,6 +48,7 @@ struct StageSpec {
   des::Time offset;             ///< retrace: how long after the retrace it starts (render start offset)
   int until = -1;               ///< late: the stage whose end must meet the deadline (-1: this one)
   bool samples_pose = false;    ///< reads the head pose when it begins
+
   std::string pointer;          ///< where the scenario declares it (/pipeline/stages/i)
   CostShape shape;              ///< steps and spikes over the run (none: the cost model alone)
 };
@@ -67,6 +73,9 @@ struct WarpSpec {
   int strips = 1;            ///< above 1: warp strip by strip just ahead of the beam, into the front buffer
   bool asynchronous = true;  ///< warp the last image again when no new one is ready
   bool half_rate = false;    ///< the application starts frames at every other refresh only
+  /// false: a new frame is shown as rendered (it was predicted to its own
+  /// photon time), and only a frame shown again is re-projected (SteamVR)
+  bool reproject_new_frames = true;
   int eye_buffers = 2;       ///< application images the compositor can read from
 };
 

@@ -17,7 +17,12 @@ int until_of(const StageSpec& s, int index) { return s.until < 0 ? index : s.unt
 
 StageFlow::StageFlow(const std::string& kind, std::vector<StageSpec> stages, LateParams late, FlowEnv env,
                      FlowHooks hooks)
-    : stages_(std::move(stages)), late_(late), env_(std::move(env)), hooks_(std::move(hooks)), completed_(env_.sim) {
+    : stages_(std::move(stages)),
+      late_(late),
+      env_(std::move(env)),
+      hooks_(std::move(hooks)),
+      completed_(env_.sim) {
+  frame_interval_ = hooks_.frame_period;
   if (stages_.empty()) throw std::invalid_argument("a stage flow needs at least one stage");
   kind_ = env_.sim.kind(kind);
   for (size_t i = 0; i < stages_.size(); ++i) {
@@ -29,8 +34,8 @@ StageFlow::StageFlow(const std::string& kind, std::vector<StageSpec> stages, Lat
     const int u = until_of(s, static_cast<int>(i));
     if (u < static_cast<int>(i) || u >= static_cast<int>(stages_.size()))
       throw std::invalid_argument("stage " + s.name + ": a late span must end at this stage or a later one");
-    if (i == 0 && s.start == StartRule::stream)
-      throw std::invalid_argument("the first stage has nothing to stream from");
+    if (i == 0 && (s.start == StartRule::stream || s.start == StartRule::next_frame))
+      throw std::invalid_argument("the first stage has nothing to stream from or hand over");
     if (i > 0 && s.start == StartRule::stream && stages_[i - 1].processors == s.processors)
       throw std::invalid_argument("stage " + s.name + " streams from a stage on its own processor");
     if (i == 0 || stages_[i - 1].processors != s.processors) runs_.push_back(Run{static_cast<int>(i), 0, s.processors});
@@ -78,10 +83,15 @@ des::Time StageFlow::preemption_wait(int first, int last) const {
 
 des::Time StageFlow::expected_completion(int from, des::Time t) const {
   des::Time start = t, end = t + stages_[static_cast<size_t>(from)].cost.nominal_frame_time();
+  int handovers = 0;
   for (int k = from + 1; k < static_cast<int>(stages_.size()); ++k) {
     const StageSpec& s = stages_[static_cast<size_t>(k)];
     const des::Time prev_end = end;
     switch (s.start) {
+      case StartRule::next_frame:
+        // Handed over when the next job reaches the stage before: a job interval later per handover.
+        start = std::max(end, t + frame_interval_ * ++handovers);
+        break;
       case StartRule::after: start = end; break;
       case StartRule::stream: start = start + s.lag; break;
       case StartRule::retrace: start = env_.next_retrace(end) + s.offset; break;
@@ -102,8 +112,9 @@ des::Time StageFlow::late_lead(int stage) const {
   return estimates_[static_cast<size_t>(stage)].estimate() + late_.margin;
 }
 
-des::Time StageFlow::photon_target(int stage) const {
-  return hooks_.photon_for_completion(expected_completion(stage, env_.sim.now()));
+des::Time StageFlow::photon_target(int stage, const JobRecord& rec) const {
+  // A frame held until a later retrace is predicted for that one.
+  return hooks_.photon_for_completion(std::max(expected_completion(stage, env_.sim.now()), rec.not_before));
 }
 
 JobRecord& StageFlow::new_record(int64_t j) {
@@ -129,6 +140,10 @@ StageFlow::Wait StageFlow::rule_wait(int stage, JobRecord& rec) {
     w.progress = &env_.retraces;
     w.target = f + 1;
     w.after = s.offset;
+  } else if (s.start == StartRule::next_frame) {
+    // The next job's previous stage has begun: this job is handed over.
+    w.progress = &started_[static_cast<size_t>(stage - 1)]->progress();
+    w.target = rec.job + 2;
   } else if (s.start == StartRule::late) {
     // The latest start from which the estimated span still meets a deadline
     // this stage has not aimed for yet.
@@ -145,6 +160,10 @@ StageFlow::Wait StageFlow::rule_wait(int stage, JobRecord& rec) {
 
 void StageFlow::begin_stage(int stage, JobRecord& rec) {
   rec.start[static_cast<size_t>(stage)] = env_.sim.now();
+  if (stage == 0) {
+    if (last_first_start_ >= des::Time::zero()) frame_interval_ = env_.sim.now() - last_first_start_;
+    last_first_start_ = env_.sim.now();
+  }
   started_[static_cast<size_t>(stage)]->mark(rec.job);
 }
 
@@ -232,7 +251,7 @@ des::Process StageFlow::worker(int r, int lane) {
         release_stage(s, record(j));
       }
       if (st.samples_pose) {
-        const des::Time target = photon_target(s);
+        const des::Time target = photon_target(s, record(j));
         std::optional<tracker::PosePrediction> pose;
         // Before the first tracker sample there is nothing to read: try again shortly.
         while (!(pose = env_.poses.pose(sim.now(), target))) co_await sim.delay(des::Time::ms(1));

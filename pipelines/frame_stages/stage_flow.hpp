@@ -31,6 +31,9 @@ struct JobRecord {
   std::optional<tracker::PosePrediction> last_pose;   ///< the last pose read (the view drawn)
   des::Time last_sample_at;                            ///< when the stage that read it began
   des::Time deadline;                                  ///< what the job's last late stage aimed for (zero: none)
+  /// Not shown before this retrace (zero: as soon as it is done): a runtime
+  /// that shows a frame at the refresh it was predicted for (SteamVR).
+  des::Time not_before;
   bool skipped = false;                                ///< dropped by FlowHooks::on_begin
   int64_t tag = -1;                                    ///< the owner's (the compositor's source frame)
 };
@@ -53,6 +56,9 @@ struct FlowHooks {
   /// Set: replaces the first stage's start rule; when job `rec` may begin,
   /// asked at the given time (a pacing policy; it sets rec.deadline).
   std::function<des::Time(JobRecord&, des::Time)> wake_up;
+  /// How far apart jobs are expected to begin before two have (next_frame
+  /// stages are expected that much after their job's first stage).
+  des::Time frame_period;
 };
 
 /// The shared things a flow runs on.
@@ -102,7 +108,8 @@ class StageFlow {
   /// slices between the start of stage `first` and the end of `last`.
   des::Time preemption_wait(int first, int last) const;
   /// When a job whose stage `from` begins at t completes, by nominal times,
-  /// retrace waits and late deadlines.
+  /// retrace waits, late deadlines and, for next_frame stages, the measured
+  /// interval between jobs.
   des::Time expected_completion(int from, des::Time t) const;
   /// A late stage: how long before its deadline it starts now (estimate plus margin); else zero.
   des::Time late_lead(int stage) const;
@@ -124,7 +131,7 @@ class StageFlow {
 
   des::Process worker(int run, int lane);
   Wait rule_wait(int stage, JobRecord& rec);
-  des::Time photon_target(int stage) const;
+  des::Time photon_target(int stage, const JobRecord& rec) const;
   JobRecord& new_record(int64_t j);
   JobRecord& record(int64_t j) { return records_.at(static_cast<size_t>(j - base_)); }
   void release_stage(int stage, JobRecord& rec) { rec.released[static_cast<size_t>(stage)] = env_.sim.now(); }
@@ -142,6 +149,8 @@ class StageFlow {
   std::vector<std::unique_ptr<PrefixProgress>> started_, ended_;
   std::vector<SpanEstimate> estimates_;   ///< per late stage (index by stage)
   std::vector<des::Time> last_deadline_;  ///< per late stage
+  des::Time last_first_start_ = des::Time::ps(-1);  ///< when the newest job began its first stage
+  des::Time frame_interval_;                        ///< between the last two jobs' first stages
   PrefixProgress completed_;
   std::deque<JobRecord> records_;
   int64_t base_ = 0;  ///< job number of records_.front()

@@ -14,8 +14,15 @@ double paced_per_s(double period_s, double cap_hz) {
 
 std::vector<EventRate> shared_event_rates(const sections::SharedParams& p) {
   std::vector<EventRate> rates;
-  const double tracker_hz = 1.0 / p.tracker.period.to_seconds();
+  // An IMU chain sends a report (an event) every report_every readings.
+  const int head_step = p.tracker.imu ? p.tracker.imu->report_every : 1;
+  const double tracker_hz = 1.0 / p.tracker.period.to_seconds() / head_step;
   rates.push_back({"/tracker/rate_hz", "tracker", tracker_hz});
+  if (p.controller && p.controller->tracker) {
+    const tracker::TrackerParams& c = *p.controller->tracker;
+    const int step = c.imu ? c.imu->report_every : 1;
+    rates.push_back({"/controller/tracker/rate_hz", "controller", 1.0 / c.period.to_seconds() / step});
+  }
   // A busy serial line frees itself with one event per waiting record at most.
   if (p.transport.type == tracker::TransportParams::Type::Serial)
     rates.push_back({"/tracker/rate_hz", "transport", tracker_hz});

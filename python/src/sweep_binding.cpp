@@ -13,18 +13,13 @@
 #include "bindings.hpp"
 #include "errors.hpp"
 #include "interruptible.hpp"
-#include "latsim/run/runner.hpp"
-#include "latsim/scenario/json_text.hpp"
 #include "latsim/scenario/readable.hpp"
 #include "latsim/sweep/common.hpp"
-#include "latsim/sweep/tables.hpp"
-#include "latsim/sweep/thread_runs.hpp"
+#include "latsim/sweep/runner.hpp"
 
 namespace latsim::python {
 
 namespace py = pybind11;
-using Json = nlohmann::json;
-
 namespace {
 
 // What the package passes for one sweep.
@@ -44,20 +39,9 @@ struct SweepOutcome {
   std::vector<std::string> failures;
 };
 
-sweep::SweepPlan plan_of(const SweepCall& call) {
-  if (!call.text) return sweep::SweepPlan::load(call.sweep, run::resolve_defaults);
-  return sweep::SweepPlan::from_json(scenario::parse_json(*call.text, call.sweep), call.sweep, run::resolve_defaults);
-}
-
-// Checks every point, then runs the unfinished runs longest first and writes the tables.
+// Runs the sweep as `latsim sweep` does (sweep::run_sweep) and says how it went.
 SweepOutcome sweep_into(const SweepCall& call, const std::atomic<bool>& stop) {
-  const sweep::SweepPlan plan = plan_of(call);
-  std::vector<size_t> all(plan.runs().size());
-  std::iota(all.begin(), all.end(), size_t{0});
-  const sweep::PointCheck check = sweep::check_points(plan, all, call.jobs);
-  if (check.problem)
-    throw BadInput(scenario::readable(call.sweep, 2 * scenario::kQuotedChars) + ": " + *check.problem, call.sweep,
-                   std::nullopt, *check.problem);
+  const sweep::SweepPlan plan = sweep::read_plan(call.sweep, call.text);
   sweep::SweepRequest request;
   request.sweep_file = call.sweep;
   request.out_dir = call.out_dir;
@@ -65,24 +49,26 @@ SweepOutcome sweep_into(const SweepCall& call, const std::atomic<bool>& stop) {
   request.write_ledger = call.ledger;
   request.write_samples = call.samples;
   request.stop = &stop;
-  sweep::SweepWorkspace work(request);
-  sweep::write_file_if_changed(work.store.out_dir() / "plan.json", plan.to_json().dump(2) + "\n");
-
   // Which runs keep their traces: the sweep file's "keep", else figures only.
-  const sweep::KeepPolicy keep = plan.keep().value_or(sweep::KeepPolicy{});
-  const sweep::SweepTally tally = sweep::run_on_threads(plan, all, check.cost_of_run, work, keep, call.jobs, &stop);
+  request.keep = plan.keep().value_or(sweep::KeepPolicy{});
+  std::vector<size_t> all(plan.runs().size());
+  std::iota(all.begin(), all.end(), size_t{0});
+  const sweep::SweepOutcome run = sweep::run_sweep(plan, request, all, true, nullptr);
+  if (run.problem)
+    throw BadInput(scenario::readable(call.sweep, 2 * scenario::kQuotedChars) + ": " + *run.problem, call.sweep,
+                   std::nullopt, *run.problem);
   SweepOutcome outcome;
-  if (stop.load()) return outcome;  // the caller raises the signal's exception
-  if (tally.storage_problem)
-    throw std::runtime_error("sweep stopped: " + *tally.storage_problem + "; " + std::to_string(tally.finished()) +
-                             " run(s) finished are kept in " + call.out_dir);
-  size_t temporaries = work.executor.temporaries_removed();
-  outcome.tabled = sweep::write_tables(plan, work.store, call.jobs, temporaries);
-  outcome.results_csv = (work.store.out_dir() / "results.csv").string();
+  if (run.stopped) return outcome;  // the caller raises the signal's exception
+  if (run.tally.storage_problem)
+    throw std::runtime_error("sweep stopped: " + *run.tally.storage_problem + "; " +
+                             std::to_string(run.tally.finished()) + " run(s) finished are kept in " + call.out_dir);
+  if (run.tables_problem) throw std::runtime_error("sweep: " + *run.tables_problem);
+  outcome.tabled = run.tabled;
+  outcome.results_csv = (std::filesystem::path(call.out_dir) / "results.csv").string();
   outcome.runs = plan.runs().size();
-  outcome.resumed = tally.resumed;
-  outcome.ran = tally.ran;
-  outcome.failures = tally.failures;
+  outcome.resumed = run.tally.resumed;
+  outcome.ran = run.tally.ran;
+  outcome.failures = run.tally.failures;
   return outcome;
 }
 

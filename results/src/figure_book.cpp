@@ -65,8 +65,7 @@ void FigureBook::use_headline(std::string set) {
   headline_set_ = std::move(set);
 }
 
-std::vector<std::string> FigureBook::headline() const {
-  const nlohmann::json all = figures();
+std::vector<std::string> FigureBook::headline(const nlohmann::json& all) const {
   std::vector<std::string> present;
   for (const std::string& name : registry_.headline(headline_set_)) {
     const auto it = all.find(name);

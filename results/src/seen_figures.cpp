@@ -50,6 +50,7 @@ void SeenFigures::shown(const display::ScanoutSpan& span, const glm::dquat& orie
     }
     if (i >= span.photons.count) continue;
     measurement::ShownSample s{des::Time::ps(span.photons.at(i)), span.lit_duration, orientation};
+    s.written = des::Time::ps(span.written.at(i));
     if (controller_ != nullptr && img.controller_pose) {
       s.controller_drawn = true;
       s.controller = measurement::controller_seen(motion_.pose_at(s.photon).orientation, orientation,
@@ -66,8 +67,12 @@ namespace {
 std::vector<measurement::ShownSample> controller_samples(std::span<const measurement::ShownSample> shown) {
   std::vector<measurement::ShownSample> out;
   out.reserve(shown.size());
-  for (const measurement::ShownSample& s : shown)
-    if (s.controller_drawn) out.push_back(measurement::ShownSample{s.photon, s.lit, s.controller});
+  for (const measurement::ShownSample& s : shown) {
+    if (!s.controller_drawn) continue;
+    measurement::ShownSample c{s.photon, s.lit, s.controller};
+    c.written = s.written;
+    out.push_back(c);
+  }
   return out;
 }
 
@@ -82,6 +87,7 @@ void SeenFigures::apparent_figures(const std::string& prefix, std::span<const me
     figures_.add(prefix + "apparent_latency_ms_" + std::string(tracker::phase_name(w.phase)), w.shift_ms);
   }
   figures_.set(prefix + "apparent_latency_windows_unresolved", r.unresolved);
+  for (double d : r.start_ms) figures_.add(prefix + "apparent_latency_ms_start", d);
   if (r.steady_ms) {
     for (double c : r.catch_up_ms) figures_.add(prefix + "prediction_catch_up_ms", c);
     figures_.set(prefix + "prediction_never_caught_up", r.never_caught_up);
@@ -95,11 +101,30 @@ void SeenFigures::rig_figures(std::span<const measurement::ShownSample> shown, c
   const measurement::ObjectSignal object([&truth, reference, axis](des::Time t) {
     return measurement::twist_deg(reference, truth.pose_at(t).orientation, axis);
   });
-  const measurement::DisplaySignal display(measurement::lit_angles(shown, reference, axis));
+  // What the camera sees of each new value: the panel's transition (none
+  // without persistence, where a pixel is an impulse).
+  measurement::PanelRise rise;
+  if (persistence_ != nullptr) {
+    const display::PersistenceParams& pp = persistence_->params();
+    rise.response = pp.response;
+    rise.curve = pp.rise == display::PersistenceParams::Rise::linear        ? measurement::PanelRise::Curve::linear
+                 : pp.rise == display::PersistenceParams::Rise::exponential ? measurement::PanelRise::Curve::exponential
+                                                                             : measurement::PanelRise::Curve::step;
+  }
+  std::vector<measurement::LitAngle> lit = measurement::lit_angles(shown, reference, axis);
+  if (rig_.display_signal == measurement::CameraRigParams::DisplaySignalKind::motion_flag) {
+    const double threshold = rig_.flag_threshold_deg.value_or(
+        measurement::calibrated_flag_threshold(lit, rig_.calibration, rig_.calibration_factor));
+    figures_.set("measurement_flag_threshold_deg", threshold);
+    lit = measurement::motion_flags(lit, threshold, rig_.flag_frames_behind);
+  }
+  const measurement::DisplaySignal display(std::move(lit), rise);
   const des::Time exposure = rig_.exposure ? *rig_.exposure : camera_.nominal_period();
   const measurement::RigResult r = measurement::film(object, display, camera_, exposure, duration, rig_);
   for (double v : r.frame_counting_ms) figures_.add("measured_latency_ms", v);
-  for (double v : r.shift_ms) figures_.add("measured_latency_shift_ms", v);
+  // A motion flag has no trajectory to shift onto the object's.
+  if (rig_.display_signal == measurement::CameraRigParams::DisplaySignalKind::angle)
+    for (double v : r.shift_ms) figures_.add("measured_latency_shift_ms", v);
   figures_.set("measurement_resolution_ms", r.resolution_ms);
   figures_.set("measurement_movements", static_cast<int64_t>(r.frame_counting_ms.size()));
   figures_.set("measurement_frames", r.frames);

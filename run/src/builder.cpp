@@ -123,6 +123,19 @@ void resolve_clocks(Run& run, uint64_t replication) {
     resolve("poll", "/transport/poll_", tracker::exact_period(serial.poll_interval), serial.poll_clock);
   if (p.transport.type == tracker::TransportParams::Type::UsbHid)
     resolve("usb_poll", "/transport/poll_", des::RationalSeconds{1, p.transport.usb.poll_hz}, p.transport.usb.poll_clock);
+  if (p.tracker.imu && p.tracker.imu->reference)
+    resolve("reference", "/tracker/imu/reference/", p.tracker.imu->reference->period, p.tracker.imu->reference->clock);
+  if (p.controller && p.controller->tracker) {
+    tracker::TrackerParams& c = *p.controller->tracker;
+    resolve("controller", "/controller/tracker/", c.period, c.clock);
+    if (c.imu && c.imu->reference)
+      resolve("controller_reference", "/controller/tracker/imu/reference/", c.imu->reference->period,
+              c.imu->reference->clock);
+    tracker::TransportParams& link = p.controller->transport;
+    if (link.type == tracker::TransportParams::Type::UsbHid)
+      resolve("controller_usb_poll", "/controller/transport/poll_", des::RationalSeconds{1, link.usb.poll_hz},
+              link.usb.poll_clock);
+  }
   resolve("display", "/display/", p.display.raster.field_period, p.display.clock);
   if (p.measurement) resolve("camera", "/measurement/", p.measurement->frame_period, p.measurement->clock);
 }
@@ -158,6 +171,22 @@ std::shared_ptr<const display::ClockNoise> clock_noise(const display::RasterTimi
   return std::make_shared<const display::ClockNoise>(params, timing.params().field_period, slack, fields,
                                                      des::RandomStream(run.seed, "display.clock_noise",
                                                                        options.replication));
+}
+
+// The controller's own chain: its tracker (IMU and reports), its link, the
+// runtime's fusion of it and a predictor of /host/prediction's settings.
+void track_controller_chain(Run& run, const RunOptions& options) {
+  const sections::ControllerParams& c = *run.shared.controller;
+  const des::RandomStream stream(run.seed, "controller", options.replication);
+  auto device = std::make_unique<tracker::Tracker>(*c.tracker, *run.controller_motion, stream.substream("tracker"));
+  auto link = tracker::make_transport(c.transport, stream.substream("transport"));
+  std::unique_ptr<tracker::RuntimeFusion> fusion;
+  if (c.tracker->imu)
+    fusion = std::make_unique<tracker::RuntimeFusion>(*c.tracker->imu, *run.controller_motion,
+                                                      stream.substream("reference"));
+  const tracker::PredictionParams prediction = run.shared.host.prediction.value_or(tracker::PredictionParams{});
+  run.host->track_controller(std::make_unique<DeviceFeed>(run.sim, std::move(device), std::move(link),
+                                                          std::move(fusion), prediction, "controller"));
 }
 
 }  // namespace
@@ -212,11 +241,19 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
   Timeline* timeline = p.output.timeline && options.write_timeline ? &run.timeline : nullptr;
   run.timeline.set_max_entries(static_cast<size_t>(p.output.timeline_max_entries));
   run.host = std::make_unique<TrackerHost>(run.sim, *run.tracker, *run.transport, timeline, p.host.prediction);
+  if (p.tracker.imu)
+    built_from("/tracker/imu", "tracking chain", [&] {
+      run.host->fuse_with(std::make_unique<tracker::RuntimeFusion>(
+          *p.tracker.imu, *run.motion, des::RandomStream(run.seed, "reference", options.replication)));
+    });
   if (p.controller) {
     built_from("/controller/motion", "controller motion",
                [&] { run.controller_motion = tracker::make_motion(p.controller->motion); });
-    run.host->track_controller(*run.controller_motion,
-                               des::RandomStream(run.seed, "controller", options.replication).substream("noise"));
+    if (p.controller->tracker)
+      built_from("/controller/tracker", "controller's tracking chain", [&] { track_controller_chain(run, options); });
+    else
+      run.host->track_controller(*run.controller_motion,
+                                 des::RandomStream(run.seed, "controller", options.replication).substream("noise"));
   }
   const bool stereo = p.host.stereo;
   built_from("/display", "display", [&] {
@@ -246,6 +283,7 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
   if (p.display.persistence) {
     run.display->set_persistence(*p.display.persistence);
     rec.registration().set_persistence(&run.display->persistence());
+    rec.seen().set_persistence(&run.display->persistence());
     run.smear = std::make_unique<SmearRecorder>(rec.book().writer("smear"), *run.motion);
     run.display->add_listener(run.smear.get());
   }

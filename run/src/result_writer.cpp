@@ -104,7 +104,7 @@ Json figures_of(Run& run) {
   return figures;
 }
 
-Json write_results(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& options, const Json& figures,
+Json write_results(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& options, Json figures,
                    double wall_s, std::chrono::steady_clock::time_point command_start) {
   Json models = Json::object(), events_per_model = Json::object();
   for (const auto& m : run.sim.model_stats()) {
@@ -113,34 +113,34 @@ Json write_results(Run& run, const scenario::ScenarioDocument& doc, const RunOpt
     events_per_model[m.model] = m.events;
   }
   // figures.json holds only what the scenario and seed determine: byte-identical
-  // across runs. summary.json adds wall time, memory and the command line.
-  Json deterministic{{"latsim", {{"version", latsim_version()}, {"git_revision", latsim_git_revision()}}},
-                     {"seed", run.seed},
-                     {"replication", options.replication},
-                     {"scenario", resolved_with_defaults(run, doc)},
-                     {"figures", figures},
-                     {"headline", run.recording->book().headline()},
-                     {"warnings", run.recording->book().warnings()},
-                     {"events", run.sim.events_executed()},
-                     {"events_per_model", events_per_model},
-                     {"fingerprint", hex64(run.sim.fingerprint())}};
-  Json summary = deterministic;
-  summary["command_line"] = options.command_line;
-  summary["exit_status"] = 0;
-  summary["models"] = models;
-  if (!run.recording->book().captures().empty()) summary["captures"] = run.recording->book().captures();
-  summary["events_estimate"] = run.estimate.to_json();
-  summary["wall_s"] = wall_s;
-  if (run.timeline.size() > 0) summary["timeline_entries"] = run.timeline.size();
-
+  // across runs. summary.json adds wall time, memory and the command line: the
+  // same object, once figures.json is written from it (no copy of the figures).
+  std::vector<std::string> headline = run.recording->book().headline(figures);
+  Json summary{{"latsim", {{"version", latsim_version()}, {"git_revision", latsim_git_revision()}}},
+               {"seed", run.seed},
+               {"replication", options.replication},
+               {"scenario", resolved_with_defaults(run, doc)},
+               {"figures", std::move(figures)},
+               {"headline", std::move(headline)},
+               {"warnings", run.recording->book().warnings()},
+               {"events", run.sim.events_executed()},
+               {"events_per_model", std::move(events_per_model)},
+               {"fingerprint", hex64(run.sim.fingerprint())}};
   RunFiles& files = run.files;
   if (files.enabled()) {
     run.timeline.finish(files);
     run.app_frames.finish_log(files);
     if (options.write_ledger) run.recording->ledger().write(files);
     if (options.write_samples) run.recording->sample_log().write(files);
-    files.write_text("figures.json", dump(deterministic, options.compact_json));
+    files.write_text("figures.json", dump(summary, options.compact_json));
   }
+  summary["command_line"] = options.command_line;
+  summary["exit_status"] = 0;
+  summary["models"] = std::move(models);
+  if (!run.recording->book().captures().empty()) summary["captures"] = run.recording->book().captures();
+  summary["events_estimate"] = run.estimate.to_json();
+  summary["wall_s"] = wall_s;
+  if (run.timeline.size() > 0) summary["timeline_entries"] = run.timeline.size();
   // The whole command and the process's peak, taken after the analytic
   // figures and every other result file: wall_s is the simulation loop alone.
   summary["command_wall_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - command_start).count();

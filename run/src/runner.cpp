@@ -156,8 +156,7 @@ Json PreparedRun::run() {
   const auto t0 = std::chrono::steady_clock::now();
   simulate(run);
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  Json figures = figures_of(run);
-  Json summary = write_results(run, doc_, options, figures, wall_s, command_start);
+  Json summary = write_results(run, doc_, options, figures_of(run), wall_s, command_start);
   if (options.tables) keep_tables(run, *options.tables);
   return summary;
 }

@@ -25,6 +25,7 @@ TrackerHost::TrackerHost(des::Simulator& sim, tracker::Tracker& tracker, tracker
 
 void TrackerHost::start(des::Time end) {
   end_ = end;
+  if (controller_feed_) controller_feed_->start(end);
   tracker::TrackerSample s = tracker_.sample(tracker_.first_index_at_or_after(sim_.now()));
   if (s.measured_at < end_) {
     const des::Time t = std::max(s.measured_at, sim_.now());
@@ -37,6 +38,16 @@ void TrackerHost::track_controller(const tracker::MotionSource& motion, des::Ran
 }
 
 std::optional<tracker::PosePrediction> TrackerHost::controller_for(const tracker::PosePrediction& head) const {
+  if (controller_feed_) {
+    // Its own chain: the newest controller report the host had when the
+    // head's pose was read, predicted to the same instant.
+    const std::optional<tracker::TrackerSample> c =
+        controller_feed_->newest_at(head.read_at ? *head.read_at : received_at(head.sample));
+    if (!c) return std::nullopt;
+    tracker::PredictionBasis basis = controller_feed_->basis_of(*c);
+    basis.fixed_horizon.reset();
+    return basis.for_photon_time(head.target);
+  }
   if (!controller_) return std::nullopt;
   const auto& sent = controller_->sent;
   const auto it = std::lower_bound(sent.begin(), sent.end(), head.sample.index,
@@ -69,9 +80,10 @@ void TrackerHost::on_delivery(std::function<void(const tracker::TrackerSample&, 
 void TrackerHost::measure(tracker::TrackerSample s) {
   ++measured_;
   if (timeline_ && s.ready_at > s.measured_at) timeline_->add("TRACKER", s.index, -1, "tracker", s.measured_at, s.ready_at);
-  offer(s);
+  // A lost report (an IMU chain's) never reaches the link.
+  if (!s.lost) offer(s);
   if (delivered_.size() > kPruneAbove) prune();
-  tracker::TrackerSample next = tracker_.sample(s.index + 1);
+  tracker::TrackerSample next = tracker_.sample(tracker_.next_index(s.index));
   if (next.measured_at < end_) sim_.at(next.measured_at, kind_sample_, [this, next] { measure(next); }, kSamplePriority);
 }
 
@@ -116,8 +128,11 @@ void TrackerHost::line_free() {
   sim_.at(link_free_at_, kind_line_, [this] { line_free(); });
 }
 
-void TrackerHost::send(const tracker::TrackerSample& s, des::Time start) {
+void TrackerHost::send(const tracker::TrackerSample& raw, des::Time start) {
   const tracker::Carriage c = transport_.carry(start);
+  // An IMU chain's report is fused by the runtime as it becomes visible:
+  // from here on the host knows the fused pose, never the measured one.
+  const tracker::TrackerSample s = fusion_ ? fusion_->fuse(raw, c.visible) : raw;
   link_free_at_ = start + transport_.occupancy();
   prediction_.observe(s, stamp_of(s, c));
   if (controller_) {

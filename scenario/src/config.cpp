@@ -169,6 +169,25 @@ std::string ConfigNode::string(std::string_view key, std::string def) const {
   return string(key);
 }
 
+namespace {
+
+void mark_tree(std::set<std::string>& read, const Json& v, const std::string& pointer) {
+  read.insert(pointer);
+  if (v.is_object()) {
+    for (auto it = v.begin(); it != v.end(); ++it) mark_tree(read, it.value(), join_pointer(pointer, it.key()));
+  } else if (v.is_array()) {
+    for (size_t i = 0; i < v.size(); ++i) mark_tree(read, v[i], join_pointer(pointer, std::to_string(i)));
+  }
+}
+
+}  // namespace
+
+const Json* ConfigNode::value(std::string_view key) const {
+  const Json* v = find(key);
+  if (v) mark_tree(log_->read_pointers, *v, join_pointer(pointer_, key));
+  return v;
+}
+
 std::vector<std::string> ConfigNode::strings(std::string_view key, std::vector<std::string> def) const {
   if (!has(key)) {
     record_default(key, def);

@@ -28,6 +28,16 @@ bool same_declaration(const KeySchema& a, const KeySchema& b) {
 
 }  // namespace
 
+void Section::value(std::string_view key, Json& v, const KeySpec& spec) {
+  if (schema_) {
+    KeySchema& k = declare(key, "value", spec);
+    if (!spec.required) k.default_value = v;
+    return;
+  }
+  if (const Json* given = node_->value(key)) v = *given;
+  else if (spec.required) fail(key, "required key is missing");
+}
+
 void Section::numbers(std::string_view key, std::vector<double>& v, const KeySpec& declared) {
   const KeySpec spec = bounded_number(declared);
   if (schema_) {

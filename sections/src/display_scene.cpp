@@ -55,6 +55,11 @@ void persistence(Section& s, display::PersistenceParams& p, const display::Raste
             }}},
           {.doc = "the illumination"});
   s.duration("response_ms", p.response, {.unit = "ms", .doc = "pixel response: the whole transition from the old value to the new"});
+  using Rise = display::PersistenceParams::Rise;
+  s.choice("rise", p.rise, {{"step", Rise::step}, {"linear", Rise::linear}, {"exponential", Rise::exponential}},
+           {.doc = "how a camera sees the transition (latency figures do not depend on it): step: the new value "
+                   "whenever lit; linear: over response_ms (OLED); exponential: 10 % to 90 % in response_ms (an "
+                   "LCD's grey to grey), so that a camera's threshold on the light is crossed later"});
   // A row is written once per frame (two fields when interlaced).
   const double frame_ms = raster.field_period.to_seconds() * 1e3 * (raster.interlaced ? 2 : 1);
   s.check("lit_ms", p.mode == Mode::full || p.lit.to_ms() <= frame_ms + 1e-9,

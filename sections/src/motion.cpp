@@ -55,6 +55,9 @@ void minimum_jerk(Section& s, tracker::MotionParams& p) {
   s.duration("duration_s", m.duration,
              {.unit = "s", .min = 0.0, .max = 1e6, .above_min = true, .doc = "length of one movement"});
   s.duration("rest_s", m.rest, {.unit = "s", .min = 0.0, .max = 1e6, .doc = "stillness before each movement"});
+  s.duration("delay_s", m.delay,
+             {.unit = "s", .min = 0.0, .max = 1e6,
+              .doc = "still for this long before the first rest (to place one motion's movements in another's rests)"});
   vec3(s, "axis", m.axis, {.doc = "rotation axis in world coordinates ([0, 1, 0]: yaw)"});
   s.check("axis", m.axis != glm::dvec3(0.0), "the rotation axis must not be zero");
   enum class Direction { Alternate, Same };
@@ -205,6 +208,8 @@ void bind(Section& s, tracker::TrackerParams& p) {
            {.doc = "shape of the jitter"});
   std::optional<int> present;
   s.optional_object("noise", present, [&p](Section& n, int&) { noise(n, p); }, {.doc = "pose noise (none when absent)"});
+  s.optional_object("imu", p.imu, [](Section& i, tracker::ImuChainParams& v) { bind(i, v); },
+                    {.doc = "an IMU tracking chain fused by the runtime instead of measured poses (none when absent)"});
 }
 
 void bind(Section& s, tracker::TransportParams& p) {

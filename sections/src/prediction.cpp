@@ -75,6 +75,13 @@ void bind(Section& s, tracker::PredictionParams& p, const tracker::TrackerParams
             [&p, &tracker](Section& k) {
               p.predictor.kind = Kind::Kalman;
               kalman(k, p.predictor.kalman, tracker);
+            }},
+           {"fusion",
+            "the runtime's own state: the fused orientation and position of /tracker/imu, carried forward at the "
+            "fusion's angular velocity (its newest bias-corrected gyro rate) and velocity",
+            [&p, &tracker](Section& f) {
+              p.predictor.kind = Kind::Fusion;
+              f.check("type", tracker.imu.has_value(), "fusion prediction needs an IMU tracking chain (/tracker/imu)");
             }}},
           {.doc = "which predictor"});
   std::optional<double> horizon_ms;
@@ -94,9 +101,10 @@ void bind(Section& s, tracker::PredictionParams& p, const tracker::TrackerParams
 void bind(Section& s, tracker::MotionPhaseParams& p) {
   s.doc(
       "Splits `registration_error_arcmin` and `prediction_error_deg` by motion phase into `<name>_onset`, "
-      "`_stop`, `_steady` and `_still`: an instant is in onset (stop) within `window_ms` after the true head's "
-      "angular speed rises above (falls to) `threshold_deg_s`, measured over successive `step_ms` intervals; "
-      "otherwise steady (moving) or still.");
+      "`_stop`, `_steady` and `_still`: an instant is in onset (stop) within `window_ms` after the true head "
+      "started (stopped) moving, otherwise steady (moving) or still. A movement is the true head's angular "
+      "speed, measured over successive `step_ms` intervals, rising above `threshold_deg_s`; it starts where the "
+      "head left rest (`rest_deg_s`), and stops where the speed falls back to the threshold.");
   s.number("threshold_deg_s", p.threshold_deg_s,
            {.unit = "deg/s", .min = 0.0, .max = 1e6, .doc = "angular speed above which the head is moving"});
   s.duration("window_ms", p.window,
@@ -104,6 +112,11 @@ void bind(Section& s, tracker::MotionPhaseParams& p) {
   s.duration("step_ms", p.step,
              {.unit = "ms", .min = 0.0, .max = 1e6, .above_min = true,
               .doc = "interval over which angular speed is measured"});
+  s.number("rest_deg_s", p.rest_deg_s,
+           {.unit = "deg/s", .min = 0.0, .max = 1e6,
+            .doc = "at or below this the head is at rest: a movement that starts from rest (at least window_ms of "
+                   "it) starts where the head left it (the end of the last interval at rest), not where it passes "
+                   "threshold_deg_s"});
 }
 
 }  // namespace latsim::sections

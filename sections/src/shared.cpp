@@ -108,17 +108,21 @@ void bind(Section& s, SharedParams& p) {
            {.required = true, .doc = "the true head motion"});
   s.optional_object("controller", p.controller,
                     [](Section& c, ControllerParams& v) {
-                      c.doc("A handheld controller: the tracker measures it at every head sample's instant (with the "
-                            "tracker's noise, drawn from a stream of its own), the record carries it to the host, "
-                            "which predicts it with a predictor of its own of /host/prediction's settings, and every "
-                            "image draws it at the pose predicted for that image's render. Re-projection (time warp) "
-                            "moves the view, not the controller: it stays where the render drew it. Its figures are "
-                            "`controller_latency_ms` and, with /apparent_latency, `controller_apparent_latency_ms` "
-                            "(docs/figures.md); /measurement/object can film it.");
+                      c.doc("A handheld controller. Without /controller/tracker the tracker measures it at every head "
+                            "sample's instant (with the tracker's noise, drawn from a stream of its own) and the "
+                            "head's record carries it; with it, the controller has a chain of its own (its IMU, its "
+                            "reports, its link /controller/transport, the runtime's fusion), and each image draws the "
+                            "newest controller report the host had when the image's head pose was read. The host "
+                            "predicts it with a predictor of its own of /host/prediction's settings to the image's "
+                            "photon time. Re-projection (time warp) moves the view, not the controller: it stays "
+                            "where the render drew it. Its figures are `controller_latency_ms` and, with "
+                            "/apparent_latency, `controller_apparent_latency_ms` (docs/figures.md); "
+                            "/measurement/object can film it.");
                       c.object("motion", v.motion, [](Section& m, tracker::MotionParams& mp) { bind(m, mp); },
                                {.required = true,
                                 .doc = "the controller's true motion: the types of /motion (whose texts speak of the "
                                        "head)"});
+                      bind_controller_chain(c, v);
                     },
                     {.doc = "a tracked handheld controller drawn by the pipeline (none when absent)"});
   s.object("tracker", p.tracker, [](Section& t, tracker::TrackerParams& v) { bind(t, v); },

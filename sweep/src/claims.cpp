@@ -126,7 +126,10 @@ std::optional<std::string> stale_reason(const ClaimHolder& holder, const ClaimHo
 }
 
 RunClaims::RunClaims(fs::path claims_dir, std::chrono::seconds stale_after)
-    : dir_(std::move(claims_dir)), stale_after_(stale_after), me_(ClaimHolder::self()) {
+    : dir_(std::move(claims_dir)), stale_after_(stale_after), me_(ClaimHolder::self()), serial_([] {
+        static std::atomic<uint64_t> made{0};
+        return made++;
+      }()) {
   fs::create_directories(dir_);
   heartbeat_ = std::thread([this] { heartbeat_loop(); });
 }
@@ -143,30 +146,40 @@ RunClaims::~RunClaims() {
   for (const auto& run_id : held) release(run_id, false);
   std::error_code ec;
   fs::remove(dir_ / (".clock." + me_.host + "." + std::to_string(me_.pid)), ec);
+  for (const auto& [worker, file] : holders_) fs::remove(file, ec);
+}
+
+fs::path RunClaims::holder_file(unsigned worker) {
+  {
+    std::lock_guard lock(mutex_);
+    const auto it = holders_.find(worker);
+    if (it != holders_.end()) return it->second;
+  }
+  const fs::path file = dir_ / (".holder." + me_.host + "." + std::to_string(me_.pid) + "." + std::to_string(serial_) +
+                                "." + std::to_string(worker));
+  // The record is complete before any claim's name links to it: nobody reads a half-written claim.
+  std::error_code ec;
+  fs::remove(file, ec);
+  if (!create_file(file, me_.to_json().dump() + "\n"))
+    throw std::runtime_error(file.string() + ": cannot write a claim file: " + std::strerror(errno));
+  std::lock_guard lock(mutex_);
+  holders_[worker] = file;
+  return file;
 }
 
 fs::path RunClaims::claim_file(const std::string& run_id, uint64_t generation) const {
   return dir_ / (run_id + "." + std::to_string(generation));
 }
 
-bool RunClaims::try_link(const fs::path& file, const std::string& run_id, uint64_t generation) {
-  // Unique among every claims object of this process too.
-  static std::atomic<uint64_t> temp_counter{0};
-  const uint64_t serial = ++temp_counter;
-  // The record is complete before the claim's name exists: nobody reads a half-written claim.
-  const fs::path temp = dir_ / (run_id + "." + std::to_string(generation) + "." + me_.host + "." +
-                                std::to_string(me_.pid) + "." + std::to_string(serial) + ".tmp");
-  Json record = me_.to_json();
-  record["run_id"] = run_id;
-  if (!create_file(temp, record.dump() + "\n"))
-    throw std::runtime_error(temp.string() + ": cannot write a claim file: " + std::strerror(errno));
-  bool linked = ::link(temp.c_str(), file.c_str()) == 0;
+bool RunClaims::try_link(const fs::path& file, const std::string& run_id, uint64_t generation, unsigned worker) {
+  const fs::path holder = holder_file(worker);
+  bool linked = ::link(holder.c_str(), file.c_str()) == 0;
   if (!linked && errno != EEXIST) {
-    // NFS may report a failure for a link that was made (a lost reply): the link count tells.
+    // NFS may report a failure for a link that was made (a lost reply): the
+    // link count tells, the worker holding no other claim.
     struct stat st {};
-    linked = ::stat(temp.c_str(), &st) == 0 && st.st_nlink == 2;
+    linked = ::stat(holder.c_str(), &st) == 0 && st.st_nlink == 2;
   }
-  ::unlink(temp.c_str());
   if (linked) {
     std::lock_guard lock(mutex_);
     held_[run_id] = generation;
@@ -188,14 +201,14 @@ std::optional<double> RunClaims::heartbeat_age_s(const fs::path& file) {
   return std::max(0.0, seconds_between(now.st_mtim, claim.st_mtim));
 }
 
-ClaimOutcome RunClaims::claim(const std::string& run_id) {
+ClaimOutcome RunClaims::claim(const std::string& run_id, unsigned worker) {
   ClaimOutcome stale;  // the last stale claim passed over, reported when we take the next generation
   bool passed_stale = false;
   // A claim that vanishes under us was released by a finished run: look again from the start, a few times.
   for (int attempt = 0; attempt < 4; ++attempt) {
     for (uint64_t generation = 0;; ++generation) {
       const fs::path file = claim_file(run_id, generation);
-      if (try_link(file, run_id, generation)) {
+      if (try_link(file, run_id, generation, worker)) {
         if (!passed_stale) return {ClaimOutcome::Kind::taken, {}, {}};
         stale.kind = ClaimOutcome::Kind::retaken;
         return stale;

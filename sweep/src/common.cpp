@@ -30,7 +30,7 @@ std::string blame(const SweepPlan& plan, const SweepRun& run, const scenario::Sc
   for (size_t a = 0; a < plan.axes().size(); ++a) {
     const std::string& axis = plan.axes()[a].pointer;
     if (e.pointer() == axis || e.pointer().rfind(axis + "/", 0) == 0)
-      return scenario::readable(plan.value_pointer(a, run.value_indices[a]) + ": " + e.what());
+      return scenario::readable(plan.value_pointer(a, plan.points()[run.point].value_indices[a]) + ": " + e.what());
   }
   return scenario::readable("/axes: at " + plan.describe(run) + ": " + e.what());
 }
@@ -44,9 +44,20 @@ unsigned available_cpus() {
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
+SweepPlan read_plan(const std::string& sweep_file, const std::optional<std::string>& text) {
+  if (!text) return SweepPlan::load(sweep_file, run::resolve_defaults);
+  Json sweep;
+  try {
+    sweep = scenario::parse_json(*text, sweep_file);
+  } catch (const scenario::ScenarioError& e) {
+    throw SweepError(sweep_file, e.pointer(), e.message());
+  }
+  return SweepPlan::from_json(sweep, sweep_file, run::resolve_defaults);
+}
+
 std::optional<SweepPlan> load_plan(const SweepRequest& request) {
   try {
-    return SweepPlan::load(request.sweep_file, run::resolve_defaults);
+    return read_plan(request.sweep_file);
   } catch (const SweepError& e) {
     std::cerr << e.what() << "\n";
     return std::nullopt;
@@ -111,7 +122,7 @@ PointCheck check_points(const SweepPlan& plan, const std::vector<size_t>& run_in
   parallel_for(firsts.size(), jobs, [&](size_t i) {
     const SweepRun& run = plan.runs()[firsts[i]];
     try {
-      auto doc = scenario::ScenarioDocument::from_json(run.scenario, plan.base_dir());
+      auto doc = scenario::ScenarioDocument::from_json(plan.scenario(run), plan.base_dir());
       // One build checks the point and gives its one estimate.
       run::RunOptions options;
       options.max_events = max_events;
@@ -151,7 +162,7 @@ SweepWorkspace::SweepWorkspace(const SweepRequest& request)
     : store(request.out_dir),
       claims(store.claims_dir(), std::chrono::seconds(request.stale_after_s)),
       journal(store.out_dir(), ClaimHolder::self().host, static_cast<long>(ClaimHolder::self().pid)),
-      executor(store, claims, journal, run_settings(request)) {}
+      executor(store, claims, journal, run_settings(request), request.jobs) {}
 
 void SweepTally::add(const SweepPlan& plan, const std::vector<size_t>& indices, const std::vector<RunAttempt>& attempts) {
   std::vector<size_t> order(indices.size());

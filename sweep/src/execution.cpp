@@ -1,12 +1,16 @@
-#include "latsim/results/run_files.hpp"
 #include "latsim/sweep/execution.hpp"
 
+#include <unistd.h>
+
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 
+#include "latsim/results/run_files.hpp"
 #include "latsim/run/runner.hpp"
 #include "latsim/scenario/config.hpp"
 #include "latsim/scenario/readable.hpp"
+#include "latsim/sweep/record.hpp"
 
 namespace latsim::sweep {
 
@@ -20,24 +24,27 @@ double seconds_since(Clock::time_point start) { return std::chrono::duration<dou
 }  // namespace
 
 RunTask RunTask::of(const SweepPlan& plan, const SweepRun& run, const KeepPolicy& keep) {
-  return RunTask{run.index,    run.run_id,      run.seed, run.replication,
-                 run.scenario, plan.base_dir(), keep.keeps_traces(run.index, run.replication)};
+  // The plan outlives its tasks: they point at its scenario without owning it.
+  const std::shared_ptr<const Json> scenario(std::shared_ptr<const Json>{}, &plan.scenario(run));
+  return RunTask{run.index,   run.run_id,      run.seed, run.replication,
+                 scenario,    plan.base_dir(), keep.keeps_traces(run.index, run.replication)};
 }
 
 Json RunTask::to_json() const {
   return {{"index", index}, {"run_id", run_id}, {"seed", seed}, {"replication", replication},
-          {"scenario", scenario}, {"base_dir", base_dir.string()}, {"keep_traces", keep_traces}};
+          {"scenario", *scenario}, {"base_dir", base_dir.string()}, {"keep_traces", keep_traces}};
 }
 
 RunTask RunTask::from_json(const Json& j) {
   return RunTask{j.at("index").get<size_t>(), j.at("run_id").get<std::string>(), j.at("seed").get<uint64_t>(),
-                 j.at("replication").get<uint64_t>(), j.at("scenario"), j.at("base_dir").get<std::string>(),
-                 j.at("keep_traces").get<bool>()};
+                 j.at("replication").get<uint64_t>(), std::make_shared<const Json>(j.at("scenario")),
+                 j.at("base_dir").get<std::string>(), j.at("keep_traces").get<bool>()};
 }
 
 Json RunAttempt::to_json() const {
   return {{"result", static_cast<int>(result)}, {"message", message}, {"storage_unusable", storage_unusable},
-          {"resolve_s", resolve_s}, {"run_s", run_s}, {"simulate_s", simulate_s}, {"claim_s", claim_s}};
+          {"resolve_s", resolve_s}, {"run_s", run_s}, {"simulate_s", simulate_s}, {"record_s", record_s},
+          {"claim_s", claim_s}};
 }
 
 RunAttempt RunAttempt::from_json(const Json& j) {
@@ -48,16 +55,42 @@ RunAttempt RunAttempt::from_json(const Json& j) {
   a.resolve_s = j.at("resolve_s").get<double>();
   a.run_s = j.at("run_s").get<double>();
   a.simulate_s = j.at("simulate_s").get<double>();
+  a.record_s = j.value("record_s", 0.0);
   a.claim_s = j.at("claim_s").get<double>();
   return a;
 }
 
-RunExecutor::RunExecutor(const SweepStore& store, RunClaims& claims, const SweepJournal& journal, RunSettings settings)
-    : store_(store), claims_(claims), journal_(journal), settings_(std::move(settings)) {}
+RunExecutor::RunExecutor(const SweepStore& store, RunClaims& claims, const SweepJournal& journal, RunSettings settings,
+                         unsigned workers)
+    : store_(store), claims_(claims), journal_(journal), settings_(std::move(settings)) {
+  // Unique among every writer of every process: host, pid, this executor and the worker.
+  static std::atomic<unsigned> executors{0};
+  const std::string stem = ClaimHolder::self().host + "." + std::to_string(::getpid()) + "." +
+                           std::to_string(executors++) + "-";
+  for (unsigned w = 0; w < std::max(1u, workers); ++w)
+    workers_.push_back(std::make_unique<Worker>(store, stem + std::to_string(w)));
+}
 
-RunAttempt RunExecutor::execute(const RunTask& task) {
+RunExecutor::~RunExecutor() {
+  // The marks keep their own names; the file they link to is no longer needed.
+  std::error_code ec;
+  for (const auto& w : workers_)
+    if (!w->mark.empty()) std::filesystem::remove(w->mark, ec);
+}
+
+void RunExecutor::mark_finished(const std::string& run_id, Worker& w) {
+  if (w.mark.empty()) w.mark = store_.new_mark(w.stem + "." + std::to_string(w.marks_made++));
+  if (store_.mark_finished(run_id, w.mark)) return;
+  // As many links as one file may have (65,000 on ext4): link to a new one.
+  std::error_code ec;
+  std::filesystem::remove(w.mark, ec);
+  w.mark = store_.new_mark(w.stem + "." + std::to_string(w.marks_made++));
+  if (!store_.mark_finished(run_id, w.mark)) throw results::WriteError(w.mark, EMLINK);
+}
+
+RunAttempt RunExecutor::execute(const RunTask& task, unsigned worker) {
   try {
-    return claim_and_run(task);
+    return claim_and_run(task, worker);
   } catch (const std::exception& e) {
     // The sweep directory failed us (a claim or the journal could not be written).
     claims_.release(task.run_id, false);
@@ -68,9 +101,9 @@ RunAttempt RunExecutor::execute(const RunTask& task) {
   }
 }
 
-RunAttempt RunExecutor::claim_and_run(const RunTask& task) {
+RunAttempt RunExecutor::claim_and_run(const RunTask& task, unsigned worker) {
   const auto start = Clock::now();
-  const ClaimOutcome claim = claims_.claim(task.run_id);
+  const ClaimOutcome claim = claims_.claim(task.run_id, worker);
   RunAttempt attempt;
   if (claim.kind == ClaimOutcome::Kind::busy) {
     journal_.record("busy", task.run_id, claim.other.name());
@@ -95,7 +128,7 @@ RunAttempt RunExecutor::claim_and_run(const RunTask& task) {
   temporaries_removed_ += store_.remove_run_temporaries(task.run_id);
   journal_.record("start", task.run_id);
   const double before_run_s = seconds_since(start);
-  attempt = run_claimed(task);
+  attempt = run_claimed(task, worker);
   const auto after_run = Clock::now();
   const bool ran = attempt.result == RunAttempt::Result::ran;
   const bool stopped = attempt.result == RunAttempt::Result::stopped;
@@ -105,13 +138,16 @@ RunAttempt RunExecutor::claim_and_run(const RunTask& task) {
   return attempt;
 }
 
-RunAttempt RunExecutor::run_claimed(const RunTask& task) {
+RunAttempt RunExecutor::run_claimed(const RunTask& task, unsigned worker) {
   RunAttempt attempt;
   run::RunOptions options;
   options.seed = task.seed;
   options.replication = task.replication;
-  options.out_dir = store_.run_dir(task.run_id);
-  options.staging_dir = store_.staging_dir(task.run_id);
+  // Only a run kept in full has files of its own; every run has its record.
+  if (task.keep_traces) {
+    options.out_dir = store_.run_dir(task.run_id);
+    options.staging_dir = store_.staging_dir(task.run_id);
+  }
   options.write_samples = settings_.write_samples && task.keep_traces;
   options.write_ledger = settings_.write_ledger && task.keep_traces;
   options.write_timeline = task.keep_traces;
@@ -123,12 +159,21 @@ RunAttempt RunExecutor::run_claimed(const RunTask& task) {
   options.max_events = settings_.max_events;
   try {
     auto t0 = Clock::now();
-    const auto doc = scenario::ScenarioDocument::from_json(task.scenario, task.base_dir);
+    const auto doc = scenario::ScenarioDocument::from_json(*task.scenario, task.base_dir);
     attempt.resolve_s = seconds_since(t0);
     t0 = Clock::now();
-    const Json summary = run::run_scenario(doc, options);
+    Json summary = run::run_scenario(doc, options);
     attempt.run_s = seconds_since(t0);
     attempt.simulate_s = summary.value("wall_s", 0.0);
+    t0 = Clock::now();
+    Worker& w = *workers_.at(worker);
+    // The scenario as a patch of the one of its segment's first record, which is written whole.
+    const bool first = w.segment.starts_segment();
+    EncodedRecord record = encode_record(std::move(summary), first ? nullptr : &w.base_scenario);
+    w.segment.append(task.run_id, record.text);
+    if (first) w.base_scenario = std::move(record.scenario);
+    mark_finished(task.run_id, w);
+    attempt.record_s = seconds_since(t0);
     attempt.result = RunAttempt::Result::ran;
   } catch (const scenario::ScenarioError& e) {
     attempt.message = e.what();
@@ -150,17 +195,19 @@ void RunTimes::add(const RunAttempt& attempt) {
   resolve_s += attempt.resolve_s;
   run_s += attempt.run_s;
   simulate_s += attempt.simulate_s;
+  record_s += attempt.record_s;
   claim_s += attempt.claim_s;
 }
 
 std::string RunTimes::describe() const {
   if (runs == 0) return "no runs";
   const double n = static_cast<double>(runs);
-  char text[200];
+  char text[240];
   std::snprintf(text, sizeof text,
-                "per run: %.2f ms simulating, %.2f ms building models and writing results, %.2f ms reading the "
-                "scenario, %.2f ms claiming",
-                1e3 * simulate_s / n, 1e3 * (run_s - simulate_s) / n, 1e3 * resolve_s / n, 1e3 * claim_s / n);
+                "per run: %.2f ms simulating, %.2f ms building models and figures (and a kept run's files), %.2f ms "
+                "recording, %.2f ms reading the scenario, %.2f ms claiming",
+                1e3 * simulate_s / n, 1e3 * (run_s - simulate_s) / n, 1e3 * record_s / n, 1e3 * resolve_s / n,
+                1e3 * claim_s / n);
   return text;
 }
 

@@ -15,6 +15,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <thread>
 #include <vector>
 
@@ -172,7 +173,7 @@ int serve(const SweepRequest& request) {
     inbox.pop_front();
     if (!work) work.emplace(request);
     const size_t removed_before = work->executor.temporaries_removed();
-    const RunAttempt attempt = work->executor.execute(task);
+    const RunAttempt attempt = work->executor.execute(task, 0);
     outbox.post(0, kToRankZero, {{"index", task.index}, {"attempt", attempt.to_json()},
                                  {"temporaries", work->executor.temporaries_removed() - removed_before}});
   }
@@ -207,9 +208,9 @@ class Dispatcher {
   std::vector<RunAttempt> run(ProgressLine& progress) {
     std::vector<std::thread> pool;
     for (unsigned t = 0; t < threads_; ++t)
-      pool.emplace_back([&] {
+      pool.emplace_back([&, t] {
         while (const auto p = next()) {
-          attempts_[*p] = work_.executor.execute(task(*p));
+          attempts_[*p] = work_.executor.execute(task(*p), t);
           progress.advance();
         }
         ++threads_done_;
@@ -305,8 +306,9 @@ int lead(SweepRequest request, int size) {
   write_file_if_changed(work.store.out_dir() / "plan.json", plan->to_json().dump(2) + "\n");
   SweepTally tally;
   std::vector<size_t> pending;
+  const std::set<std::string> finished = work.store.finished_runs();
   for (size_t i : all) {
-    if (work.store.is_finished(plan->runs()[i].run_id)) ++tally.resumed;
+    if (finished.count(plan->runs()[i].run_id)) ++tally.resumed;
     else pending.push_back(i);
   }
   pending = longest_first(pending, check.cost_of_run);

@@ -14,6 +14,12 @@ constexpr auto kRedrawInterval = std::chrono::milliseconds(200);
 // A run shorter than this needs no progress line.
 constexpr auto kQuietStart = std::chrono::seconds(2);
 
+int64_t ns_of(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count();
+}
+
+constexpr int64_t kRedrawNs = std::chrono::duration_cast<std::chrono::nanoseconds>(kRedrawInterval).count();
+
 std::string duration_text(double s) {
   char buf[48];
   if (s < 100) std::snprintf(buf, sizeof buf, "%.0f s", s);
@@ -31,32 +37,44 @@ ProgressLine::ProgressLine(std::string label, size_t total, size_t already_done)
       done_(already_done),
       enabled_(::isatty(STDERR_FILENO) == 1),
       start_(std::chrono::steady_clock::now()),
-      last_draw_(start_) {
+      next_draw_ns_(0) {
+  if (enabled_) draw(false);
+}
+
+void ProgressLine::resume(size_t already_done) {
+  resumed_ = already_done;
+  done_ = already_done;
   if (enabled_) draw(false);
 }
 
 void ProgressLine::advance() {
-  std::lock_guard lock(mutex_);
-  ++done_;
-  const auto now = std::chrono::steady_clock::now();
-  if (enabled_ && now - last_draw_ >= kRedrawInterval) draw(false);
+  done_.fetch_add(1, std::memory_order_relaxed);
+  if (!enabled_) return;
+  const int64_t now = ns_of(std::chrono::steady_clock::now());
+  int64_t due = next_draw_ns_.load(std::memory_order_relaxed);
+  // One worker wins the redraw; the others carry on.
+  if (now < due || !next_draw_ns_.compare_exchange_strong(due, now + kRedrawNs)) return;
+  const std::unique_lock lock(draw_mutex_, std::try_to_lock);
+  if (lock.owns_lock()) draw(false);
 }
 
 void ProgressLine::finish() {
-  std::lock_guard lock(mutex_);
+  const std::lock_guard lock(draw_mutex_);
   if (enabled_) draw(true);
 }
 
 void ProgressLine::draw(bool final_line) {
-  last_draw_ = std::chrono::steady_clock::now();
-  const double elapsed_s = std::chrono::duration<double>(last_draw_ - start_).count();
+  const auto now = std::chrono::steady_clock::now();
+  next_draw_ns_ = ns_of(now) + kRedrawNs;
+  const double elapsed_s = std::chrono::duration<double>(now - start_).count();
   // The rate counts only runs done by this process; resumed ones cost nothing.
-  const size_t fresh = done_ - resumed_;
+  const size_t done = done_.load();
+  const size_t fresh = done - resumed_;
   const double rate_per_s = elapsed_s > 0.0 ? static_cast<double>(fresh) / elapsed_s : 0.0;
   char eta[32] = "ETA --";
-  if (rate_per_s > 0.0) std::snprintf(eta, sizeof eta, "ETA %.0f s", static_cast<double>(total_ - done_) / rate_per_s);
+  if (rate_per_s > 0.0) std::snprintf(eta, sizeof eta, "ETA %.0f s", static_cast<double>(total_ - done) / rate_per_s);
   std::fprintf(stderr, "\r%s: %zu/%zu runs (%zu resumed), %.1f runs/s, %s, %.0f s elapsed\033[K%s", label_.c_str(),
-               done_, total_, resumed_, rate_per_s, final_line ? "done" : eta, elapsed_s, final_line ? "\n" : "");
+               done, total_, resumed_, rate_per_s, final_line ? "done" : eta, elapsed_s, final_line ? "\n" : "");
   std::fflush(stderr);
 }
 

@@ -85,31 +85,44 @@ std::string csv_field(const std::string& text) {
   return quoted + "\"";
 }
 
-std::string results_csv(const std::vector<std::string>& axis_pointers, const std::vector<RunRecord>& records) {
+std::string results_csv_header(const std::vector<std::string>& axis_pointers) {
   // Cells are appended one by one: building "," + cell temporaries trips
   // GCC 12's -Wrestrict false positive at -O2.
   std::string text = "run_id,point";
+  for (const auto& pointer : axis_pointers) {
+    text += ',';
+    text += csv_field(pointer);
+  }
+  text += ",seed,replication";
+  for (const auto& column : headline_columns()) {
+    text += ',';
+    text += column.name;
+  }
+  text += '\n';
+  return text;
+}
+
+void append_results_csv_row(std::string& text, const RunRow& row) {
+  static const std::vector<HeadlineColumn> columns = headline_columns();
   auto cell = [&text](const std::string& value) {
     text += ',';
     text += value;
   };
-  for (const auto& pointer : axis_pointers) cell(csv_field(pointer));
-  text += ",seed,replication";
-  const auto columns = headline_columns();
-  for (const auto& column : columns) cell(column.name);
-  text += '\n';
-  for (const auto& record : records) {
-    text += record.run_id;
-    cell(std::to_string(record.point));
-    for (const auto& value : record.values) cell(csv_field(value_text(value)));
-    cell(std::to_string(record.seed));
-    cell(std::to_string(record.replication));
-    for (const auto& column : columns) {
-      const auto v = find_figure(record.summary, column.figure);
-      cell(v ? format_number(*v) : std::string());
-    }
-    text += '\n';
+  text += row.run_id;
+  cell(std::to_string(row.point));
+  for (const auto& value : row.values) cell(csv_field(value_text(value)));
+  cell(std::to_string(row.seed));
+  cell(std::to_string(row.replication));
+  for (const auto& column : columns) {
+    const auto v = row.figure(column.figure);
+    cell(v ? format_number(*v) : std::string());
   }
+  text += '\n';
+}
+
+std::string results_csv(const std::vector<std::string>& axis_pointers, const std::vector<RunRow>& rows) {
+  std::string text = results_csv_header(axis_pointers);
+  for (const auto& row : rows) append_results_csv_row(text, row);
   return text;
 }
 

@@ -1,30 +1,58 @@
 #include "latsim/results/run_files.hpp"
 #include "latsim/sweep/store.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cctype>
+#include <cerrno>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
 
-#include "latsim/run/runner.hpp"
 
 namespace latsim::sweep {
 
 namespace fs = std::filesystem;
 
-SweepStore::SweepStore(fs::path out_dir) : out_dir_(std::move(out_dir)) { fs::create_directories(out_dir_ / "runs"); }
+SweepStore::SweepStore(fs::path out_dir) : out_dir_(std::move(out_dir)) {
+  fs::create_directories(out_dir_ / "runs");
+  fs::create_directories(out_dir_ / "store");
+  fs::create_directories(out_dir_ / "done");
+}
 
 fs::path SweepStore::run_dir(const std::string& run_id) const { return out_dir_ / "runs" / run_id; }
 
 fs::path SweepStore::staging_dir(const std::string& run_id) const { return out_dir_ / "runs" / (run_id + ".tmp"); }
 
-fs::path SweepStore::summary_file(const std::string& run_id) const { return run_dir(run_id) / "summary.json"; }
+bool SweepStore::is_finished(const std::string& run_id) const { return ::access(done_file(run_id).c_str(), F_OK) == 0; }
 
-bool SweepStore::is_finished(const std::string& run_id) const { return fs::exists(summary_file(run_id)); }
+bool SweepStore::mark_finished(const std::string& run_id, const fs::path& mark) const {
+  const fs::path file = done_file(run_id);
+  if (::link(mark.c_str(), file.c_str()) == 0 || errno == EEXIST) return true;
+  if (errno == EMLINK) return false;
+  throw results::WriteError(file, errno);
+}
 
-std::optional<nlohmann::json> SweepStore::load_summary(const std::string& run_id) const {
-  return results::read_summary(summary_file(run_id), "delete it to run this point again");
+fs::path SweepStore::new_mark(const std::string& name) const {
+  const fs::path file = out_dir_ / "done" / (".mark." + name);
+  const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw results::WriteError(file, errno);
+  ::close(fd);
+  return file;
+}
+
+std::set<std::string> SweepStore::finished_runs() const { return finished_runs_in(out_dir_); }
+
+std::set<std::string> finished_runs_in(const fs::path& out_dir) {
+  std::set<std::string> done;
+  std::error_code ec;
+  for (fs::directory_iterator it(out_dir / "done", ec), end; !ec && it != end; it.increment(ec)) {
+    std::string name = it->path().filename().string();
+    if (name[0] != '.') done.insert(std::move(name));  // .mark.* are what the marks link to
+  }
+  return done;
 }
 
 size_t SweepStore::remove_run_temporaries(const std::string& run_id) const {

@@ -256,8 +256,10 @@ def check_counts(scenario, scen, raster, figures, duration_ticks):
     if t.get("jitter_ms", 0) == 0:
         period = rate_period(t["rate_hz"], t.get("rate_error_ppm", 0))
         phase = ticks_of_ms(t["phase_ms"])
+        # An IMU chain's samples are its reports: every report_every readings.
+        step = t.get("imu", {}).get("report_every", 1)
         samples = 0
-        while phase + math.floor(samples * period * TICKS) < duration_ticks:
+        while phase + math.floor(samples * step * period * TICKS) < duration_ticks:
             samples += 1
         if figures["tracker_samples"] != samples:
             fail(scenario, f"tracker_samples {figures['tracker_samples']}, the tracker's clock gives {samples}")

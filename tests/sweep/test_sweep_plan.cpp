@@ -68,14 +68,17 @@ TEST_CASE("cartesian sweeps vary the last axis fastest, replications innermost",
   REQUIRE(plan.point_count() == 8);
   REQUIRE(plan.runs().size() == 16);
   const auto& r = plan.runs();
-  CHECK(r[0].scenario["display"]["refresh_hz"] == 60);
-  CHECK(r[0].scenario["transport"]["poll_interval_ms"] == 0);
+  CHECK(plan.scenario(r[0])["display"]["refresh_hz"] == 60);
+  CHECK(plan.scenario(r[0])["transport"]["poll_interval_ms"] == 0);
   CHECK(r[0].replication == 0);
   CHECK(r[1].replication == 1);
   CHECK(r[1].point == 0);
-  CHECK(r[2].scenario["transport"]["poll_interval_ms"] == 10);
-  CHECK(r[15].scenario["display"]["refresh_hz"] == "60000/1001");
-  CHECK(r[15].scenario["transport"]["poll_interval_ms"] == 30);
+  CHECK(plan.scenario(r[2])["transport"]["poll_interval_ms"] == 10);
+  CHECK(plan.scenario(r[15])["display"]["refresh_hz"] == "60000/1001");
+  CHECK(plan.scenario(r[15])["transport"]["poll_interval_ms"] == 30);
+  // The replications of a point share its scenario; each has its own id.
+  CHECK(&plan.scenario(r[0]) == &plan.scenario(r[1]));
+  CHECK(plan.points().size() == 8);
   // The base scenario's seed is kept when the sweep names none.
   CHECK(r[0].seed == 7);
   std::set<std::string> ids;
@@ -92,8 +95,8 @@ TEST_CASE("zip sweeps pair the i-th values and need equal lengths", "[sweep]") {
                           {{"pointer", "/transport/poll_interval_ms"}, {"values", {1, 2, 3}}}}}};
   const SweepPlan plan = plan_of(s, sweep);
   REQUIRE(plan.runs().size() == 3);
-  CHECK(plan.runs()[2].scenario["display"]["refresh_hz"] == 90);
-  CHECK(plan.runs()[2].scenario["transport"]["poll_interval_ms"] == 3);
+  CHECK(plan.scenario(plan.runs()[2])["display"]["refresh_hz"] == 90);
+  CHECK(plan.scenario(plan.runs()[2])["transport"]["poll_interval_ms"] == 3);
   sweep["axes"][1]["values"] = {1, 2};
   CHECK_THAT(error_of(s, sweep), Catch::Contains("sweep.json: /axes/1: zip mode needs axes of equal length"));
 }
@@ -145,7 +148,7 @@ TEST_CASE("a sweep file chooses the report's columns by their results.csv names"
   CHECK(plan.figures() == std::vector<std::string>{"rotation_latency_mean_ms", "missed_refreshes"});
   CHECK(plan.to_json()["figures"][1] == "missed_refreshes");
   CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {axis}}, {"figures", {"mtp_mean_ms", "latency"}}}),
-             Catch::Contains("/figures/1: expected one of"));
+             Catch::Contains("/figures/1: unknown value \"latency\"; expected one of"));
   CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {axis}}, {"figures", Json::array()}}),
              Catch::Contains("/figures: expected a non-empty array"));
   CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {axis}}, {"figures", {"wall_s"}}}),
@@ -163,7 +166,7 @@ TEST_CASE("a sweep without axes is the base scenario's replications", "[sweep]")
     for (size_t r = 0; r < 4; ++r) {
       CHECK(plan.runs()[r].point == 0);
       CHECK(plan.runs()[r].replication == r);
-      CHECK(plan.runs()[r].scenario == plan.runs()[0].scenario);
+      CHECK(plan.scenario(plan.runs()[r]) == plan.scenario(plan.runs()[0]));
     }
   }
 }
@@ -220,9 +223,40 @@ TEST_CASE("overrides and the sweep seed apply to every run and change its id", "
   sweep["overrides"] = {{"/duration_s", 0.25}};
   const SweepPlan plan = plan_of(s, sweep);
   CHECK(plan.runs()[0].seed == 99);
-  CHECK(plan.runs()[0].scenario["seed"] == 99);
-  CHECK(plan.runs()[0].scenario["duration_s"] == 0.25);
+  CHECK(plan.scenario(plan.runs()[0])["seed"] == 99);
+  CHECK(plan.scenario(plan.runs()[0])["duration_s"] == 0.25);
   CHECK(plan.runs()[0].run_id != plain_id);
+}
+
+TEST_CASE("run ids hash the serialised scenario, seed and replication once per scenario", "[sweep]") {
+  // FNV-1a over the whole text, then the splitmix64 finaliser, written out here as plain arithmetic.
+  const Json scenario = {{"display", {{"refresh_hz", 90}}}, {"duration_s", 0.5}};
+  const std::string text = scenario.dump() + "\nseed=7\nreplication=3";
+  uint64_t h = 0xcbf29ce484222325ULL;
+  for (unsigned char c : text) h = (h ^ c) * 0x100000001b3ULL;
+  h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  h = (h ^ (h >> 27)) * 0x94d049bb133111ebULL;
+  h ^= h >> 31;
+  char want[17];
+  std::snprintf(want, sizeof want, "%016llx", static_cast<unsigned long long>(h));
+  CHECK(latsim::sweep::RunIds(scenario).of(7, 3) == want);
+  CHECK(run_id_of(scenario, 7, 3) == want);
+}
+
+TEST_CASE("sweep file errors read as scenario errors: type, range, unknown key", "[sweep]") {
+  Scratch s;
+  const Json axis = {{"pointer", "/display/refresh_hz"}, {"values", {60}}};
+  CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {axis}}, {"replications", 0}}),
+             Catch::Contains("sweep.json: /replications: must lie in [1, 1000000], got 0"));
+  CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {axis}}, {"replications", "two"}}),
+             Catch::Contains("sweep.json: /replications: expected an integer"));
+  CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {axis}}, {"mode", "diagonal"}}),
+             Catch::Contains("sweep.json: /mode: unknown value \"diagonal\"; expected one of \"cartesian\", \"zip\""));
+  CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {{{"pointer", "/duration_s"}, {"values", {1}}, {"valuez", 1}}}}}),
+             Catch::Contains("sweep.json: /axes/0/valuez: unknown key"));
+  CHECK_THAT(error_of(s, {{"axes", {axis}}}), Catch::Contains("sweep.json: /base: required key is missing"));
+  CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {axis}}, {"seed", -1}}),
+             Catch::Contains("sweep.json: /seed: expected an integer from 0 to 18446744073709551615"));
 }
 
 TEST_CASE("run ids are 16 hex digits that differ widely between replications", "[sweep]") {

@@ -75,33 +75,56 @@ check([r[0] for r in reference[1:]] == plan_ids, "results.csv rows are not in pl
 
 # 3. Kill -9 in the middle, damage the directory as a crash would, resume.
 killed = os.path.join(SCRATCH, "killed")
+
+
+def finished_runs(directory):
+    """Runs marked finished: DIR/done/<run id> (the .mark.* files are what the marks link to)."""
+    return [n for n in os.listdir(os.path.join(directory, "done")) if not n.startswith(".")] \
+        if os.path.isdir(os.path.join(directory, "done")) else []
+
+
 # It keeps the traces of replication 0 (for the report's Gantt charts below);
 # the tables must still equal those of -j1 and -j2, which kept none.
 child = subprocess.Popen([LATSIM, "sweep", sweep, "--out", killed, "-j", "2", "--keep", "first"], stdout=subprocess.DEVNULL,
                          stderr=subprocess.DEVNULL)
 deadline = time.monotonic() + 60
 while time.monotonic() < deadline and child.poll() is None:
-    if len(glob.glob(os.path.join(killed, "runs", "*", "summary.json"))) >= 4:
+    if len(finished_runs(killed)) >= 4:
         break
     time.sleep(0.005)
 if child.poll() is None:
     child.send_signal(signal.SIGKILL)
 child.wait()
 check(child.returncode == -signal.SIGKILL, f"the sweep ended before it could be killed (exit {child.returncode})")
-finished = sorted(glob.glob(os.path.join(killed, "runs", "*", "summary.json")))
-check(len(finished) >= 1, "no run finished before the kill")
-# A run interrupted while writing its summary leaves only a temporary file.
-victim = os.path.dirname(finished[0])
-os.remove(os.path.join(victim, "summary.json"))
-with open(os.path.join(victim, "summary.json.tmp.99999"), "w") as f:
+check(len(finished_runs(killed)) >= 1, "no run finished before the kill")
+# A run killed while its record was being appended: the frame is cut short and
+# the run is not marked finished. The last frame of the largest segment plays it.
+sys.path.insert(0, os.path.join(SOURCE_DIR, "analysis"))
+import latsim_store  # noqa: E402
+segments = sorted(glob.glob(os.path.join(killed, "store", "*.seg")), key=os.path.getsize)
+with open(segments[-1], "rb") as f:
+    data = f.read()
+at, last = len(latsim_store.SEGMENT_MAGIC), None
+while at + latsim_store.HEADER <= len(data):
+    length, _, run = latsim_store.struct.unpack_from("<IIQ", data, at + 4)
+    last, at = (f"{run:016x}", at), at + latsim_store.HEADER + length
+victim, victim_at = last
+with open(segments[-1], "r+b") as f:
+    f.truncate(victim_at + latsim_store.HEADER + 10)
+if os.path.exists(os.path.join(killed, "done", victim)):
+    os.remove(os.path.join(killed, "done", victim))
+check(victim not in latsim_store.SweepStore(killed), "the frame cut short is still read")
+# A kept run's files half staged, and a table half written.
+os.makedirs(os.path.join(killed, "runs", victim + ".tmp"), exist_ok=True)
+with open(os.path.join(killed, "runs", victim + ".tmp", "summary.json"), "w") as f:
     f.write('{"events": 12')
 with open(os.path.join(killed, "results.csv.tmp.99999"), "w") as f:
     f.write("run_id,po")
 proc = latsim("sweep", sweep, "--out", killed, "-j", "2", "--keep", "first")
 check(proc.returncode == 0, f"resumed sweep: exit {proc.returncode} {proc.stderr}")
-# At least the two planted files: a kill during a write legitimately leaves
-# another, and the staging directory of each run the kill caught midway
-# (every one must be gone afterwards, checked below).
+# At least the two planted: a kill during a write legitimately leaves another,
+# and the staging directory of each run the kill caught midway (every one
+# must be gone afterwards, checked below).
 removed = re.search(r"removed (\d+) unfinished temporary file", proc.stderr)
 check(removed is not None and int(removed.group(1)) >= 2, f"resume did not report the stray files: {proc.stderr}")
 check(" resumed," in proc.stdout and "(0 resumed" not in proc.stdout, f"nothing was resumed: {proc.stdout}")
@@ -110,7 +133,14 @@ ids = [r[0] for r in resumed[1:]]
 check(len(ids) == len(set(ids)) == 32, f"resumed sweep has {len(ids)} rows, {len(set(ids))} distinct")
 check(resumed == reference, "resumed results.csv differs from the uninterrupted one")
 check(not temporaries(killed), f"temporary files left: {temporaries(killed)}")
-check(len(glob.glob(os.path.join(killed, "runs", "*", "summary.json"))) == 32, "not every run has a summary")
+check(len(finished_runs(killed)) == 32, "not every run is marked finished")
+check(victim in latsim_store.SweepStore(killed), "the run cut short has no record after the resume")
+with open(os.path.join(killed, "plan.json")) as f:
+    plan_runs = json.load(f)["runs"]
+kept = sorted(d for d in os.listdir(os.path.join(killed, "runs")))
+check(kept == sorted(r["run_id"] for r in plan_runs if r["replication"] == 0),
+      f"--keep first: {len(kept)} run directories, expected replication 0 of each of the 16 points")
+check(all(os.path.isfile(os.path.join(killed, "runs", d, "summary.json")) for d in kept), "a kept run has no summary.json")
 
 # 4. A second call on a finished sweep runs nothing and changes nothing.
 proc = latsim("sweep", sweep, "--out", killed, "-j", "2")

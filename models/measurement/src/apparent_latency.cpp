@@ -94,6 +94,33 @@ std::optional<double> fit_shift_ms(std::span<const ShownSample> window, const tr
   return refine(window, truth, g, coarse);
 }
 
+std::optional<double> start_latency_ms(std::span<const ShownSample> shown, const tracker::MotionSource& truth,
+                                       des::Time start, des::Time before, double threshold_deg) {
+  const double threshold = units::deg_to_rad(threshold_deg);
+  auto photon_before = [](const ShownSample& s, des::Time t) { return s.photon < t; };
+  const auto first = std::lower_bound(shown.begin(), shown.end(), start, photon_before);
+  if (first == shown.begin()) return std::nullopt;
+  const glm::dquat shown_rest = std::prev(first)->orientation;
+  auto shown_start = std::find_if(first, shown.end(), [&](const ShownSample& s) {
+    return s.photon < before && tracker::angle_between(shown_rest, s.orientation) > threshold;
+  });
+  if (shown_start == shown.end() || shown_start->photon >= before) return std::nullopt;
+  // The truth's own start: the first 10 us step past the threshold, then bisection to 1 ns.
+  const glm::dquat true_rest = truth.pose_at(start).orientation;
+  auto moved = [&](des::Time t) { return tracker::angle_between(true_rest, truth.pose_at(t).orientation) > threshold; };
+  des::Time lo = start, hi = start;
+  while (!moved(hi)) {
+    lo = hi;
+    hi += des::Time::us(10);
+    if (hi >= before) return std::nullopt;
+  }
+  while (hi - lo > des::Time::ns(1)) {
+    const des::Time mid = lo + des::Time::ps((hi - lo).ticks() / 2);
+    (moved(mid) ? hi : lo) = mid;
+  }
+  return (shown_start->photon - hi).to_ms();
+}
+
 ApparentLatencyResult apparent_latency(std::span<const ShownSample> shown, const tracker::MotionSource& truth,
                                        tracker::MotionPhaseClassifier& phases, const ApparentLatencyParams& p) {
   ApparentLatencyResult result;
@@ -133,6 +160,11 @@ ApparentLatencyResult apparent_latency(std::span<const ShownSample> shown, const
     }
     result.windows.push_back(WindowShift{centre, phase, *shift});
   }
+  const std::vector<des::Time> all_starts = phases.starts_until(last);
+  for (size_t i = 0; i < all_starts.size(); ++i) {
+    const des::Time next = i + 1 < all_starts.size() ? all_starts[i + 1] : last;
+    if (auto d = start_latency_ms(shown, truth, all_starts[i], next, p.start_threshold_deg)) result.start_ms.push_back(*d);
+  }
   double steady_sum = 0.0;
   int64_t steady_n = 0;
   for (const WindowShift& w : result.windows)
@@ -143,7 +175,7 @@ ApparentLatencyResult apparent_latency(std::span<const ShownSample> shown, const
   if (steady_n == 0) return result;
   result.steady_ms = steady_sum / static_cast<double>(steady_n);
   const double target = *result.steady_ms + p.catch_up_tolerance_ms;
-  const std::vector<des::Time> starts = phases.starts_until(last);
+  const std::vector<des::Time>& starts = all_starts;
   for (size_t i = 0; i < starts.size(); ++i) {
     const des::Time start = starts[i];
     const des::Time next = i + 1 < starts.size() ? starts[i + 1] : des::Time::max();

@@ -18,10 +18,10 @@ struct Readings {
 };
 
 std::optional<Readings> readings(const FilmedSignal& signal, const des::PeriodicSchedule& camera, int64_t first,
-                                 int64_t n, des::Time exposure) {
+                                 int64_t n, des::Time exposure, des::Time row_offset) {
   std::vector<std::optional<double>> seen(static_cast<size_t>(n));
   for (int64_t k = 0; k < n; ++k) {
-    const des::Time open = camera.at(first + k);
+    const des::Time open = camera.at(first + k) + row_offset;
     seen[static_cast<size_t>(k)] = signal.seen(open, open + exposure);
   }
   const auto lit = std::find_if(seen.begin(), seen.end(), [](const auto& v) { return v.has_value(); });
@@ -123,10 +123,11 @@ std::optional<double> DisplaySignal::seen(des::Time open, des::Time close) const
   std::optional<double> first;
   for (; it != lit_.end() && it->on < close; ++it) {
     const double a = first ? unwrap_near(it->angle_deg, *first) : it->angle_deg;
+    const double old = unwrap_near(it->from_deg, a);
     if (!first) first = a;
     if (it->off == it->on) {
       if (it->on >= open) {
-        flashes += a;
+        flashes += old + (a - old) * rise_.fraction(it->on - it->written);
         ++flash_count;
       }
       continue;
@@ -134,13 +135,35 @@ std::optional<double> DisplaySignal::seen(des::Time open, des::Time close) const
     const des::Time from = std::max(open, it->on), to = std::min(close, it->off);
     if (to > from) {
       const double w = (to - from).to_seconds();
-      weighted += w * a;
+      weighted += w * mean_over(*it, a, old, from, to);
       weight += w;
     }
   }
   if (weight > 0.0) return weighted / weight;
   if (flash_count > 0) return flashes / flash_count;
   return std::nullopt;
+}
+
+double DisplaySignal::mean_over(const LitAngle& l, double angle, double from_angle, des::Time from, des::Time to) const {
+  if (rise_.curve == PanelRise::Curve::step || rise_.response <= des::Time::zero() || from_angle == angle) return angle;
+  // The midpoint rule over 16 points: the transition is smooth and the
+  // camera's reading a mean, so a few hundredths of a degree at most.
+  constexpr int kPoints = 16;
+  const int64_t span = (to - from).ticks();
+  double sum = 0.0;
+  for (int i = 0; i < kPoints; ++i) {
+    const des::Time t = from + des::Time::ps(span / (2 * kPoints) + span * i / kPoints);
+    sum += rise_.fraction(t - l.written);
+  }
+  return from_angle + (angle - from_angle) * sum / kPoints;
+}
+
+des::Time CameraRigParams::object_offset() const {
+  return shutter == Shutter::rolling ? des::Time::from_seconds(readout.to_seconds() * object_row) : des::Time::zero();
+}
+
+des::Time CameraRigParams::display_offset() const {
+  return shutter == Shutter::rolling ? des::Time::from_seconds(readout.to_seconds() * display_row) : des::Time::zero();
 }
 
 RigResult film(const FilmedSignal& object, const FilmedSignal& display, const des::PeriodicSchedule& camera,
@@ -153,15 +176,16 @@ RigResult film(const FilmedSignal& object, const FilmedSignal& display, const de
   const int64_t n = last - first + 1;
   if (n < 2) return result;
   result.frames = n;
-  const auto object_readings = readings(object, camera, first, n, exposure);
-  const auto d = readings(display, camera, first, n, exposure);
+  const auto object_readings = readings(object, camera, first, n, exposure, p.object_offset());
+  const auto d = readings(display, camera, first, n, exposure, p.display_offset());
   if (!object_readings || !d) return result;
   const std::vector<double>* r = &object_readings->value;
   std::vector<double> t_ms(static_cast<size_t>(n));
   for (int64_t k = 0; k < n; ++k) t_ms[static_cast<size_t>(k)] = camera.at(first + k).to_ms();
   const auto rest_frames = static_cast<int64_t>(std::ceil(p.rest.to_ms() / frame_ms));
   const auto shift_frames = static_cast<int64_t>(std::ceil(p.max_shift.to_ms() / frame_ms));
-  const double tol = p.threshold_deg / 10.0;
+  const double display_threshold = p.display_threshold_deg.value_or(p.threshold_deg);
+  const double tol = p.rest_tolerance_deg.value_or(std::min(p.threshold_deg, display_threshold) / 10.0);
   enum class State { Settling, Rest, Moving } state = State::Settling;
   double rest_r = 0.0, rest_d = 0.0;
   int64_t start = -1, shown = -1;
@@ -172,7 +196,7 @@ RigResult film(const FilmedSignal& object, const FilmedSignal& display, const de
       start = k;
       shown = -1;
     }
-    if (state == State::Moving && shown < 0 && std::abs(dk - rest_d) > p.threshold_deg) shown = k;
+    if (state == State::Moving && shown < 0 && std::abs(dk - rest_d) > display_threshold) shown = k;
     if (state == State::Rest || !steady(*r, d->value, k, rest_frames, tol)) continue;
     if (state == State::Moving && shown >= 0) {
       result.frame_counting_ms.push_back(static_cast<double>(shown - start) * frame_ms);
@@ -194,10 +218,36 @@ std::vector<LitAngle> lit_angles(std::span<const ShownSample> shown, const glm::
   double last = 0.0;
   for (const ShownSample& s : shown) {
     const des::Time on = s.photon - des::Time::ps(s.lit.ticks() / 2);
+    const double before = out.empty() ? twist_deg(reference, s.orientation, axis) : last;
     last = unwrap_near(twist_deg(reference, s.orientation, axis), last);
-    out.push_back(LitAngle{on, on + s.lit, last});
+    out.push_back(LitAngle{on, on + s.lit, last, s.written, before});
   }
   return out;
+}
+
+}  // namespace latsim::measurement
+
+namespace latsim::measurement {
+
+std::vector<LitAngle> motion_flags(std::span<const LitAngle> lit, double threshold_deg, int behind) {
+  std::vector<LitAngle> out;
+  out.reserve(lit.size());
+  double previous_flag = 0.0;
+  const auto b = static_cast<size_t>(std::max(0, behind));
+  for (size_t i = 0; i < lit.size(); ++i) {
+    const bool moved = i > b && std::abs(lit[i - b].angle_deg - lit[i - b - 1].angle_deg) > threshold_deg;
+    const double flag = moved ? 1.0 : 0.0;
+    out.push_back(LitAngle{lit[i].on, lit[i].off, flag, lit[i].written, previous_flag});
+    previous_flag = flag;
+  }
+  return out;
+}
+
+double calibrated_flag_threshold(std::span<const LitAngle> lit, des::Time until, double factor) {
+  double largest = 0.0;
+  for (size_t i = 1; i < lit.size() && lit[i].on < until; ++i)
+    largest = std::max(largest, std::abs(lit[i].angle_deg - lit[i - 1].angle_deg));
+  return factor * largest;
 }
 
 }  // namespace latsim::measurement

@@ -9,7 +9,7 @@ namespace latsim::tracker {
 
 PosePrediction PredictionBasis::for_photon_time(des::Time photon_time) const {
   const des::Time target = fixed_horizon ? sample.measured_at + *fixed_horizon : photon_time;
-  return PosePrediction{sample, target, extrapolate(estimate, target)};
+  return PosePrediction{sample, target, extrapolate(estimate, target), std::nullopt};
 }
 
 PredictionBasis hold_basis(const TrackerSample& sample) {

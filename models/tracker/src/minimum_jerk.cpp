@@ -14,6 +14,7 @@ MinimumJerkMotion::MinimumJerkMotion(MinimumJerkParams params) : params_(params)
     throw std::invalid_argument("minimum-jerk motion needs a non-zero, finite rotation axis");
   if (params.duration <= des::Time::zero()) throw std::invalid_argument("minimum-jerk duration must be positive");
   if (params.rest < des::Time::zero()) throw std::invalid_argument("minimum-jerk rest must not be negative");
+  if (params.delay < des::Time::zero()) throw std::invalid_argument("minimum-jerk delay must not be negative");
   if (!std::isfinite(params.amplitude_deg)) throw std::invalid_argument("minimum-jerk amplitude must be finite");
   axis_ = params.axis / norm;
 }
@@ -26,9 +27,9 @@ double MinimumJerkMotion::profile(double tau) {
 }
 
 double MinimumJerkMotion::angle_deg_at(des::Time t) const {
-  if (t <= params_.rest) return 0.0;
+  if (t <= params_.delay + params_.rest) return 0.0;
   const des::Time period = params_.rest + params_.duration;
-  const des::Time since_first = t - params_.rest;
+  const des::Time since_first = t - params_.delay - params_.rest;
   const int64_t k = since_first / period;        // movement under way or last finished
   const des::Time into = since_first % period;   // time since movement k started
   const double tau = into >= params_.duration ? 1.0 : into.to_seconds() / params_.duration.to_seconds();

@@ -4,17 +4,19 @@
 #include <utility>
 
 #include "latsim/tracker/extrapolating_predictor.hpp"
+#include "latsim/tracker/fusion_predictor.hpp"
 #include "latsim/tracker/kalman_predictor.hpp"
 
 namespace latsim::tracker {
 
 namespace {
 
-constexpr std::array<std::pair<PredictorKind, std::string_view>, 4> kNames{{
+constexpr std::array<std::pair<PredictorKind, std::string_view>, 5> kNames{{
     {PredictorKind::None, "none"},
     {PredictorKind::ConstantVelocity, "constant_velocity"},
     {PredictorKind::ConstantAcceleration, "constant_acceleration"},
     {PredictorKind::Kalman, "kalman"},
+    {PredictorKind::Fusion, "fusion"},
 }};
 
 }  // namespace
@@ -46,6 +48,7 @@ std::unique_ptr<Predictor> make_predictor(const PredictorParams& params) {
     case PredictorKind::ConstantVelocity: return std::make_unique<ExtrapolatingPredictor>(1);
     case PredictorKind::ConstantAcceleration: return std::make_unique<ExtrapolatingPredictor>(2);
     case PredictorKind::Kalman: return std::make_unique<KalmanPredictor>(params.kalman);
+    case PredictorKind::Fusion: return std::make_unique<FusionPredictor>();
   }
   return std::make_unique<ExtrapolatingPredictor>(0);
 }

@@ -44,10 +44,39 @@ Tracker::Tracker(TrackerParams params, const MotionSource& motion, des::RandomSt
                 des::period_with_rate_error(params.period, params.clock.rate_error_ppm)),
       jitter_stream_(stream.substream("jitter")),
       noise_stream_(stream.substream("noise")),
+      loss_stream_(stream.substream("report_loss")),
       noise_factor_(params.noise_enabled ? noise_factor(params.noise_covariance) : NoiseCovariance::Zero()) {
   if (params.internal_delay < des::Time::zero()) throw std::invalid_argument("tracker internal delay is negative");
   if (params.jitter < des::Time::zero()) throw std::invalid_argument("tracker jitter is negative");
   if (params.clock.phase.value_or(des::Time::zero()) < des::Time::zero()) throw std::invalid_argument("tracker phase is negative");
+  if (params_.imu) {
+    if (params_.imu->samples_per_report < 1) throw std::invalid_argument("an IMU report carries at least one reading");
+    if (params_.imu->report_every < 1) throw std::invalid_argument("IMU reports come at least every reading");
+    const double p = params_.imu->report_loss_probability;
+    if (!(p >= 0.0 && p < 1.0)) throw std::invalid_argument("IMU report loss probability must lie in [0, 1)");
+    imu_ = std::make_unique<Imu>(params_.imu->gyro, schedule_, motion_, stream.substream("imu"));
+  }
+}
+
+TrackerSample Tracker::imu_report(int64_t k) {
+  // The readings between the last report asked for and this one are read
+  // too (a report carries the newest ones, and readings come in order).
+  const int n = params_.imu->samples_per_report;
+  // Never before the first report: the chain starts there.
+  const int64_t from = readings_.empty() ? (any_sample_ ? k - n + 1 : k) : std::max(k - n + 1, readings_.back().index + 1);
+  for (int64_t j = from; j <= k; ++j) readings_.push_back(imu_->read(j));
+  while (!readings_.empty() && readings_.front().index <= k - n) readings_.pop_front();
+  auto report = std::make_shared<ImuReport>();
+  report->readings.assign(readings_.begin(), readings_.end());
+  TrackerSample s;
+  s.index = k;
+  s.measured_at = schedule_.at(k);
+  s.ready_at = s.measured_at + params_.internal_delay;
+  s.pose = motion_.pose_at(s.measured_at);
+  s.imu = std::move(report);
+  // Drawn only when reports can be lost.
+  if (params_.imu->report_loss_probability > 0.0) s.lost = loss_stream_.bernoulli(params_.imu->report_loss_probability);
+  return s;
 }
 
 des::Time Tracker::jitter_offset() {
@@ -80,6 +109,13 @@ TrackerSample Tracker::sample(int64_t k) {
   if (any_sample_ && k <= last_index_)
     throw std::logic_error("tracker samples must be requested in increasing index order (asked for " +
                            std::to_string(k) + " after " + std::to_string(last_index_) + ")");
+  if (imu_) {
+    TrackerSample s = imu_report(k);
+    any_sample_ = true;
+    last_index_ = k;
+    last_measured_at_ = s.measured_at;
+    return s;
+  }
   des::Time measured = schedule_.at(k) + jitter_offset();
   // Clamping keeps reports in order even when jitter exceeds half a period.
   const des::Time earliest = any_sample_ ? last_measured_at_ + des::Time::ps(1) : des::Time::zero();

@@ -110,7 +110,10 @@ Carriage UsbHidLink::carry(des::Time start) {
     any_ = true;
   }
   const des::Time transfer = polls_.at(poll);
-  return Carriage{start, transfer, transfer + last_delay_};
+  // The operating system hands reports over in the order they crossed: a
+  // short draw never lets a later poll overtake an earlier one.
+  last_visible_ = std::max(last_visible_, transfer + last_delay_);
+  return Carriage{start, transfer, last_visible_};
 }
 
 }  // namespace latsim::tracker

@@ -150,3 +150,41 @@ TEST_CASE("a controller is seen through the head's error", "[controller]") {
   const glm::dquat h = glm::normalize(glm::dquat(0.5, 0.5, 0.1, -0.2));
   CHECK(latsim::tracker::angle_between(controller_seen(h, h, drawn), drawn) == Approx(0.0).margin(1e-12));
 }
+
+TEST_CASE("the start of a shown movement lags the start of the true one by the delay, predicted or not",
+          "[apparent_latency]") {
+  // A snap: 30 degrees of minimum-jerk turn in 20 ms after 0.2 s of rest,
+  // so x(u) = 30 (10 s^3 - ...) with s = u / 20 ms, and x reaches the 0.05
+  // degree threshold at u0 = 20 ms (0.05 / 300)^(1/3) = 1.10 ms (the
+  // higher powers change it by under 1 %). A display showing the truth
+  // d = 25 ms late, refreshed every 1 ms, first shows it past the threshold
+  // at the first refresh at or after u0 + d: the start latency is d + [0, 1) ms.
+  tracker::MinimumJerkParams mj;
+  mj.amplitude_deg = 30.0;
+  mj.duration = Time::ms(20);
+  mj.rest = Time::ms(200);
+  const tracker::MinimumJerkMotion truth(mj);
+  const Time d = Time::ms(25);
+  const auto delayed = impulses(Time::ms(1), Time::ms(400), [&](Time t) { return truth.pose_at(t - d).orientation; });
+  const auto plain = measurement::start_latency_ms(delayed, truth, Time::ms(200), Time::ms(400), 0.05);
+  REQUIRE(plain.has_value());
+  CHECK(*plain >= 25.0);
+  CHECK(*plain < 26.0);
+  // Constant-velocity prediction over d from samples 1 ms apart: the shown
+  // angle is x(t - d) + d (x(t - d) - x(t - d - 1 ms)) / 1 ms. Before the
+  // movement has reached the sample at t - d it shows the rest; the first
+  // sample inside it, at t - d = u >= 0, shows at most x(u) (1 + 25), which
+  // passes 0.05 degree once x(u) > 0.05 / 26, at u = u0 / 26^(1/3) = 0.37
+  // ms: prediction moves the shown start by at most u0 (1.1 ms) earlier, no
+  // more, because no sample before the movement holds it.
+  const auto predicted = impulses(Time::ms(1), Time::ms(400), [&](Time t) {
+    const Time m = t - d;
+    const glm::dquat q1 = truth.pose_at(m).orientation, q0 = truth.pose_at(m - Time::ms(1)).orientation;
+    const glm::dvec3 w = tracker::rotation_vector_between(q0, q1) / 1e-3;
+    return tracker::quat_from_rotation_vector(w * d.to_seconds()) * q1;
+  });
+  const auto fast = measurement::start_latency_ms(predicted, truth, Time::ms(200), Time::ms(400), 0.05);
+  REQUIRE(fast.has_value());
+  CHECK(*fast >= 25.0 - 1.1);
+  CHECK(*fast <= 25.0);
+}

@@ -63,3 +63,53 @@ TEST_CASE("the rig measures a pure delay within half a camera frame", "[camera_r
     for (double v : r.shift_ms) CHECK(std::abs(v - 37.3) <= frame_ms / 2);
   }
 }
+
+TEST_CASE("a camera sees a slow panel transition late", "[camera_rig][panel]") {
+  // A pixel held (full persistence) from 0 to 10 ms, written at 0 from
+  // 0 to 1 degree. An LCD's exponential transition, 10 % to 90 % in
+  // r = 4 ms: 1 - exp(-t / tau), tau = r / ln 9. An exposure over
+  // [0, e] sees its mean, 1 - (tau / e)(1 - exp(-e / tau)); an OLED's
+  // linear one over r sees e / (2r) for e <= r.
+  const std::vector<measurement::LitAngle> lit{{Time::zero(), Time::ms(10), 1.0, Time::zero(), 0.0}};
+  const double tau = 4.0 / std::log(9.0);
+  const measurement::DisplaySignal lcd(lit, {measurement::PanelRise::Curve::exponential, Time::ms(4)});
+  for (const double e : {1.0, 2.0, 4.0, 8.0}) {
+    CAPTURE(e);
+    const double expected = 1.0 - (tau / e) * (1.0 - std::exp(-e / tau));
+    CHECK(*lcd.seen(Time::zero(), Time::from_ms(e)) == Approx(expected).margin(2e-3));
+  }
+  const measurement::DisplaySignal oled(lit, {measurement::PanelRise::Curve::linear, Time::ms(4)});
+  CHECK(*oled.seen(Time::zero(), Time::ms(2)) == Approx(0.25).margin(2e-3));
+  const measurement::DisplaySignal instant(lit);
+  CHECK(*instant.seen(Time::zero(), Time::ms(2)) == Approx(1.0));
+  // A threshold of half the change in 1 ms exposures: crossed in the first
+  // exposure at once, and only once the transition has passed half way on the
+  // LCD: tau ln 2 = 1.26 ms into it, so in the exposure [1, 2] ms.
+  auto first_over_half = [](const measurement::DisplaySignal& s) {
+    for (int k = 0; k < 10; ++k)
+      if (*s.seen(Time::ms(k), Time::ms(k + 1)) > 0.5) return k;
+    return -1;
+  };
+  CHECK(first_over_half(instant) == 0);
+  CHECK(first_over_half(lcd) == 1);
+}
+
+TEST_CASE("the application's motion flag and its calibration", "[camera_rig]") {
+  // Angles 0, 0.02, 0, 0.3, 1.0, 1.0 shown 10 ms apart: changes 0.02, 0.02,
+  // 0.3, 0.7, 0. Calibrated over the first 25 ms (changes 0.02 and 0.02):
+  // 1.1 x 0.02 = 0.022. Flags: 0, 0, 0, 1, 1, 0; a frame behind: 0, 0, 0, 0, 1, 1.
+  std::vector<measurement::LitAngle> lit;
+  const double angles[] = {0.0, 0.02, 0.0, 0.3, 1.0, 1.0};
+  for (int i = 0; i < 6; ++i) lit.push_back({Time::ms(10 * i), Time::ms(10 * i + 1), angles[i], Time::ms(10 * i), 0.0});
+  const double threshold = measurement::calibrated_flag_threshold(lit, Time::ms(25), 1.1);
+  CHECK(threshold == Approx(0.022));
+  const auto now = measurement::motion_flags(lit, threshold);
+  const auto late = measurement::motion_flags(lit, threshold, 1);
+  const double expect_now[] = {0, 0, 0, 1, 1, 0}, expect_late[] = {0, 0, 0, 0, 1, 1};
+  for (int i = 0; i < 6; ++i) {
+    CHECK(now[static_cast<size_t>(i)].angle_deg == expect_now[i]);
+    CHECK(late[static_cast<size_t>(i)].angle_deg == expect_late[i]);
+    // Each flag's transition starts from the one before.
+    if (i > 0) CHECK(late[static_cast<size_t>(i)].from_deg == expect_late[i - 1]);
+  }
+}

@@ -82,23 +82,58 @@ TEST_CASE("minimum-jerk movements split into onset, steady and stop", "[minimum_
   // τ(1 − τ) = sqrt(40 / 1800) = 0.14907: τ = (1 − sqrt(1 − 4 · 0.14907)) / 2
   // = 0.18237 and 0.81763, i.e. 91.2 ms and 408.8 ms into the movement
   // (movement 0 starts at 0.5 s). On the 5 ms grid the speed of an interval
-  // is its mean, so the crossings are found within a step.
+  // is its mean, so the crossings are found within a step. The movement
+  // starts where the head left rest (0.5 deg/s): the mean speeds of the
+  // first intervals are 30 x 10 (0.01³ − 0)/5 ms = 0.06, 30 x 10 (0.02³ −
+  // 0.01³)/5 ms = 0.42 and 1.14 deg/s (the τ⁴ and τ⁵ terms change them by
+  // under 5 %), so the last interval at rest ends 10 ms in: onset from
+  // 510 ms to 610 ms. The stop is the threshold's, 408.8 ms in: the first
+  // interval below 40 deg/s starts at 910 ms.
   const MinimumJerkMotion m(thirty_degrees());
-  MotionPhaseParams p;  // 40 deg/s, 100 ms window, 5 ms step
+  MotionPhaseParams p;  // 40 deg/s, 100 ms window, 5 ms step, rest 0.5 deg/s
   MotionPhaseClassifier c(m, p);
   CHECK(c.phase_at(Time::ms(300)) == MotionPhase::Still);
-  CHECK(c.phase_at(Time::ms(500 + 85)) == MotionPhase::Still);
-  CHECK(c.phase_at(Time::ms(500 + 97)) == MotionPhase::Onset);
-  CHECK(c.phase_at(Time::ms(500 + 185)) == MotionPhase::Onset);
-  CHECK(c.phase_at(Time::ms(500 + 200)) == MotionPhase::Steady);
+  CHECK(c.phase_at(Time::ms(500 + 5)) == MotionPhase::Still);
+  CHECK(c.phase_at(Time::ms(500 + 15)) == MotionPhase::Onset);
+  CHECK(c.phase_at(Time::ms(500 + 105)) == MotionPhase::Onset);
+  CHECK(c.phase_at(Time::ms(500 + 115)) == MotionPhase::Steady);
   CHECK(c.phase_at(Time::ms(500 + 400)) == MotionPhase::Steady);
   CHECK(c.phase_at(Time::ms(500 + 415)) == MotionPhase::Stop);
   CHECK(c.phase_at(Time::ms(500 + 500)) == MotionPhase::Stop);
   CHECK(c.phase_at(Time::ms(500 + 520)) == MotionPhase::Still);
-  const auto starts = c.starts_until(Time::ms(1550));
+  const auto starts = c.starts_until(Time::ms(1505));
   REQUIRE(starts.size() == 1);
-  CHECK(starts[0] >= Time::ms(585));
-  CHECK(starts[0] <= Time::ms(595));
+  CHECK(starts[0] == Time::ms(510));
+  // Movement 1 starts at 1.5 s: dated 1510 ms, before its threshold crossing.
+  CHECK(c.starts_until(Time::ms(1550)).size() == 2);
+}
+
+TEST_CASE("a start out of slow drift keeps the threshold crossing", "[motion_phase]") {
+  // Above the rest speed all the while (a constant 10 deg/s drift, then a
+  // turn on top of it): nothing to date back to, the start is the crossing.
+  MotionPhaseParams p;
+  p.rest_deg_s = 0.5;
+  MinimumJerkParams mj = thirty_degrees();
+  const MinimumJerkMotion turn(mj);
+  class Drifting final : public MotionSource {
+   public:
+    explicit Drifting(const MinimumJerkMotion& t) : t_(t) {}
+    Pose pose_at(Time t) const override {
+      Pose q = t_.pose_at(t);
+      q.orientation = quat_from_rotation_vector(glm::dvec3(0.0, 10.0 * units::kRadPerDeg * t.to_seconds(), 0.0)) * q.orientation;
+      return q;
+    }
+    std::string name() const override { return "drifting"; }
+
+   private:
+    const MinimumJerkMotion& t_;
+  } drifting(turn);
+  MotionPhaseClassifier c(drifting, p);
+  // 10 + 60 · 30 τ²(1 − τ)² > 40 once τ(1 − τ) > sqrt(30 / 1800): τ = 0.1464, 73.2 ms in.
+  const auto starts = c.starts_until(Time::ms(1000));
+  REQUIRE(starts.size() == 1);
+  CHECK(starts[0] >= Time::ms(570));
+  CHECK(starts[0] <= Time::ms(575));
 }
 
 TEST_CASE("minimum-jerk settings are checked", "[minimum_jerk]") {

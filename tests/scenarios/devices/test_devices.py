@@ -1,8 +1,10 @@
 """The device profiles of scenarios/devices/ (docs/devices.md): every device
-file runs and reports what a headset measurement sees; a higher refresh rate
-of one headset gives a lower motion-to-photon latency, by the part of the
-latency that scales with the refresh period, derived here from the profile;
-the devices sweep holds exactly the device files.
+file runs and reports what a headset measurement sees (the head's and the
+controller's apparent latency, the camera's measurement of the controller
+flick); a higher refresh rate of one headset gives a lower motion-to-photon
+latency, by the part of the latency that scales with the refresh period,
+derived here from the profile; the devices sweep holds exactly the device
+files, and is what scripts/devices_sweep.py writes.
 
 Usage: test_devices.py LATSIM SOURCE_DIR SCRATCH_DIR
 """
@@ -28,33 +30,19 @@ def check(condition, message):
         print("FAILED:", message)
 
 
-def merge(base, over):
-    """As the scenario reader merges includes: objects key by key, an object whose type changes replaces."""
-    for key, value in over.items():
-        if key in base and isinstance(base[key], dict) and isinstance(value, dict) and \
-                value.get("type", base[key].get("type")) == base[key].get("type"):
-            merge(base[key], value)
-        else:
-            base[key] = value
-
-
-def load(path):
-    doc = json.load(open(path, encoding="utf-8"))
-    include = doc.pop("include", None)
-    if include is None:
-        return doc
-    merged = {}
-    for name in include if isinstance(include, list) else [include]:
-        merge(merged, load(os.path.join(os.path.dirname(path), name)))
-    merge(merged, doc)
-    return merged
+# The device files as the scenario reader merges their includes (one definition, the sweep writer's).
+sys.path.insert(0, os.path.join(SOURCE_DIR, "scripts"))
+from devices_sweep import load  # noqa: E402
 
 
 FAMILIES = {
     "index": ["index_80hz.json", "index_90hz.json", "index_120hz.json", "index_144hz.json"],
+    "vive_pro2": ["vive_pro2_90hz.json", "vive_pro2_120hz.json"],
+    "beyond": ["beyond_75hz.json", "beyond_90hz.json"],
     "quest2": ["quest2_72hz.json", "quest2_90hz.json", "quest2_120hz.json"],
+    "quest3": ["quest3_72hz.json", "quest3_90hz.json", "quest3_120hz.json"],
 }
-OTHERS = ["vive_90hz.json", "rift_cv1_90hz.json", "rift_s_80hz.json"]
+OTHERS = ["vive_90hz.json", "index_144hz_monado.json", "psvr2_120hz.json", "rift_cv1_90hz.json", "rift_s_80hz.json"]
 FILES = [f for fam in FAMILIES.values() for f in fam] + OTHERS
 
 shutil.rmtree(OUT, ignore_errors=True)
@@ -92,8 +80,9 @@ for name, is_ideal, proc, out in results:
         ideal[name] = f
         continue
     figures[name] = f
-    for figure in ["motion_to_photon_ms", "apparent_latency_ms_onset",
-                   "apparent_latency_ms_steady", "measured_latency_ms"]:
+    for figure in ["motion_to_photon_ms", "apparent_latency_ms_start", "apparent_latency_ms_onset",
+                   "apparent_latency_ms_steady", "controller_apparent_latency_ms_start", "measured_latency_ms",
+                   "prediction_catch_up_ms"]:
         check(isinstance(f.get(figure), dict) and f[figure].get("count", 0) > 0, f"{name} reports {figure}")
     check(f.get("frames_missed", 0) == 0, f"{name}: the application makes every refresh")
 
@@ -103,14 +92,21 @@ def period_ms(scenario):
 
 
 def periods_of_pacing(scenario):
-    """Refresh periods between the pose read and the retrace its image is shown from.
+    """Refresh periods between the pose drawn being read and the retrace its image is shown from.
 
-    SteamVR's running start reads the pose a fixed 3 ms before retrace V and shows
-    the image from retrace V + T: one period plus a constant. Phase Sync wakes the
-    application a measured frame time plus margins before the compositor's latch
-    of retrace V: a constant, no period."""
-    pacing = scenario["pipeline"].get("pacing", {}).get("application", "fixed")
-    return 0 if pacing == "just_in_time" else 1
+    Both runtimes wake the game thread a whole number of periods before the retrace
+    its frame is shown from: SteamVR's running start reads the pose 3 ms before
+    retrace V and shows the frame from V + (1 + h) T, h the stages handed over to the
+    next frame (an engine's render thread); Phase Sync wakes it the frame time plus
+    margins before the latch, and the frame time holds the h periods of the hand-overs
+    besides work shorter than a period, so it is shown from the (1 + h)-th retrace
+    after the wake-up. A pose read after hb of the hand-overs (a late-latching GPU)
+    is hb periods younger: 1 + h - hb periods, plus constants (the running start,
+    or the work after the read and the margins)."""
+    stages = scenario["pipeline"]["stages"]
+    handovers = [i for i, st in enumerate(stages) if st.get("start") == "next_frame"]
+    drawn = max(i for i, st in enumerate(stages) if st.get("samples_pose"))
+    return 1 + len(handovers) - sum(1 for i in handovers if i <= drawn)
 
 
 def periods_of_illumination(scenario):
@@ -148,7 +144,10 @@ for family, files in FAMILIES.items():
 
 # The sweep's points are the device files (zip mode: the i-th value of every axis).
 sweep = json.load(open(os.path.join(DEVICES, "devices_sweep.json"), encoding="utf-8"))
-check(sweep.get("mode") == "zip" and sweep.get("replications", 1) >= 4, "the sweep is zipped, 4 replications or more")
+check(sweep.get("mode") == "zip" and sweep.get("replications", 1) >= 8, "the sweep is zipped, 8 replications or more")
+stale = subprocess.run([sys.executable, os.path.join(SOURCE_DIR, "scripts", "devices_sweep.py"), "--check"],
+                       capture_output=True, text=True)
+check(stale.returncode == 0, f"devices_sweep.json is what scripts/devices_sweep.py writes: {stale.stdout.strip()}")
 base = load(os.path.join(DEVICES, sweep["base"]))
 pointers = [a["pointer"] for a in sweep["axes"]]
 n = len(sweep["axes"][0]["values"])
@@ -177,12 +176,16 @@ def summary(rate, mtp):
 
 
 rows = [lr.Row("a", ["a0", "a1"], [summary(90, 1), summary(90, 3)], {"/description": "A 90 Hz"}),
-        lr.Row("b", ["b0"], [summary("60000/1001", 20)], {"/description": "B"})]
+        lr.Row("b", ["b0"], [summary("60000/1001", 20)], {"/description": "B"}),
+        lr.Row("v", ["v0"], [summary(90, 80)], {"/description": "HTC Vive 90 Hz"})]
 coll = lr.Collection("sweep", SCRATCH, rows, axes=["/description"])
 table = "\n".join(devices_table.markdown(coll))
-check("| A 90 Hz | 90 | 2.00 ± 1.41 | 0.20 ± 0.14 | 0.50 ± 0.00 | 1.00 ± 0.71 |  | 2 |" in table,
+check("| A 90 Hz | 90 | 2.00 ± 1.41 |  | 0.20 ± 0.14 | 0.50 ± 0.00 |  |  | 1.00 ± 0.71 |  | 2 |" in table,
       f"row A: means and standard deviations over two replications:\n{table}")
-check("| B | 59.9401 | 20.00 | 2.00 | 0.50 | 10.00 |  | 1 |" in table, "row B: one replication, no spread; 60000/1001 Hz")
+check("| B | 59.9401 | 20.00 |  | 2.00 | 0.50 |  |  | 10.00 |  | 1 |" in table, "row B: one replication, no spread; 60000/1001 Hz")
+# A device with public measurements: each beside the camera figure, with the difference (40 - 43.3 = -3.3).
+check("43.3 ± 2.0 (-3.3): controller flick" in table and "30.8 (+9.2): controller movement onset" in table,
+      f"the Vive's row sets the published measurements beside its camera figure:\n{table}")
 check(devices_table.markdown(lr.Collection("sweep", SCRATCH, rows[:1], axes=["/description"])) == [],
       "one row is no comparison: no section")
 

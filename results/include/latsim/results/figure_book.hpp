@@ -59,7 +59,9 @@ class FigureBook {
   /// its figures); "default" unless the pipeline names one.
   void use_headline(std::string set);
   /// The headline's figures that the run has, in rank order (after finish).
-  std::vector<std::string> headline() const;
+  std::vector<std::string> headline() const { return headline(figures()); }
+  /// The same, from the run's figures() already in hand (they take a while to make).
+  std::vector<std::string> headline(const nlohmann::json& figures) const;
   /// Legal but doubtful: reported on stderr and in summary.json's "warnings".
   void warn(std::string text) { table_.warn(std::move(text)); }
   const std::vector<std::string>& warnings() const { return table_.warnings(); }

@@ -44,6 +44,9 @@ class SeenFigures {
   /// controller_apparent_latency_ms; the rig films it when its object is
   /// the controller.
   void track_controller(const tracker::MotionSource& motion);
+  /// The display's persistence (the display's, read, never recomputed): the
+  /// rig's camera sees each new value along the panel's transition.
+  void set_persistence(const display::Persistence* persistence) { persistence_ = persistence; }
 
   /// Whether a span of eye 0 may light a kept pixel.
   bool wants(const display::ScanoutSpan& span) const { return traces_ != 0 && span.eye == 0; }
@@ -71,6 +74,7 @@ class SeenFigures {
   std::optional<measurement::ShownTrace> centre_trace_;
   std::optional<measurement::ApparentLatencyParams> apparent_;
   const tracker::MotionSource* controller_ = nullptr;
+  const display::Persistence* persistence_ = nullptr;
   tracker::MotionPhaseParams apparent_phases_;
   std::optional<measurement::ShownTrace> rig_trace_;
   measurement::CameraRigParams rig_;

@@ -24,7 +24,7 @@ nlohmann::json figures_of(Run& run);
 /// run writes files, writes every result file and commits the run directory
 /// (summary.json last).
 nlohmann::json write_results(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& options,
-                             const nlohmann::json& figures, double wall_s,
+                             nlohmann::json figures, double wall_s,
                              std::chrono::steady_clock::time_point command_start);
 
 }  // namespace latsim::run

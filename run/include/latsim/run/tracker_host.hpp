@@ -4,12 +4,15 @@
 
 #include <deque>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "latsim/des/simulator.hpp"
 #include "latsim/results/image_record.hpp"
+#include "latsim/run/device_feed.hpp"
 #include "latsim/tracker/host_feed.hpp"
+#include "latsim/tracker/imu_chain.hpp"
 #include "latsim/tracker/host_prediction.hpp"
 #include "latsim/tracker/tracker.hpp"
 #include "latsim/tracker/transport.hpp"
@@ -41,6 +44,14 @@ class TrackerHost final : public tracker::HostFeed {
   /// host predicts it with a predictor of its own of the head's settings.
   void track_controller(const tracker::MotionSource& motion, des::RandomStream noise);
   std::optional<tracker::PosePrediction> controller_for(const tracker::PosePrediction& head) const override;
+  /// Tracks the controller with a chain of its own (its IMU, link and
+  /// fusion): each image draws the newest controller report the host had
+  /// when the image's head pose was read, predicted to the same instant.
+  void track_controller(std::unique_ptr<DeviceFeed> feed) { controller_feed_ = std::move(feed); }
+  /// The runtime's fusion of the head's IMU chain, applied to each report as
+  /// it becomes visible to the host (none: measured poses are used as they are).
+  void fuse_with(std::unique_ptr<tracker::RuntimeFusion> fusion) { fusion_ = std::move(fusion); }
+  const DeviceFeed* controller_feed() const { return controller_feed_.get(); }
 
   /// Schedules samples measured in [now, end).
   void start(des::Time end);
@@ -62,7 +73,7 @@ class TrackerHost final : public tracker::HostFeed {
   void measure(tracker::TrackerSample s);
   void offer(const tracker::TrackerSample& s);
   void advance(des::Time t);
-  void send(const tracker::TrackerSample& s, des::Time start);
+  void send(const tracker::TrackerSample& raw, des::Time start);
   void line_free();
   void prune();
   // When the host believes a record carried as `c` was measured: its
@@ -102,6 +113,8 @@ class TrackerHost final : public tracker::HostFeed {
     std::deque<tracker::TrackerSample> sent;
   };
   std::optional<Controller> controller_;
+  std::unique_ptr<DeviceFeed> controller_feed_;
+  std::unique_ptr<tracker::RuntimeFusion> fusion_;
 };
 
 }  // namespace latsim::run

@@ -85,6 +85,9 @@ class ConfigNode {
   des::Time duration_ms(std::string_view key, double def_ms) const;
   /// A file path, relative paths resolved against the scenario file's directory.
   std::filesystem::path path(std::string_view key) const;
+  /// Any JSON value, as given: it and everything inside it count as read
+  /// (a value a sweep puts into a scenario). Nothing when absent.
+  const nlohmann::json* value(std::string_view key) const;
 
   [[noreturn]] void fail(std::string_view key, const std::string& message) const;
   const std::shared_ptr<ReadLog>& log() const { return log_; }

@@ -114,6 +114,9 @@ class Section {
   void number_rows(std::string_view key, std::optional<std::vector<std::vector<double>>>& v, const KeySpec& spec);
   /// A file name; relative names are taken from the scenario file's directory.
   void path(std::string_view key, std::filesystem::path& v, const KeySpec& spec);
+  /// Any JSON value, kept as given (absent: `v` as it is), for values that are
+  /// themselves scenario content: a sweep's axis values and overrides.
+  void value(std::string_view key, nlohmann::json& v, const KeySpec& spec);
 
   /// A nested object; when absent (and not required) its keys take their
   /// defaults, which are written into the resolved scenario.

@@ -67,6 +67,10 @@ struct FramesParams {
 /// pipeline.
 struct ControllerParams {
   tracker::MotionParams motion;
+  /// /controller/tracker: a chain of its own (absent: measured with the head's samples).
+  std::optional<tracker::TrackerParams> tracker;
+  /// /controller/transport: its link to the host (with a tracker of its own).
+  tracker::TransportParams transport;
 };
 
 /// Every section of a scenario that the run builds for any pipeline.
@@ -98,6 +102,10 @@ void bind(scenario::Section& s, SharedParams& p);
 
 void bind(scenario::Section& s, tracker::MotionParams& p);
 void bind(scenario::Section& s, tracker::TrackerParams& p);
+/// /tracker/imu (params/src/imu_chain.cpp).
+void bind(scenario::Section& s, tracker::ImuChainParams& p);
+/// /controller/tracker and /controller/transport: the controller's own chain.
+void bind_controller_chain(scenario::Section& s, ControllerParams& p);
 void bind(scenario::Section& s, tracker::TransportParams& p);
 void bind(scenario::Section& s, display::DisplayParams& p);
 void bind(scenario::Section& s, SceneParams& p);

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "latsim/stats/reused_table.hpp"
 #include "latsim/stats/stats.hpp"
 #include "latsim/stats/tick_run.hpp"
 
@@ -28,8 +29,10 @@ class RunBucketsCache {
   // Room for the lines of a few fields: at pixel level every line is a run,
   // and a field's display delays recur only fields later (60 Hz on the
   // picosecond grid repeats its phase every third field: 1,440 line runs).
+  // An entry is the buckets of its run in its shape, whoever left it: the
+  // table is reused from run to run (per_binade 0: an empty slot).
   static constexpr size_t kSize = 4096;
-  std::vector<RunBuckets> table_ = std::vector<RunBuckets>(kSize);  // per_binade 0: an empty slot
+  ReusedTable<RunBuckets, kSize> table_;
   RunBuckets one_;  // a run within one bucket, worked out without the table
 };
 

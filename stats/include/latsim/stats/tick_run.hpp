@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "latsim/stats/exact_sum.hpp"
+#include "latsim/stats/reused_table.hpp"
 #include "latsim/des/time.hpp"
 
 namespace latsim::stats {
@@ -111,7 +112,6 @@ TickRunMoments tick_run_moments(const TickRun& run, const TickRunSums& s);
 /// offsets field after field, so a small table answers most requests.
 class TickRunSumsCache {
  public:
-  TickRunSumsCache() : table_(kSize) {}
   const TickRunSums& sums(const TickRun& run);
 
  private:
@@ -121,7 +121,8 @@ class TickRunSumsCache {
     uint64_t count = 0;
     TickRunSums sums;
   };
-  std::vector<Entry> table_;
+  // Reused from run to run: an entry is its key's sums whoever left it.
+  ReusedTable<Entry, kSize> table_;
 };
 
 }  // namespace latsim::stats

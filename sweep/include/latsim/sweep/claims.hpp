@@ -53,11 +53,15 @@ struct ClaimOutcome {
 /// The claims of one sweep directory, DIR/claims/<run id>.<generation>. A
 /// claim is taken by linking a complete claim file to its name, which fails
 /// when the name exists (atomic on local file systems and NFS alike), so
-/// exactly one process holds a run. A stale claim is never removed to be
-/// retaken: the next generation's name is claimed instead, which again only
-/// one process can do. A background thread refreshes the modification time
-/// of every claim held (the heartbeat other hosts judge staleness by) every
-/// tenth of `stale_after`, at least every second and at most every minute.
+/// exactly one process holds a run. The file linked is the worker's own
+/// holder file, DIR/claims/.holder.<host>.<pid>.<n>.<worker>, written once:
+/// a claim makes and removes a name, never a file, because file systems make
+/// inodes slowly when many were just freed (ext4 skips recently freed ones).
+/// A stale claim is never removed to be retaken: the next generation's name
+/// is claimed instead, which again only one process can do. A background
+/// thread refreshes the modification time of every claim held (the heartbeat
+/// other hosts judge staleness by) every tenth of `stale_after`, at least
+/// every second and at most every minute.
 class RunClaims {
  public:
   RunClaims(std::filesystem::path claims_dir, std::chrono::seconds stale_after);
@@ -66,8 +70,9 @@ class RunClaims {
   /// Stops the heartbeat and releases every claim still held.
   ~RunClaims();
 
-  /// Tries to claim a run; thread-safe.
-  ClaimOutcome claim(const std::string& run_id);
+  /// Tries to claim a run for `worker`, which holds one claim at a time;
+  /// thread-safe (one thread per worker).
+  ClaimOutcome claim(const std::string& run_id, unsigned worker = 0);
   /// Gives a held claim back. A finished run's claims are removed (nobody
   /// needs them: a run is claimed only to be run, and never once finished);
   /// otherwise the claim is marked released, so the run can be claimed again.
@@ -84,7 +89,9 @@ class RunClaims {
 
  private:
   std::filesystem::path claim_file(const std::string& run_id, uint64_t generation) const;
-  bool try_link(const std::filesystem::path& file, const std::string& run_id, uint64_t generation);
+  /// The worker's holder file, written on first use.
+  std::filesystem::path holder_file(unsigned worker);
+  bool try_link(const std::filesystem::path& file, const std::string& run_id, uint64_t generation, unsigned worker);
   /// Seconds since the file's modification time, by the file system's own clock.
   std::optional<double> heartbeat_age_s(const std::filesystem::path& file);
   void heartbeat_loop();
@@ -94,6 +101,8 @@ class RunClaims {
   ClaimHolder me_;
   std::mutex mutex_;
   std::map<std::string, uint64_t> held_;  ///< run id -> generation held
+  uint64_t serial_;                         ///< this object among the process's claims
+  std::map<unsigned, std::filesystem::path> holders_;  ///< worker -> its holder file
   std::condition_variable wake_;
   bool stopping_ = false;
   std::thread heartbeat_;

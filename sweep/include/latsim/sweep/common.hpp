@@ -39,6 +39,10 @@ struct SweepRequest {
 /// schedulers restrict to the allocation), at least 1.
 unsigned available_cpus();
 
+/// Reads a sweep file (or `text`, the sweep as JSON text, `sweep_file`
+/// standing for its file in messages); throws SweepError.
+SweepPlan read_plan(const std::string& sweep_file, const std::optional<std::string>& text = std::nullopt);
+
 /// Reads the sweep file; on bad input prints the one-line error and returns nothing.
 std::optional<SweepPlan> load_plan(const SweepRequest& request);
 
@@ -78,7 +82,7 @@ PointCheck check_points(const SweepPlan& plan, const std::vector<size_t>& run_in
 RunSettings run_settings(const SweepRequest& request);
 
 /// The sweep directory as one process works in it: its claims, its journal
-/// and the executor that runs runs there. Creates the directory.
+/// and the executor that runs runs there on request.jobs threads. Creates the directory.
 struct SweepWorkspace {
   explicit SweepWorkspace(const SweepRequest& request);
 

@@ -25,15 +25,20 @@ struct SweepAxis {
   std::string label;                 ///< what tables and plots call it (empty: the pointer)
 };
 
-/// One run of a sweep: a scenario with one value per axis, at one replication.
+/// One sweep point: a combination of axis values and the scenario it makes.
+struct SweepPoint {
+  std::vector<size_t> value_indices;  ///< per axis, the index into its values
+  nlohmann::json scenario;            ///< base + overrides + this point's values
+};
+
+/// One run of a sweep: a sweep point at one replication (the point holds the
+/// scenario, which its replications share).
 struct SweepRun {
   size_t index = 0;                  ///< position in plan order
   size_t point = 0;                  ///< which combination of axis values
-  std::vector<size_t> value_indices; ///< per axis, the index into its values
   uint64_t seed = 0;
   uint64_t replication = 0;
   std::string run_id;                ///< hash of the scenario as run, seed and replication
-  nlohmann::json scenario;           ///< base + overrides + this point's values
 };
 
 /// Returns a scenario with every default filled in (the runner's resolved
@@ -52,10 +57,17 @@ class SweepPlan {
 
   const std::vector<SweepAxis>& axes() const { return axes_; }
   const std::vector<SweepRun>& runs() const { return runs_; }
+  const std::vector<SweepPoint>& points() const { return points_; }
+  /// The scenario a run runs (its point's).
+  const nlohmann::json& scenario(const SweepRun& run) const { return points_[run.point].scenario; }
+  /// A run's value on an axis.
+  const nlohmann::json& value(const SweepRun& run, size_t axis) const {
+    return axes_[axis].values[points_[run.point].value_indices[axis]];
+  }
   const std::filesystem::path& base_file() const { return base_file_; }
   /// Directory that relative paths inside the base scenario resolve against.
   std::filesystem::path base_dir() const;
-  size_t point_count() const { return point_count_; }
+  size_t point_count() const { return points_.size(); }
   uint64_t replications() const { return replications_; }
   /// The report's columns the sweep file chose ("figures"; empty: the default).
   const std::vector<std::string>& figures() const { return figures_; }
@@ -72,8 +84,8 @@ class SweepPlan {
   std::filesystem::path sweep_file_;
   std::filesystem::path base_file_;
   std::vector<SweepAxis> axes_;
+  std::vector<SweepPoint> points_;
   std::vector<SweepRun> runs_;
-  size_t point_count_ = 0;
   uint64_t replications_ = 1;
   std::vector<std::string> figures_;
   std::optional<KeepPolicy> keep_;
@@ -104,6 +116,17 @@ std::vector<std::vector<size_t>> expand_points(const std::vector<size_t>& axis_s
 /// The run id: a 64-bit hash (FNV-1a, then the splitmix64 finaliser) of the
 /// scenario as run (keys sorted), the seed and the replication, in 16 hex digits.
 std::string run_id_of(const nlohmann::json& scenario, uint64_t seed, uint64_t replication);
+
+/// Run ids of one scenario's replications: the scenario is serialised and
+/// hashed once, each replication continues from there. Equal to run_id_of.
+class RunIds {
+ public:
+  explicit RunIds(const nlohmann::json& scenario);
+  std::string of(uint64_t seed, uint64_t replication) const;
+
+ private:
+  uint64_t prefix_hash_;  ///< FNV-1a state after the serialised scenario
+};
 
 /// A value as it appears in tables: strings bare, numbers and booleans as JSON.
 std::string value_text(const nlohmann::json& value);

@@ -2,6 +2,7 @@
 // long run.
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <cstddef>
 #include <mutex>
@@ -13,13 +14,17 @@ namespace latsim::sweep {
 
 /// Shows "label: done/total runs, rate, ETA" on stderr, redrawn in place at
 /// most a few times a second; silent unless stderr is a terminal, so logs and
-/// pipes stay clean. Thread-safe: workers call advance() as runs finish.
+/// pipes stay clean. Thread-safe: workers call advance() as runs finish, and
+/// it costs them an atomic increment (and, on a terminal, a clock read):
+/// whichever worker finds a redraw due draws, the others never wait for it.
 class ProgressLine {
  public:
-  ProgressLine(std::string label, size_t total, size_t already_done);
+  ProgressLine(std::string label, size_t total, size_t already_done = 0);
   ProgressLine(const ProgressLine&) = delete;
   ProgressLine& operator=(const ProgressLine&) = delete;
 
+  /// Runs found finished before any ran (before the first advance()).
+  void resume(size_t already_done);
   /// One more run finished.
   void advance();
   /// Draws the final state and ends the line.
@@ -31,11 +36,11 @@ class ProgressLine {
   std::string label_;
   size_t total_;
   size_t resumed_;
-  size_t done_;
+  std::atomic<size_t> done_;
   bool enabled_;
   std::chrono::steady_clock::time_point start_;
-  std::chrono::steady_clock::time_point last_draw_;
-  std::mutex mutex_;
+  std::atomic<int64_t> next_draw_ns_;  ///< steady clock time of the next redraw
+  std::mutex draw_mutex_;
 };
 
 /// Shows "run: simulated 12.3 s of 1000 s (1.2 %), 3.4 M events/s, ETA 14 min"

@@ -9,17 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
-namespace latsim::sweep {
+#include "latsim/sweep/run_row.hpp"
 
-/// One finished run as the result tables see it.
-struct RunRecord {
-  std::string run_id;
-  size_t point = 0;
-  uint64_t seed = 0;
-  uint64_t replication = 0;
-  std::vector<nlohmann::json> values;  ///< one per sweep axis
-  nlohmann::json summary;              ///< the run's summary.json
-};
+namespace latsim::sweep {
 
 /// One headline column: its name in the tables and where it comes from.
 struct HeadlineColumn {
@@ -42,8 +34,11 @@ std::string format_number(double value);
 std::string csv_field(const std::string& text);
 
 /// results.csv: run_id, point, one column per axis pointer, seed, replication,
-/// then the headline columns; one row per record, in the order given.
-std::string results_csv(const std::vector<std::string>& axis_pointers, const std::vector<RunRecord>& records);
+/// then the headline columns; one row per run, in the order given.
+std::string results_csv(const std::vector<std::string>& axis_pointers, const std::vector<RunRow>& rows);
+/// results.csv's header line, and one row appended to the text after it.
+std::string results_csv_header(const std::vector<std::string>& axis_pointers);
+void append_results_csv_row(std::string& text, const RunRow& row);
 
 /// A scalar figure of a run, flattened to a dotted name.
 struct FigureValue {

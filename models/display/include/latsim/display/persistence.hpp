@@ -21,6 +21,12 @@ struct PersistenceParams {
   Mode mode = Mode::impulse;
   des::Time lit;       ///< rolling / global: flash length (0 < lit <= frame period)
   des::Time response;  ///< pixel response: the whole transition from the old value to the new one
+  /// The shape of that transition as a camera filming the panel sees it
+  /// (the lit intervals, and so every latency figure, do not depend on it):
+  /// step: the new value whenever the pixel is lit; linear: over `response`
+  /// (OLED); exponential: 10 % to 90 % in `response` (an LCD's grey to grey).
+  enum class Rise { step, linear, exponential };
+  Rise rise = Rise::step;
 };
 
 /// When one written pixel is lit.

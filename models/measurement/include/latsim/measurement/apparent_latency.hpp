@@ -22,6 +22,8 @@ struct ApparentLatencyParams {
   /// Prediction has caught up once a window's shift is at most the steady
   /// value plus this.
   double catch_up_tolerance_ms = 2.0;
+  /// A movement has begun, true or shown, once it has turned this far from rest.
+  double start_threshold_deg = 0.05;
 };
 
 /// The least-squares shift of one window, in milliseconds; absent when the
@@ -45,7 +47,22 @@ struct ApparentLatencyResult {
   std::optional<double> steady_ms;    ///< mean shift of the steady windows
   std::vector<double> catch_up_ms;    ///< per movement start: see apparent_latency()
   int64_t never_caught_up = 0;        ///< movement starts whose shift never reached the steady value
+  /// Per movement from rest: the first photon showing the head turned more
+  /// than start_threshold_deg from the rest it showed, less the instant the
+  /// true head first turned that far (see start_latency_ms).
+  std::vector<double> start_ms;
 };
+
+/// The delay between the start of a true movement and the start of the
+/// shown one: from the first instant after `start` at which the truth has
+/// turned more than `threshold_deg` from its orientation at `start` (found
+/// to 10 us) to the photon time of the first shown sample after `start`
+/// that has turned more than that from the sample shown last before it.
+/// Absent when either does not happen before `before`. No predictor can
+/// shorten it below the delay of the first sample that holds the movement:
+/// before then, it extrapolates a head at rest.
+std::optional<double> start_latency_ms(std::span<const ShownSample> shown, const tracker::MotionSource& truth,
+                                       des::Time start, des::Time before, double threshold_deg);
 
 /// Slides a window of `params.window` over the shown samples, centred every
 /// `params.step` from time zero, and fits each window's shift

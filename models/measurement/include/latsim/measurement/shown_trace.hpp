@@ -28,6 +28,9 @@ struct ShownSample {
   bool controller_drawn = false;
   glm::dquat controller{1.0, 0.0, 0.0, 0.0};
   des::Time controller_measured;
+  /// When the pixel was written: its transition from the previous value
+  /// starts there (a camera sees it through the panel's rise, PanelRise).
+  des::Time written;
 };
 
 /// The world orientation at which a viewer whose head is truly at

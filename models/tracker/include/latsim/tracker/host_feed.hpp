@@ -45,7 +45,9 @@ class HostFeed {
   std::optional<PosePrediction> pose_for(des::Time now, des::Time photon_time) const {
     const std::optional<TrackerSample> s = newest_at(now);
     if (!s) return std::nullopt;
-    return basis_of(*s).for_photon_time(photon_time);
+    PosePrediction p = basis_of(*s).for_photon_time(photon_time);
+    p.read_at = now;
+    return p;
   }
 };
 

@@ -18,6 +18,9 @@ struct PosePrediction {
   TrackerSample sample;  ///< newest sample used: motion-to-photon latency starts at its measurement
   des::Time target;      ///< the instant the pose is for (expected photon time)
   Pose pose;             ///< predicted head pose; the sample's pose when nothing is predicted
+  /// When the pose was read (HostFeed::pose_for's `now`); absent when a
+  /// pipeline predicted from a basis it kept.
+  std::optional<des::Time> read_at;
   /// How far ahead of the measurement the pose was predicted.
   des::Time horizon() const { return target - sample.measured_at; }
 };

@@ -29,14 +29,25 @@ struct MotionPhaseParams {
   /// The grid on which the angular speed is measured: the mean speed over
   /// each interval [k step, (k + 1) step).
   des::Time step = des::Time::ms(5);
+  /// A movement starts where the head leaves rest, not where it passes the
+  /// threshold: a start is moved back to the end of the last interval whose
+  /// speed was at most this (at rest, for at least `window` in a row) since
+  /// the previous stop, when there is one (a movement out of slow drift, or a
+  /// head that only turns round, keeps the threshold crossing).
+  double rest_deg_s = 0.5;
 };
 
 /// Tells, from the true head motion, whether an instant lies within `window`
 /// after the head started moving (onset) or stopped (stop), or otherwise in
 /// steady motion or at rest. The angular speed of grid interval k is the
-/// rotation angle between the poses at its ends over its length; the head
-/// starts moving where that speed rises above the threshold from one
-/// interval to the next, and stops where it falls to or below it. Its state
+/// rotation angle between the poses at its ends over its length; a movement
+/// is a rise of that speed above the threshold from one interval to the
+/// next, and it starts where the head left rest (the end of the last
+/// interval at or below rest_deg_s, after at least `window` of them, since
+/// the previous stop; the threshold crossing itself when there is none); the
+/// head stops where the speed falls to or below the threshold. A movement whose speed takes longer than
+/// `window` from leaving rest to the threshold is dated at most a window back
+/// from any instant asked about (the grid is evaluated a window ahead). Its state
 /// at time zero is not a transition. The grid is evaluated lazily as later
 /// instants are asked for; only the transitions are kept, so memory grows
 /// with the number of starts and stops, not with time.
@@ -56,8 +67,8 @@ class MotionPhaseClassifier {
   const MotionPhaseParams& params() const { return params_; }
 
  private:
-  /// Classifies grid interval evaluated_ + 1 and advances to it.
-  bool moving_in_next_interval();
+  /// The angular speed (rad/s) of grid interval evaluated_ + 1; advances to it.
+  double speed_of_next_interval();
   void extend_to(int64_t k);
 
   struct Transition {
@@ -67,6 +78,9 @@ class MotionPhaseClassifier {
   const MotionSource& motion_;
   MotionPhaseParams params_;
   double threshold_rad_s_;
+  double rest_rad_s_;
+  des::Time last_rest_end_ = des::Time::ps(-1);  ///< end of the newest interval at rest
+  des::Time rest_run_start_ = des::Time::ps(-1); ///< start of the run of intervals at rest it ends
   bool initial_moving_ = false;
   int64_t evaluated_ = -1;  ///< last grid interval classified
   glm::dquat grid_end_{1.0, 0.0, 0.0, 0.0};  ///< orientation at the end of interval evaluated_

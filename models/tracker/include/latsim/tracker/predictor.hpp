@@ -47,9 +47,9 @@ struct MotionEstimate {
 Pose extrapolate(const MotionEstimate& estimate, des::Time target);
 
 /// The predictors `host.prediction` can name.
-enum class PredictorKind { None, ConstantVelocity, ConstantAcceleration, Kalman };
+enum class PredictorKind { None, ConstantVelocity, ConstantAcceleration, Kalman, Fusion };
 
-/// The scenario name of a kind ("none", "constant_velocity", "constant_acceleration", "kalman").
+/// The scenario name of a kind ("none", "constant_velocity", "constant_acceleration", "kalman", "fusion").
 std::string_view predictor_name(PredictorKind kind);
 /// The kind of a scenario name; nullopt for an unknown name.
 std::optional<PredictorKind> predictor_kind(std::string_view name);

@@ -2,12 +2,16 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
+#include <memory>
+#include <optional>
 
 #include <Eigen/Core>
 
 #include "latsim/des/clock.hpp"
 #include "latsim/des/random.hpp"
 #include "latsim/des/time.hpp"
+#include "latsim/tracker/imu_chain.hpp"
 #include "latsim/tracker/motion_source.hpp"
 #include "latsim/tracker/pose.hpp"
 
@@ -33,6 +37,10 @@ struct TrackerParams {
   /// The tracker's oscillator: time of sample 0 (none: 0; a run draws one)
   /// and rate error (the actual period is `period` corrected by it).
   des::ClockSettings clock;
+  /// An IMU tracking chain (/tracker/imu): samples are gyro readings at the
+  /// tracker's rate, carried in reports and fused by the runtime, instead of
+  /// measured poses; jitter and pose noise are not used.
+  std::optional<ImuChainParams> imu;
 };
 
 /// One tracker report.
@@ -42,8 +50,17 @@ struct TrackerSample {
   des::Time measured_at;
   /// measured_at + internal delay: the record starts leaving the tracker.
   des::Time ready_at;
-  /// The measured pose, noise included.
+  /// The measured pose, noise included. From an IMU chain: the true pose
+  /// until the runtime fuses the report, then the fused one.
   Pose pose;
+  /// An IMU chain's report: the readings it carries; null otherwise.
+  std::shared_ptr<const ImuReport> imu;
+  /// The report never reaches the host (an IMU chain's lost report).
+  bool lost = false;
+  /// After the runtime's fusion: the angular velocity (world frame) and
+  /// velocity it believes; absent for measured poses.
+  std::optional<glm::dvec3> angular_velocity_rad_s;
+  glm::dvec3 velocity_m_s{0.0};
 };
 
 /// A factor F with F F^T = covariance: the Cholesky factor (Eigen LLT) when
@@ -73,6 +90,8 @@ class Tracker {
   /// of a head sample, with the tracker's noise drawn from `noise` (a stream
   /// of the object's own, so that tracking it changes no head sample).
   Pose measure_object(const MotionSource& object, des::Time at, des::RandomStream& noise) const;
+  /// The sample after sample k: k + 1, or an IMU chain's next report.
+  int64_t next_index(int64_t k) const { return k + (params_.imu ? params_.imu->report_every : 1); }
   /// Time of sample k without jitter.
   des::Time nominal_time(int64_t k) const { return schedule_.at(k); }
   /// Index of the first sample nominally at or after t.
@@ -83,12 +102,16 @@ class Tracker {
  private:
   des::Time jitter_offset();
   Pose add_noise(const Pose& truth, des::RandomStream& stream) const;
+  TrackerSample imu_report(int64_t k);
 
   TrackerParams params_;
   const MotionSource& motion_;
   des::PeriodicSchedule schedule_;
   des::RandomStream jitter_stream_;
   des::RandomStream noise_stream_;
+  des::RandomStream loss_stream_;
+  std::unique_ptr<Imu> imu_;
+  std::deque<ImuReading> readings_;  ///< the newest readings (IMU chain)
   NoiseCovariance noise_factor_;
   int64_t last_index_ = 0;
   des::Time last_measured_at_;

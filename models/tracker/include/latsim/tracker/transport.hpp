@@ -132,7 +132,8 @@ struct UsbHidParams {
 /// later, the same for everything one poll carries. With the poll phase
 /// unrelated to the reports, the wait for the poll is uniform on one poll
 /// interval P: the added latency has mean P/2 + os_delay + E[jitter] and is at
-/// most P + os_delay + the jitter's bound.
+/// most P + os_delay + the jitter's bound (a jitter above P can hold a poll's
+/// reports behind an earlier poll's: reports are handed over in order).
 class UsbHidLink final : public Transport {
  public:
   /// Throws std::invalid_argument for a poll rate outside (0, 8000] Hz or a
@@ -149,6 +150,7 @@ class UsbHidLink final : public Transport {
   int64_t last_poll_ = 0;
   des::Time last_start_;
   des::Time last_delay_;
+  des::Time last_visible_;
   bool any_ = false;
 };
 
