@@ -6,7 +6,6 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
-#include <fstream>
 #include <random>
 #include <string>
 #include <vector>
@@ -15,6 +14,7 @@
 #include "double_buffer/analytic.hpp"
 #include "latsim/run/builder.hpp"
 #include "latsim/run/runner.hpp"
+#include "run_helpers.hpp"
 
 namespace {
 
@@ -41,27 +41,12 @@ void check_same(const std::optional<AnalyticLatency>& got, const std::optional<A
   CHECK(got->max_ms == want->max_ms);
 }
 
-// Scenario files as scenarios:fingerprints takes them: no sweeps, no include bases.
-std::vector<fs::path> shipped_scenarios() {
-  std::vector<fs::path> files;
-  for (const auto& e : fs::recursive_directory_iterator(LATSIM_SOURCE_DIR "/scenarios")) {
-    const fs::path& p = e.path();
-    if (p.extension() != ".json" || p.filename() == "base.json" || p.string().find("/sweeps/") != std::string::npos)
-      continue;
-    std::ifstream in(p);
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (text.find("\"axes\":") == std::string::npos) files.push_back(p);
-  }
-  std::sort(files.begin(), files.end());
-  return files;
-}
-
 }  // namespace
 
 TEST_CASE("the analytic figure of every shipped double-buffered scenario equals the reference enumeration",
           "[double_buffer][analytic]") {
   int compared = 0;
-  for (const fs::path& file : shipped_scenarios()) {
+  for (const fs::path& file : latsim::testing::shipped_scenarios()) {
     const auto doc = latsim::run::load_scenario(file, {});
     if (doc.resolved()["pipeline"].value("type", "") != "double_buffer") continue;
     latsim::run::Run run;
