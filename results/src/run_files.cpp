@@ -8,6 +8,7 @@
 #include <set>
 #include <utility>
 
+#include "latsim/io/temporaries.hpp"
 #include "latsim/renderer/png_writer.hpp"
 
 namespace latsim::results {
@@ -98,6 +99,7 @@ void RunFiles::discard() noexcept {
   std::error_code ec;
   fs::remove_all(staging_, ec);
   staged_ = false;
+  io::unregister_temporary(staging_);
 }
 
 void RunFiles::prepare() {
@@ -106,6 +108,8 @@ void RunFiles::prepare() {
   // predecessor (pids are reused): nothing of ours is in it.
   std::error_code ec;
   fs::remove_all(staging_, ec);
+  // Listed before it exists: a program stopped at once removes it.
+  io::register_temporary(staging_);
   make_directories(staging_);
   staged_ = true;
 }
@@ -203,6 +207,7 @@ void RunFiles::commit(const std::string& last) {
   if (!fs::exists(dir_, ec)) {
     if (::rename(staging_.c_str(), dir_.c_str()) == 0) {
       staged_ = false;
+      io::unregister_temporary(staging_);
       return;
     }
     if (errno != EEXIST && errno != ENOTEMPTY) check(false, dir_);

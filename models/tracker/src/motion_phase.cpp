@@ -1,4 +1,5 @@
 #include "latsim/tracker/motion_phase.hpp"
+#include "latsim/des/stop_token.hpp"
 #include "latsim/units/units.hpp"
 
 #include <algorithm>
@@ -38,7 +39,11 @@ void MotionPhaseClassifier::extend_to(int64_t k) {
     grid_end_ = motion_.pose_at(des::Time::zero()).orientation;
     initial_moving_ = last_moving_ = moving_in_next_interval();
   }
+  uint64_t steps = 0;
   while (evaluated_ < k) {
+    // An instant far past the run (a photon a long response later) costs a
+    // step per grid interval: a stop request must not wait for them all.
+    des::check_stop_every(steps, 4096);
     const bool moving = moving_in_next_interval();
     if (moving != last_moving_) transitions_.push_back(Transition{params_.step * evaluated_, moving});
     last_moving_ = moving;
