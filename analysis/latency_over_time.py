@@ -6,12 +6,12 @@ latency the orientation's (behind a time warp, the warp's sample). Times are
 the first line's write, before any persistence (docs/figures.md).
 """
 
-import csv
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
+import latsim_results  # noqa: E402
 import plotting  # noqa: E402
 from plotting import plt  # noqa: E402
 
@@ -25,17 +25,21 @@ def read_fields(run_dir, eye=0):
     if not os.path.isfile(path):
         return None
     out = []
-    with open(path, newline="", encoding="utf-8") as f:
-        for row in csv.DictReader(f):
-            try:
-                if int(row["eye"]) != eye or row["image"] in ("", "-1"):
-                    continue
-                start = int(row["scanout_start_ps"])
-                position = int(row["measured_ps"])
-                orientation = int(row["orientation_measured_ps"] or row["measured_ps"])
-            except (KeyError, ValueError):
+    rows = latsim_results.read_csv(path, required=("eye", "image", "scanout_start_ps", "measured_ps"))
+    for line, row in enumerate(rows, start=2):
+        if row["image"] in ("", "-1"):
+            continue  # a field that showed no image has no latency
+        try:
+            if int(row["eye"]) != eye:
                 continue
-            out.append((start * 1e-12, (start - position) * 1e-9, (start - orientation) * 1e-9))
+            start = int(row["scanout_start_ps"])
+            position = int(row["measured_ps"])
+            orientation = int(row.get("orientation_measured_ps") or row["measured_ps"])
+        except ValueError as e:
+            raise latsim_results.DamagedFile(path, f"line {line}: {e}") from None
+        if max(abs(start), abs(position), abs(orientation)) > 10**24:
+            raise latsim_results.DamagedFile(path, f"line {line}: a time beyond 1e24 ps, longer than any run")
+        out.append((start * 1e-12, (start - position) * 1e-9, (start - orientation) * 1e-9))
     return out
 
 

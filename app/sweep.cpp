@@ -81,7 +81,7 @@ int sweep_here(const SweepRequest& request, const SweepPlan& plan, const std::op
     return kExitBadInput;
   }
 
-  StopSignals signals;
+  const StopSignals& signals = StopSignals::installed();
   SweepRequest stoppable = request;
   stoppable.stop = &signals.flag();
   SweepWorkspace work(stoppable);

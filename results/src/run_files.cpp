@@ -45,6 +45,12 @@ void make_directories(const fs::path& dir) {
 
 void write_file_atomically(const fs::path& file, std::string_view bytes) {
   const fs::path temp = file.string() + ".tmp." + std::to_string(::getpid());
+  // Listed while it exists: a program stopped at once removes it.
+  io::register_temporary(temp);
+  struct Unlist {
+    const fs::path& path;
+    ~Unlist() { io::unregister_temporary(path); }
+  } const unlist{temp};
   const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   check(fd >= 0, file);
   size_t done = 0;

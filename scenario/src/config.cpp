@@ -158,6 +158,8 @@ bool ConfigNode::boolean(std::string_view key, bool def) const {
 std::string ConfigNode::string(std::string_view key) const {
   const Json& v = require(key);
   if (!v.is_string()) fail(key, "expected a string, got " + json_type_name(v));
+  // A NUL would cut a file name short where the system reads it: another file, silently.
+  if (v.get_ref<const std::string&>().find('\0') != std::string::npos) fail(key, "contains a NUL character (\\u0000)");
   return v.get<std::string>();
 }
 
@@ -181,6 +183,9 @@ std::vector<std::string> ConfigNode::strings(std::string_view key, std::vector<s
     if (!v[i].is_string())
       throw ScenarioError(join_pointer(join_pointer(pointer_, key), std::to_string(i)),
                           "expected a string, got " + json_type_name(v[i]));
+    if (v[i].get_ref<const std::string&>().find('\0') != std::string::npos)
+      throw ScenarioError(join_pointer(join_pointer(pointer_, key), std::to_string(i)),
+                          "contains a NUL character (\\u0000)");
     out.push_back(v[i].get<std::string>());
   }
   return out;
