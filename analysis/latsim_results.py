@@ -6,6 +6,7 @@ order so that every output derived from it is reproducible.
 """
 
 import csv
+import io
 import json
 import math
 import os
@@ -187,9 +188,13 @@ def read_csv(path, required=()):
     """A result table's rows as dicts, every row as wide as the header; DamagedFile otherwise."""
     try:
         with open(path, encoding="utf-8", newline="") as f:
-            reader = csv.DictReader(f)
-            rows = list(reader)
-            header = reader.fieldnames or []
+            text = f.read()
+        # latsim ends every line of a table: a last line without its end was cut short.
+        if text and not text.endswith("\n"):
+            raise DamagedFile(path, "its last line has no end: the file was cut short")
+        reader = csv.DictReader(io.StringIO(text, newline=""))
+        rows = list(reader)
+        header = reader.fieldnames or []
     except FileNotFoundError:
         raise DamagedFile(path, "missing (removed while the report read the directory?)") from None
     except (ValueError, UnicodeDecodeError, csv.Error) as e:
@@ -199,8 +204,8 @@ def read_csv(path, required=()):
         raise DamagedFile(path, f"no column {missing[0]} in its header")
     for number, row in enumerate(rows, start=2):
         if None in row or None in row.values():
-            raise DamagedFile(path, f"line {number}: {len(row) - (None in row) + len(row.get(None) or [])} fields, "
-                                    f"the header has {len(header)}")
+            given = sum(1 for k, v in row.items() if k is not None and v is not None) + len(row.get(None) or [])
+            raise DamagedFile(path, f"line {number}: {given} fields, the header has {len(header)}")
     return rows
 
 

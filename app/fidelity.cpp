@@ -1,5 +1,6 @@
 // latsim fidelity: what one step of a fidelity knob changes in a figure and
 // what it costs in wall time, events and memory.
+#include <csignal>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -68,8 +69,11 @@ std::string some_figure_names(const Json& summary) {
   return text;
 }
 
-// A stop request seen between levels or in one: the command says so and ends.
-struct Stopped {};
+// A stop request seen between levels or in one: the command says so and
+// ends, in one line: the level's run, stopped with it, has said it already.
+struct Stopped {
+  bool child_said_so = false;
+};
 
 // One line on stderr, however long or strange what it quotes.
 void say(const std::string& text) { std::cerr << scenario::readable("fidelity: " + text) << "\n"; }
@@ -86,7 +90,8 @@ FidelityLevel run_level(const FidelityRequest& request, const std::string& assig
   argv.insert(argv.end(), {"--max-events", max_events});
   if (request.progress) argv.push_back("--progress");
   const ChildResult child = run_child(argv);
-  if (StopSignals::installed().requested()) throw Stopped{};
+  if (StopSignals::installed().requested())
+    throw Stopped{child.exit_code == 128 + SIGINT || child.exit_code == 128 + SIGTERM};
   if (child.exit_code != 0)
     throw std::runtime_error("the run at " + assignment + " failed with exit status " + std::to_string(child.exit_code));
   const Json summary = read_summary(level_dir / "summary.json");
@@ -207,10 +212,11 @@ int command_fidelity(int argc, char** argv) {
                    axis.values[i].c_str(), request.metric.c_str(), levels.back().metric,
                    static_cast<unsigned long long>(levels.back().events), levels.back().wall_s);
     }
-  } catch (const Stopped&) {
+  } catch (const Stopped& stopped) {
     if (owned) fs::remove_all(made, ec);
     io::unregister_temporary(made);
-    say(std::string("stopped by ") + signals.name() + " after " + std::to_string(levels.size()) + " of " +
+    if (!stopped.child_said_so)
+      say(std::string("stopped by ") + signals.name() + " after " + std::to_string(levels.size()) + " of " +
         std::to_string(axis.values.size()) + " level(s); nothing written");
     return signals.exit_code();
   } catch (const std::invalid_argument& e) {

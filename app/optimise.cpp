@@ -67,7 +67,7 @@ int usage_error(const std::string& text) {
 // differences double precision cannot hold near the values, and the search
 // would never narrow to it.
 double finest_tolerance(const Range& r) {
-  return 1e-9 * std::max({r.hi - r.lo, std::fabs(r.lo), std::fabs(r.hi)});
+  return std::max({r.hi - r.lo, std::fabs(r.lo), std::fabs(r.hi)}) / 1e9;
 }
 
 }  // namespace

@@ -213,6 +213,7 @@ int command_sweep(int argc, char** argv) {
   mpi->excludes(shard);
   mpi->excludes(collect_flag);
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
+  if (const auto rc = refuse_out_dir("latsim sweep", request.out_dir)) return *rc;
   request.keep_given = keep->count() > 0;
   if (!*jobs) request.jobs = request.mpi ? 1u : available_cpus();
 

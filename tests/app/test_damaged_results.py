@@ -23,7 +23,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from sweep_checks import check, finish  # noqa: E402
 
 LATSIM, SOURCE_DIR, SCRATCH = sys.argv[1:4]
-BASE = os.path.join(SOURCE_DIR, "scenarios", "hmd_60hz_direct.json")
+BASE = os.path.abspath(os.path.join(SOURCE_DIR, "scenarios", "hmd_60hz_direct.json"))
 
 
 def latsim(*args):
