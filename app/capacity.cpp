@@ -103,7 +103,7 @@ int command_capacity(int argc, char** argv) {
     else if (*largest == hi) finish(hi, " (within the threshold up to --max: raise it)");
     else finish(*largest, "");
   } catch (const MissingMetric& e) {
-    std::fprintf(stderr, "%s: --metric %s: %s\n", name.c_str(), scenario::quote_value(metric).c_str(),
+    std::fprintf(stderr, "%s: --metric %s: %s\n", name.c_str(), scenario::readable(metric, scenario::kQuotedChars).c_str(),
                  scenario::readable(e.text).c_str());
     return kExitBadInput;
   } catch (const run::RunInterrupted& e) {
