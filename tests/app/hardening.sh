@@ -352,5 +352,12 @@ expect_bad serial_interrupt_backlog "/transport/per_char_interrupt_us" scenarios
 # 3600 = 115200 handlers: 1.152e8 s.
 expect_bad serial_interrupt_run_backlog "1000 s × record_bytes × the run's records (duration_s × /tracker/rate_hz) (115200)" \
   scenarios/hmd_60hz_serial_interrupt.json --set /transport/per_char_interrupt_us=1e9
+# 19. Post-processing has a cost the event budget counts like events:
+# apparent latency's windows 1e-9 ms apart fit every window's samples at
+# every shift, 1e12 windows per simulated second (it passed validate, then
+# spun after the simulation without end); refused at the key that drives it.
+expect_bad apparent_latency_step "/apparent_latency/step_ms: about" scenarios/measurement/min_jerk_rig.json \
+  --set /apparent_latency/step_ms=1e-9
+grep -q "steps of work" "$tmp/stderr" || say_fail "apparent_latency_step: not counted as steps of work"
 [ "$fail" -eq 0 ] && echo "ok   options checked before work; numbers as given; NUL refused"
 exit $fail
