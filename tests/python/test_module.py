@@ -201,6 +201,14 @@ check(time.monotonic() - sent < 1.0, f"SIGTERM took {time.monotonic() - sent:.2f
 check(not os.path.exists(term_out) and not [n for n in os.listdir(SCRATCH) if n.startswith("terminated.tmp")],
       "a run stopped by SIGTERM left files")
 
+# 6c. A NUL in a path is refused, not cut short (it named another directory).
+try:
+    latsim.run(BASE, set={"/duration_s": 0.1}, out=os.path.join(SCRATCH, "nul\0cut"))
+    check(False, "a NUL in out was accepted")
+except ValueError as e:
+    check("NUL" in str(e), f"a NUL in out: {e}")
+check(not os.path.exists(os.path.join(SCRATCH, "nul")), "a NUL in out: the path cut short was written")
+
 # 7. A sweep: its table is latsim sweep's results.csv but for wall time.
 sweep_doc = {"base": BASE, "overrides": {"/duration_s": 1},
              "axes": [{"pointer": "/display/refresh_hz", "values": [60, 120]},
