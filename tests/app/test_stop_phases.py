@@ -182,6 +182,32 @@ if wait_until(child, level_running, "fidelity level (SIGKILL)"):
     check(not any(alive(k) for k in kids), f"fidelity SIGKILL: its level child {kids} outlived it")
     check(not glob.glob(os.path.join(levels, "*.tmp.*")), "fidelity SIGKILL: the level's staging directory was left")
 
+# 5b. report, while its Python child draws: the child is passed the signal,
+# takes back what it wrote and says so in the one line; the directory is as
+# it was. A sweep of 12 points, each kept whole, takes seconds to draw;
+# ready once the child has spent a CPU second (past importing matplotlib).
+import json  # noqa: E402
+sweep_file = os.path.join(SCRATCH, "report_sweep.json")
+with open(sweep_file, "w") as f:
+    json.dump({"base": BASE, "overrides": {"/duration_s": 1}, "keep": "all",
+               "axes": [{"pointer": "/tracker/rate_hz", "values": [60, 90, 120, 180, 240, 360]},
+                        {"pointer": "/display/refresh_hz", "values": [60, 120]}]}, f)
+report_dir = os.path.join(SCRATCH, "report_sweep")
+done = subprocess.run([LATSIM, "sweep", sweep_file, "--out", report_dir, "-j", "2"], capture_output=True, text=True)
+check(done.returncode == 0, f"report's sweep: {done.stderr.strip()}")
+before = sorted(os.listdir(report_dir))
+child = start("report", report_dir)
+drawing = []
+def report_drawing():
+    drawing[:] = children_of(child.pid)
+    return bool(drawing) and cpu_seconds(drawing[0]) > 1.0
+if wait_until(child, report_drawing, "report"):
+    result = stop(child, signal.SIGTERM)
+    expect_stopped("report", signal.SIGTERM, result, None, "report: stopped by SIGTERM; nothing written")
+    check(sorted(os.listdir(report_dir)) == before, "report: files were left in the directory")
+    check(not leftovers(report_dir), f"report: temporaries left: {leftovers(report_dir)}")
+    check(not any(alive(k) for k in drawing), "report: its Python child outlived it")
+
 # 6. A deadline of 1 ms (the variable run_child sets for its children): the
 # watchdog and the run's own stop race, and whichever ends the run, it ends
 # with one line, exit 143 and nothing left (the watchdog removes the
