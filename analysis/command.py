@@ -6,6 +6,7 @@ damaged; 130 or 143 when SIGINT or SIGTERM stopped it (latsim passes its
 own stop request on as SIGTERM or SIGINT).
 """
 
+import os
 import signal
 import sys
 
@@ -35,7 +36,10 @@ def run_main(name, main, argv):
     except KeyboardInterrupt:
         _take_back()
         print(f"{name}: stopped by {'SIGTERM' if stopped_by else 'SIGINT'}; nothing written", file=sys.stderr)
-        return 143 if stopped_by else 130
+        sys.stderr.flush()
+        # At once: an interpreter that unloads matplotlib takes longer than
+        # the second a stop may take (latsim's watchdog would kill it).
+        os._exit(143 if stopped_by else 130)
     except OSError as e:
         # A full disk or a read-only directory.
         _take_back()

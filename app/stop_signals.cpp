@@ -151,7 +151,7 @@ std::chrono::milliseconds StopSignals::deadline() {
     const long ms = std::strtol(text, nullptr, 10);
     if (ms > 0 && ms <= 60000) return std::chrono::milliseconds(ms);
   }
-  return std::chrono::milliseconds(700);
+  return std::chrono::milliseconds(800);
 }
 
 }  // namespace latsim::app

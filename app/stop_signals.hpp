@@ -46,7 +46,7 @@ class StopSignals {
   /// How long a command may take to stop after the first signal before the
   /// watchdog ends it: LATSIM_STOP_DEADLINE_MS when set (run_child sets a
   /// shorter one for its children, so that they end before their parent
-  /// gives up on them), else 700 ms.
+  /// gives up on them), else 800 ms.
   static std::chrono::milliseconds deadline();
 };
 
