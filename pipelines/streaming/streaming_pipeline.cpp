@@ -111,7 +111,7 @@ void StreamingPipeline::start_game(int64_t k) {
   f.pose = *pose;
   f.report_sent = *newest_report_;
   f.game_start = now;
-  f.target_field = ctx_->display.timing().field_at_or_before(target);
+  f.target = target;
   f.game_end = now + spec_.server.game.frame_time(*game_stream_);
   f.compositor_end = f.game_end + spec_.server.server_compositor;
   gpu_free_ = f.compositor_end;
@@ -246,7 +246,9 @@ void StreamingPipeline::first_shown(int64_t k, Frame& f, int64_t field, des::Tim
   f.shown = true;
   ++frames_shown_;
   ctx_->app_frames.flipped(k, ctx_->display.timing().field_start(field));
-  if (field > f.target_field) ++frames_late_;
+  // Late: lit a refresh or more after the photon time the server predicted for.
+  const des::Time photon = ctx_->frame_photon_time(field);
+  if (photon > f.target + des::Time::ps(period_.ticks() / 2)) ++frames_late_;
   const des::Time vsync = ctx_->display.timing().field_start(field);
   results::LatencyRecorder& r = ctx_->recorder;
   r.add("game_ms", (f.game_end - f.game_start).to_ms());
@@ -259,7 +261,7 @@ void StreamingPipeline::first_shown(int64_t k, Frame& f, int64_t field, des::Tim
   r.add("vsync_queue_ms", (vsync - end).to_ms());
   // What the tool reports: from the tracking sample the headset sent to the vsync that showed it.
   r.add("reported_total_latency_ms", (vsync - f.report_sent).to_ms());
-  measured_latency_.push_back(vsync - f.game_start);
+  measured_latency_.push_back(photon - f.game_start);
   while (static_cast<int>(measured_latency_.size()) > spec_.server.latency_estimate_frames) measured_latency_.pop_front();
 }
 

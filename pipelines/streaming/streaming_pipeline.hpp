@@ -50,7 +50,7 @@ class StreamingPipeline final : public Pipeline {
     des::Time received, decode_start, decode_end;
     int64_t packets_left = 0;
     int slices_sent = 0;
-    int64_t target_field = 0;      ///< the refresh the server predicted for
+    des::Time target;              ///< the photon time the server predicted for
     bool incomplete = false;       ///< a packet never arrived
     bool shown = false;
   };
@@ -82,7 +82,7 @@ class StreamingPipeline final : public Pipeline {
   std::optional<des::Time> newest_report_;  ///< newest pose report the server has received (its send time)
   std::map<int64_t, Frame> frames_;
   std::optional<int64_t> newest_decoded_;
-  std::deque<des::Time> measured_latency_;  ///< game start to vsync of recent frames
+  std::deque<des::Time> measured_latency_;  ///< game start to photon time of recent frames
   des::KindId kind_game_ = 0, kind_compositor_ = 0, kind_slice_ = 0, kind_decode_ = 0, kind_client_ = 0,
               kind_report_ = 0;
   int64_t game_frames_ = 0, game_skipped_ = 0, frames_shown_ = 0, frames_late_ = 0, frames_incomplete_ = 0,

@@ -22,7 +22,7 @@ struct ServerSpec {
   /// Time to photons the server assumes before it has measured any (the
   /// first frames' prediction horizon from the game's start).
   des::Time initial_latency_estimate = des::Time::ms(40);
-  int latency_estimate_frames = 16;     ///< the estimate: mean of the last N frames' game-start-to-vsync times
+  int latency_estimate_frames = 16;     ///< the estimate: mean of the last N frames' game-start-to-photon times
 };
 
 /// The video encoder: time from the frame's pixels and bits, whole frames or slices.
