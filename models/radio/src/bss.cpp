@@ -96,7 +96,9 @@ void Bss::on_access() {
   std::vector<int> winners;
   for (size_t i = 0; i < stations_.size(); ++i) {
     Station& s = stations_[i];
-    const bool due = !s.queue.empty() && s.backoff.expiry(s.access) == now;
+    // Due now, or earlier: a collision's end is handled at its last
+    // transmitter's timeout, after the instant the others could resume.
+    const bool due = !s.queue.empty() && s.backoff.expiry(s.access) <= now;
     // Every counter sees this slot boundary before the medium turns busy.
     s.backoff.count_down(s.access, now);
     if (!due) continue;

@@ -30,7 +30,8 @@ void Backoff::count_down(des::Time access, des::Time now) {
 }
 
 void Backoff::on_arrival(des::Time access, des::Time now, bool medium_busy, des::RandomStream& stream) {
-  count_down(access, now);
+  // While the medium is busy the counter is frozen where the last access left it.
+  if (!medium_busy) count_down(access, now);
   if (slots_ != 0) return;
   if (medium_busy) {
     draw(now, stream);

@@ -145,3 +145,35 @@ TEST_CASE("a full queue drops the newest packet, an old one expires") {
   CHECK(why[0] == LossReason::queue_full);
   CHECK(why[1] == LossReason::expired);
 }
+
+TEST_CASE("a collision of unequal PPDUs ends for everyone whose backoff has run out meanwhile") {
+  // a (1000 bytes, 56 us) and b (8000 bytes: 16 + 64336 + 12 bits -> 21
+  // symbols, 128 us) both go at 18 us (AIFSN 2, CW 0) and collide; b's PPDU
+  // ends at 146 us, its timeout at 146 + 16 + 9 + 20 = 191 us, when the
+  // collision's end is handled; with the retry limit at 0 both frames are
+  // discarded then. c, whose frame arrived during the collision (a zero
+  // backoff drawn), may count from SIFS after the medium went quiet, 162
+  // us: its AIFS ends at 180 us, an instant that has passed when the end is
+  // handled. It transmits at 191 us (it was due already) instead of waiting
+  // for an access that never comes: its 56 us PPDU is received at 247 us.
+  MacParams mac;
+  mac.retry_limit = 0;
+  Simulator sim;
+  Bss bss(sim, PhyRate(PhyParams{Standard::vht, 9, 80, 2, 800, 24}), mac, RandomStream(1, "radio"));
+  std::vector<Time> lost, delivered;
+  bss.on_lost([&](const Packet&, LossReason) { lost.push_back(sim.now()); });
+  bss.on_delivered([&](const Packet&, Time t) { delivered.push_back(t); });
+  const EdcaParams fixed{2, 0, 0, Time::zero()};
+  const int a = bss.add_station("a", fixed);
+  const int b = bss.add_station("b", fixed);
+  const int c = bss.add_station("c", fixed);
+  bss.send(a, c, 1000, 0);
+  bss.send(b, c, 8000, 0);
+  sim.at(Time::us(50), sim.kind("test.send"), [&] { bss.send(c, a, 1000, 0); });
+  sim.run();
+  CHECK(bss.counts().collisions == 1);
+  REQUIRE(lost.size() == 2);
+  CHECK(lost[0] == Time::us(191));
+  REQUIRE(delivered.size() == 1);
+  CHECK(delivered[0] == Time::us(247));
+}
