@@ -138,7 +138,11 @@ int main(int argc, char** argv) {
   Ptr<ListPositionAllocator> positions = CreateObject<ListPositionAllocator>();
   positions->Add(Vector(0, 0, 0));
   positions->Add(Vector(1, 0, 0));
-  for (uint32_t i = 0; i < bg_stations; ++i) positions->Add(Vector(0.5 + 0.1 * i, 1, 0));
+  // The background stations stand beside the headset (10 cm apart): at the
+  // headset their signal drowns the AP's, so two transmissions that start
+  // together both fail whole, as latsim's model assumes (no capture of the
+  // later MPDUs of an A-MPDU once the shorter PPDU has ended).
+  for (uint32_t i = 0; i < bg_stations; ++i) positions->Add(Vector(1, 0.1 * (i + 1), 0));
   mobility.SetPositionAllocator(positions);
   mobility.SetMobilityModel("ns3::ConstantPositionMobilityModel");
   mobility.Install(NodeContainer(ap, stations));
