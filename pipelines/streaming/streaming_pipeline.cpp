@@ -110,6 +110,7 @@ void StreamingPipeline::start_game(int64_t k) {
   Frame f;
   f.pose = *pose;
   f.report_sent = *newest_report_;
+  f.report_received = newest_report_received_;
   f.game_start = now;
   f.target = target;
   f.game_end = now + spec_.server.game.frame_time(*game_stream_);
@@ -162,7 +163,10 @@ void StreamingPipeline::on_delivered(const radio::Packet& p, des::Time at) {
   if (p.from == headset_) {
     // A pose report reached the server: its pose is the newest the server has.
     const des::Time sent = des::PeriodicSchedule(des::Time::zero(), spec_.link.pose_report_period).at(p.tag);
-    if (!newest_report_ || sent > *newest_report_) newest_report_ = sent;
+    if (!newest_report_ || sent > *newest_report_) {
+      newest_report_ = sent;
+      newest_report_received_ = at;
+    }
     return;
   }
   if (p.from != ap_) return;  // background traffic
@@ -195,7 +199,7 @@ void StreamingPipeline::decoded(int64_t k) {
     ctx_->timeline->add("DECODE", k, -1, "decoder", f.decode_start, f.decode_end);
   }
   if (newest_decoded_ && *newest_decoded_ > k) return;  // an older frame decoded after a newer one
-  if (newest_decoded_ && !frames_.at(*newest_decoded_).shown) ++frames_superseded_;
+  if (newest_decoded_ && !frames_.at(*newest_decoded_).picked) ++frames_superseded_;
   newest_decoded_ = k;
   forget_older_than(k - kKeepFrames);
 }
@@ -213,7 +217,9 @@ void StreamingPipeline::compose(int64_t field) {
   const des::Time now = ctx_->sim.now();
   const std::optional<tracker::PosePrediction> local = ctx_->host.pose_for(now, ctx_->frame_photon_time(field));
   const int64_t k = *newest_decoded_;
-  if (frames_.at(k).shown) ++frames_reprojected_;
+  Frame& f = frames_.at(k);
+  if (f.picked) ++frames_reprojected_;
+  f.picked = true;
   const des::Time end = now + spec_.client.client_compositor;
   ctx_->sim.at(end, kind_client_, [this, field, k, pose = *local, now] { composed(field, k, pose, now); });
 }
@@ -239,10 +245,10 @@ void StreamingPipeline::composed(int64_t field, int64_t k, const tracker::PosePr
     ctx_->display.present_at_next_retrace(eye, ctx_->images.add(rec));
   }
   if (ctx_->timeline) ctx_->timeline->add("CLIENT_COMPOSITOR", k, -1, "headset_gpu", start, now);
-  if (!f.shown) first_shown(k, f, shown_field, now);
+  if (!f.shown) first_shown(f, k, shown_field, start, now);
 }
 
-void StreamingPipeline::first_shown(int64_t k, Frame& f, int64_t field, des::Time end) {
+void StreamingPipeline::first_shown(Frame& f, int64_t k, int64_t field, des::Time start, des::Time end) {
   f.shown = true;
   ++frames_shown_;
   ctx_->app_frames.flipped(k, ctx_->display.timing().field_start(field));
@@ -251,16 +257,32 @@ void StreamingPipeline::first_shown(int64_t k, Frame& f, int64_t field, des::Tim
   if (photon > f.target + des::Time::ps(period_.ticks() / 2)) ++frames_late_;
   const des::Time vsync = ctx_->display.timing().field_start(field);
   results::LatencyRecorder& r = ctx_->recorder;
-  r.add("game_ms", (f.game_end - f.game_start).to_ms());
-  r.add("server_compositor_ms", (f.compositor_end - f.game_end).to_ms());
-  r.add("encoder_ms", (f.encode_end - f.encode_start).to_ms());
-  r.add("network_ms", (f.received - f.encode_end).to_ms());
-  r.add("decoder_queue_ms", (f.decode_start - f.received).to_ms());
-  r.add("decoder_ms", (f.decode_end - f.decode_start).to_ms());
-  r.add("client_compositor_ms", spec_.client.client_compositor.to_ms());
-  r.add("vsync_queue_ms", (vsync - end).to_ms());
+  // ALVR's statistics: the game from the tracking's arrival at the server to
+  // the frame's present; the decoder from the frame's arrival (its wait for
+  // the decoder included); the decoder queue until a composition takes it;
+  // the network the rest of the tool's total, uplink and downlink together.
+  const des::Time total = vsync - f.report_sent;
+  const des::Time game = f.game_end - f.report_received;
+  const des::Time server_compositor = f.compositor_end - f.game_end;
+  const des::Time encoder = f.encode_end - f.compositor_end;
+  const des::Time decoder = f.decode_end - f.received;
+  const des::Time decoder_queue = start - f.decode_end;
+  const des::Time client_compositor = end - start;
+  const des::Time vsync_queue = vsync - end;
+  r.add("game_ms", game.to_ms());
+  r.add("server_compositor_ms", server_compositor.to_ms());
+  r.add("encoder_ms", encoder.to_ms());
+  r.add("network_ms",
+        (total - game - server_compositor - encoder - decoder - decoder_queue - client_compositor - vsync_queue).to_ms());
+  r.add("decoder_ms", decoder.to_ms());
+  r.add("decoder_queue_ms", decoder_queue.to_ms());
+  r.add("client_compositor_ms", client_compositor.to_ms());
+  r.add("vsync_queue_ms", vsync_queue.to_ms());
   // What the tool reports: from the tracking sample the headset sent to the vsync that showed it.
-  r.add("reported_total_latency_ms", (vsync - f.report_sent).to_ms());
+  r.add("reported_total_latency_ms", total.to_ms());
+  // Measured directly: the encoder's end to the frame's last packet received; the report's trip.
+  r.add("downlink_ms", (f.received - f.encode_end).to_ms());
+  r.add("uplink_ms", (f.report_received - f.report_sent).to_ms());
   measured_latency_.push_back(photon - f.game_start);
   while (static_cast<int>(measured_latency_.size()) > spec_.server.latency_estimate_frames) measured_latency_.pop_front();
 }

@@ -46,12 +46,14 @@ class StreamingPipeline final : public Pipeline {
   struct Frame {
     tracker::PosePrediction pose;  ///< the server's pose, predicted for the expected photon time
     des::Time report_sent;         ///< when the headset sent the pose report it came from
+    des::Time report_received;     ///< when that report reached the server
     des::Time game_start, game_end, compositor_end, encode_start, encode_end;
     des::Time received, decode_start, decode_end;
     int64_t packets_left = 0;
     int slices_sent = 0;
     des::Time target;              ///< the photon time the server predicted for
     bool incomplete = false;       ///< a packet never arrived
+    bool picked = false;           ///< a client composition has taken it
     bool shown = false;
   };
 
@@ -63,7 +65,7 @@ class StreamingPipeline final : public Pipeline {
   void decoded(int64_t k);
   void compose(int64_t field);
   void composed(int64_t field, int64_t k, const tracker::PosePrediction& local, des::Time start);
-  void first_shown(int64_t k, Frame& f, int64_t field, des::Time end);
+  void first_shown(Frame& f, int64_t k, int64_t field, des::Time start, des::Time end);
   void report_pose(int64_t i);
   des::Time latency_estimate() const;
   void forget_older_than(int64_t k);
@@ -80,6 +82,7 @@ class StreamingPipeline final : public Pipeline {
   des::Time decode_;
   des::Time gpu_free_, encoder_free_, decoder_free_;
   std::optional<des::Time> newest_report_;  ///< newest pose report the server has received (its send time)
+  des::Time newest_report_received_;        ///< when it arrived
   std::map<int64_t, Frame> frames_;
   std::optional<int64_t> newest_decoded_;
   std::deque<des::Time> measured_latency_;  ///< game start to photon time of recent frames
