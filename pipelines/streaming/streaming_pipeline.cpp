@@ -322,11 +322,18 @@ std::vector<EventRate> StreamingPipeline::event_rates(const sections::SharedPara
   const int64_t bytes =
       frame_bytes(spec_.encoder, des::Time::from_seconds(shared.display.raster.field_period.to_seconds()));
   const double packets = std::ceil(static_cast<double>(bytes) / static_cast<double>(spec_.link.payload_bytes));
-  // Per frame: game, compositor, slices, decoder, client compositor (two
-  // events), and per packet its send and reception; per report two.
-  const double per_frame = 6.0 + spec_.encoder.slices + 2.0 * packets;
-  return {{"/display/refresh_hz", "streaming", per_frame * fields_per_s},
-          {"/pipeline/link/pose_report_hz", "streaming.pose_report", 3.0 / spec_.link.pose_report_period.to_seconds()}};
+  const double reports_per_s = 1.0 / spec_.link.pose_report_period.to_seconds();
+  // Per frame: game, server compositor, one event per slice, decoder, and the
+  // client compositor's start and end; per report one.
+  const double streaming_per_s = (5.0 + spec_.encoder.slices) * fields_per_s + reports_per_s;
+  // The link: one reception per packet, and an access and an exchange per
+  // PPDU (a report, or an A-MPDU of a frame's packets: at least one per
+  // slice); background packets: arrival, reception, access and exchange.
+  const LinkSpec& l = spec_.link;
+  const double background_per_s = l.background_mbps * 1e6 / (8.0 * static_cast<double>(l.background_packet_bytes));
+  const double radio_per_s = (packets + 2.0 * spec_.encoder.slices) * fields_per_s + 3.0 * reports_per_s +
+                             4.0 * background_per_s;
+  return {{"/display/refresh_hz", "streaming", streaming_per_s}, {"/pipeline/link", "radio", radio_per_s}};
 }
 
 }  // namespace latsim::pipelines::streaming
