@@ -63,6 +63,15 @@ void bind_link(scenario::Section& s, LinkSpec& p) {
   s.object("video_edca", p.video_edca, bind_edca, {.doc = "the access point's EDCA for the video (default AC_VI)"});
   s.object("headset_edca", p.headset_edca, bind_edca, {.doc = "the headset's EDCA for its reports (default AC_VI)"});
   s.number("mpdu_error_rate", p.mpdu_error_rate, {.min = 0.0, .max = 1.0, .doc = "each MPDU transmission lost with it"});
+  std::vector<double> lose;
+  for (const int64_t n : p.lose_first_transmission) lose.push_back(static_cast<double>(n));
+  s.numbers("lose_first_transmission", lose,
+            {.min = 0.0, .doc = "video datagrams (from 0, in sending order) whose first transmission is lost"});
+  p.lose_first_transmission.clear();
+  for (const double n : lose) {
+    s.check("lose_first_transmission", n == static_cast<double>(static_cast<int64_t>(n)), "datagram numbers are whole");
+    p.lose_first_transmission.push_back(static_cast<int64_t>(n));
+  }
   s.number("background_mbps", p.background_mbps, {.unit = "Mb/s", .min = 0.0, .max = 10000.0, .doc = "another client's best-effort upload"});
   s.integer("background_packet_bytes", p.background_packet_bytes, {.unit = "B", .min = 1.0, .max = 8000.0, .doc = "its datagrams"});
   s.rate("pose_report_hz", p.pose_report_period, {.unit = "Hz", .doc = "tracking reports from the headset"});

@@ -58,6 +58,8 @@ void StreamingPipeline::start(RunContext& ctx) {
   ap_ = bss_->add_station("ap", l.video_edca);
   headset_ = bss_->add_station("headset", l.headset_edca);
   if (l.mpdu_error_rate > 0.0) bss_->set_error_rate(l.mpdu_error_rate);
+  if (!l.lose_first_transmission.empty())
+    bss_->set_forced_loss([this](const radio::Packet& p) { return p.retries == 0 && lose_ids_.count(p.id) > 0; });
   bss_->on_delivered([this](const radio::Packet& p, des::Time at) { on_delivered(p, at); });
   bss_->on_lost([this](const radio::Packet& p, radio::LossReason) { on_lost(p); });
   if (l.background_mbps > 0.0) {
@@ -154,7 +156,10 @@ void StreamingPipeline::send_slice(int64_t k, int slice) {
     ctx_->timeline->add("ENCODE", k, -1, "encoder", it->second.encode_start, it->second.encode_end);
   for (int64_t i = 0; i < packets; ++i) {
     const int64_t body = std::min(payload, bytes - i * payload);
-    bss_->send(ap_, headset_, std::max<int64_t>(1, body) + spec_.link.header_bytes, k * kSlicesPerTag + slice);
+    const int64_t id =
+        bss_->send(ap_, headset_, std::max<int64_t>(1, body) + spec_.link.header_bytes, k * kSlicesPerTag + slice);
+    const std::vector<int64_t>& lose = spec_.link.lose_first_transmission;
+    if (std::find(lose.begin(), lose.end(), packets_sent_) != lose.end()) lose_ids_.insert(id);
     ++packets_sent_;
   }
 }
@@ -279,7 +284,7 @@ void StreamingPipeline::first_shown(Frame& f, int64_t k, int64_t field, des::Tim
   r.add("client_compositor_ms", client_compositor.to_ms());
   r.add("vsync_queue_ms", vsync_queue.to_ms());
   // What the tool reports: from the tracking sample the headset sent to the vsync that showed it.
-  r.add("reported_total_latency_ms", total.to_ms());
+  r.add("reported_total_ms", total.to_ms());
   // Measured directly: the encoder's end to the frame's last packet received; the report's trip.
   r.add("downlink_ms", (f.received - f.encode_end).to_ms());
   r.add("uplink_ms", (f.report_received - f.report_sent).to_ms());
@@ -311,7 +316,7 @@ void StreamingPipeline::finish(RunContext& ctx) {
   r.set("link.retransmissions", c.retransmissions);
   r.set("link.lost", c.lost);
   r.set("link.busy_fraction", ctx.sim.now() > des::Time::zero() ? c.busy.to_seconds() / ctx.sim.now().to_seconds() : 0.0);
-  r.declare_headline({"motion_to_photon_ms", "reported_total_latency_ms", "rotation_latency_ms", "network_ms",
+  r.declare_headline({"motion_to_photon_ms", "reported_total_ms", "rotation_latency_ms", "network_ms",
                       "frames_late", "frames_dropped", "frames_reprojected"});
   if (frames_incomplete_ > 0)
     r.warn(std::to_string(frames_incomplete_) + " frames lost a packet on the link and were dropped (frames_incomplete)");

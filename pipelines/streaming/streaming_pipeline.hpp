@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <vector>
 
 #include "latsim/des/random.hpp"
@@ -84,6 +85,7 @@ class StreamingPipeline final : public Pipeline {
   std::optional<des::Time> newest_report_;  ///< newest pose report the server has received (its send time)
   des::Time newest_report_received_;        ///< when it arrived
   std::map<int64_t, Frame> frames_;
+  std::set<int64_t> lose_ids_;        ///< link ids of the datagrams whose first transmission is lost
   std::optional<int64_t> newest_decoded_;
   std::deque<des::Time> measured_latency_;  ///< game start to photon time of recent frames
   des::KindId kind_game_ = 0, kind_compositor_ = 0, kind_slice_ = 0, kind_decode_ = 0, kind_client_ = 0,

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "latsim/des/time.hpp"
 #include "latsim/radio/edca.hpp"
@@ -45,6 +46,9 @@ struct LinkSpec {
   radio::EdcaParams video_edca = radio::EdcaParams::for_category("VI");
   radio::EdcaParams headset_edca = radio::EdcaParams::for_category("VI");
   double mpdu_error_rate = 0.0;
+  /// Video datagrams (numbered from 0 in the order they are sent) whose
+  /// first transmission is lost: a retransmission experiment.
+  std::vector<int64_t> lose_first_transmission;
   double background_mbps = 0.0;      ///< other traffic from the access point to another station (Poisson)
   int64_t background_packet_bytes = 1500;
   des::RationalSeconds pose_report_period = des::RationalSeconds::period_of_hz(72);  ///< the headset's tracking reports to the server
