@@ -43,6 +43,10 @@ std::vector<std::string> declared(const Json& scenario) {
   if (type == "pxpl5_slats") return {"motion_to_photon_ms", "render_latency_fields", "missed_fields", "missed_field_fraction"};
   // A replay's frames come at the capture's pace: what the present path made of them.
   if (type == "present_replay") return {"motion_to_photon_ms", "application_frame_rate_hz", "frames_dropped", "frame_rate_hz"};
+  // A streamed headset: what the camera sees beside what the tool reports, the link, and the frames it costs.
+  if (type == "streaming")
+    return {"motion_to_photon_ms", "reported_total_ms", "rotation_latency_ms", "network_ms",
+            "frames_late",         "frames_dropped",            "frames_reprojected"};
   return {};
 }
 
