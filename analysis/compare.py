@@ -46,19 +46,15 @@ def main(argv):
     try:
         with open(path, encoding="utf-8") as f:
             rows = json.load(f)
-    except (OSError, ValueError) as e:
-        print(f"compare: {path}: {e}", file=sys.stderr)
+        if not isinstance(rows, list) or not all(isinstance(r, dict) for r in rows):
+            raise ValueError("expected a list of quantities")
+    except (OSError, ValueError, RecursionError) as e:
+        print(f"compare: {path}: {' '.join(str(e).split())[:300]}", file=sys.stderr)
         return 2
-    try:
-        plot(rows, argv[0])
-    except OSError as e:
-        print(f"compare: cannot write {e.filename}: {e.strerror}", file=sys.stderr)
-        return 1
+    plot(rows, argv[0])
     return 0
 
 
 if __name__ == "__main__":
-    try:
-        sys.exit(main(sys.argv[1:]))
-    except KeyboardInterrupt:
-        sys.exit(130)
+    import command
+    sys.exit(command.run_main("compare", main, sys.argv[1:]))

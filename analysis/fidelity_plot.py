@@ -63,4 +63,5 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv))
+    import command  # noqa: E402  (the contract of every analysis command: one line, never a traceback)
+    sys.exit(command.run_main("fidelity_plot", main, sys.argv))

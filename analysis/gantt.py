@@ -3,7 +3,6 @@ bar per stage interval, labelled with its frame, like the classic pipeline
 diagrams of graphics hardware. Usable as a module or as
 `python3 gantt.py RUN_DIR`."""
 
-import csv
 import os
 import sys
 
@@ -20,20 +19,22 @@ WARMUP_FRAMES = 2
 
 
 def read_timeline(path):
-    """Timeline entries as dicts with numeric times, in file order."""
+    """Timeline entries as dicts with numeric times, in file order; DamagedFile naming the line otherwise."""
     entries = []
-    with open(path, encoding="utf-8", newline="") as f:
-        for row in csv.DictReader(f):
-            entries.append({
-                "stage": row["stage"],
-                "frame": int(row["frame"]),
-                "eye": int(row["eye"]),
-                "unit": row["unit"],
-                "start_ms": float(row["start_ms"]),
-                "end_ms": float(row["end_ms"]),
-                # Overlapping intervals of one unit are on separate lanes.
-                "lane": int(row.get("lane") or 0),
-            })
+    rows = latsim_results.read_csv(path, required=("stage", "frame", "eye", "unit", "start_ms", "end_ms"))
+    for line, row in enumerate(rows, start=2):
+        def number(column, kind=float):
+            return latsim_results.cell(path, line, row, column, kind)
+        entries.append({
+            "stage": row["stage"],
+            "frame": number("frame", int),
+            "eye": number("eye", int),
+            "unit": row["unit"],
+            "start_ms": number("start_ms"),
+            "end_ms": number("end_ms"),
+            # Overlapping intervals of one unit are on separate lanes.
+            "lane": number("lane", int) if row.get("lane") else 0,
+        })
     return entries
 
 
@@ -137,4 +138,5 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv))
+    import command  # noqa: E402  (the contract of every analysis command: one line, never a traceback)
+    sys.exit(command.run_main("gantt", main, sys.argv))

@@ -22,7 +22,6 @@ window, over the raw series as a thin faint line: spread and trend both show.
 """
 
 import bisect
-import csv
 import json
 import math
 import os
@@ -31,6 +30,7 @@ from fractions import Fraction
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
+import latsim_results  # noqa: E402
 import plotting  # noqa: E402
 import sweep_labels  # noqa: E402
 from plotting import plt  # noqa: E402
@@ -114,7 +114,7 @@ class NewestSample:
             return
         rows = []
         for row in _csv_rows(path):
-            visible, measured = _time(row.get("visible_ps")), _time(row.get("measured_ps"))
+            visible, measured = _time(row.get("visible_ps"), path), _time(row.get("measured_ps"), path)
             if visible is not None and measured is not None:
                 rows.append((visible, measured))
         rows.sort()
@@ -127,16 +127,20 @@ class NewestSample:
 
 
 def _csv_rows(path):
-    with open(path, newline="", encoding="utf-8") as f:
-        yield from csv.DictReader(f)
+    return latsim_results.read_csv(path)
 
 
-def _time(text):
-    """A time in picoseconds from a ledger cell; None for an empty cell or a negative sentinel."""
+def _time(text, path=None):
+    """A time in picoseconds from a ledger cell; None for an empty cell or a negative sentinel.
+    Text that is no integer, or a time beyond any run, is a damaged file."""
+    if text is None or text == "":
+        return None
     try:
         value = int(text)
-    except (TypeError, ValueError):
-        return None
+    except ValueError:
+        raise latsim_results.DamagedFile(path or "a result table", f"{text[:40]!r} is no time in picoseconds") from None
+    if value > 10**24:
+        raise latsim_results.DamagedFile(path or "a result table", "a time beyond 1e24 ps, longer than any run")
     return value if value >= 0 else None
 
 
@@ -174,13 +178,13 @@ def read_fields(run_dir, eye=0):
     newest = None
     out = []
     for row in _first_rows(path, eye):
-        retrace, start = _time(row.get("retrace_ps")), _time(row.get("scanout_start_ps"))
-        position = _time(row.get("measured_ps"))
+        retrace, start = _time(row.get("retrace_ps"), path), _time(row.get("scanout_start_ps"), path)
+        position = _time(row.get("measured_ps"), path)
         if retrace is None or start is None or position is None:
             continue
         line = int(row["first_line"])
         photon = light.photon(int(row["field"]), retrace, start, line)
-        orientation = _time(row.get("orientation_measured_ps"))
+        orientation = _time(row.get("orientation_measured_ps"), path)
         if orientation is None and row.get("orientation_at_scanout") == "1":
             newest = newest or NewestSample(run_dir)
             orientation = newest.at(light.written(start, line))

@@ -6,6 +6,7 @@ order so that every output derived from it is reproducible.
 """
 
 import csv
+import io
 import json
 import math
 import os
@@ -156,9 +157,85 @@ def find_figure(summary, path):
     return None
 
 
+# No figure latsim writes comes near this (picoseconds of a 1e6 s run are 1e18,
+# but result files hold milliseconds and counts): a larger number, like NaN
+# or Infinity, marks a damaged file, which would otherwise overflow a plot.
+LARGEST_NUMBER = 1e15
+
+
+class DamagedFile(ValueError):
+    """A result file that cannot be what latsim wrote: its one-line message names it and says why."""
+
+    def __init__(self, path, reason):
+        text = " ".join(str(reason).split())
+        super().__init__(f"{path}: {text[:300] + '…' if len(text) > 300 else text}")
+        self.path = path
+
+
+def checked_number(text):
+    """float(text) when it is a number within ±LARGEST_NUMBER, else ValueError."""
+    value = float(text)
+    if not math.isfinite(value) or abs(value) > LARGEST_NUMBER:
+        raise ValueError(f"{str(text)[:40]} is beyond ±{LARGEST_NUMBER:g}")
+    return value
+
+
+def _refuse_constant(name):
+    raise ValueError(f"{name} is not a number a result holds")
+
+
 def read_json(path):
-    with open(path, encoding="utf-8") as f:
-        return json.load(f)
+    """A result file's JSON object; DamagedFile when it is not one (truncated, junk, NaN, 1e308)."""
+    try:
+        with open(path, encoding="utf-8") as f:
+            doc = json.load(f, parse_float=checked_number, parse_int=lambda t: int(checked_number(t)),
+                            parse_constant=_refuse_constant)
+    except FileNotFoundError:
+        raise DamagedFile(path, "missing (removed while the report read the directory?)") from None
+    except (ValueError, UnicodeDecodeError, RecursionError) as e:
+        raise DamagedFile(path, f"not a whole result file ({e})") from None
+    if not isinstance(doc, dict):
+        raise DamagedFile(path, f"expected a JSON object, found {type(doc).__name__}")
+    return doc
+
+
+def read_csv(path, required=()):
+    """A result table's rows as dicts, every row as wide as the header; DamagedFile otherwise."""
+    try:
+        with open(path, encoding="utf-8", newline="") as f:
+            text = f.read()
+        # latsim ends every line of a table: a last line without its end was cut short.
+        if text and not text.endswith("\n"):
+            raise DamagedFile(path, "its last line has no end: the file was cut short")
+        reader = csv.DictReader(io.StringIO(text, newline=""))
+        rows = list(reader)
+        header = reader.fieldnames or []
+    except FileNotFoundError:
+        raise DamagedFile(path, "missing (removed while the report read the directory?)") from None
+    except (ValueError, UnicodeDecodeError, csv.Error) as e:
+        raise DamagedFile(path, f"not a whole result table ({e})") from None
+    missing = [c for c in required if c not in header]
+    if missing:
+        raise DamagedFile(path, f"no column {missing[0]} in its header")
+    for number, row in enumerate(rows, start=2):
+        if None in row or None in row.values():
+            given = sum(1 for k, v in row.items() if k is not None and v is not None) + len(row.get(None) or [])
+            raise DamagedFile(path, f"line {number}: {given} fields, the header has {len(header)}")
+    return rows
+
+
+def cell(path, line, row, column, kind=float):
+    """row[column] as a checked number (int or float); DamagedFile naming the file, line and column."""
+    text = row.get(column)
+    try:
+        value = checked_number(text)
+        if kind is int:
+            if value != int(value):
+                raise ValueError(f"{text} is not an integer")
+            return int(value)
+        return value
+    except (TypeError, ValueError) as e:
+        raise DamagedFile(path, f"line {line}: {column}: {e}" if text else f"line {line}: {column}: empty") from None
 
 
 def as_number(text):
@@ -230,8 +307,18 @@ def load(directory):
 
 
 def _load_sweep(directory):
-    with open(os.path.join(directory, "results.csv"), encoding="utf-8", newline="") as f:
-        runs = list(csv.DictReader(f))
+    results = os.path.join(directory, "results.csv")
+    runs = read_csv(results, required=("point", "replication", "run_id"))
+    for line, run in enumerate(runs, start=2):
+        run["point"], run["replication"] = cell(results, line, run, "point", int), cell(results, line, run, "replication", int)
+        if not run["run_id"] or "/" in run["run_id"] or run["run_id"] in (".", ".."):
+            raise DamagedFile(results, f"line {line}: run_id: not a run directory's name")
+        for column, value in run.items():
+            try:
+                float(value)
+            except (TypeError, ValueError):
+                continue  # a name, a status, a fraction "num/den": not a figure
+            cell(results, line, run, column)  # a number, then a finite one within bounds
     if not runs:
         raise ValueError(f"{directory}/results.csv: no finished runs")
     axes = [c for c in runs[0].keys() if c.startswith("/")]

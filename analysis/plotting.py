@@ -15,6 +15,15 @@ plt.rcParams["axes.grid"] = True
 plt.rcParams["grid.alpha"] = 0.3
 
 PNG_METADATA = {"Software": None}
+# Every file this process wrote (save, write_text), for a command that fails
+# halfway to take back: a report on a damaged directory leaves nothing.
+WRITTEN = []
+
+
+def remove_written():
+    """Removes every file this process wrote so far (a failed command's partial output)."""
+    while WRITTEN:
+        _remove_quietly(WRITTEN.pop())
 SVG_METADATA = {"Date": None, "Creator": "latsim analysis"}
 
 
@@ -28,6 +37,7 @@ def save(fig, base_path, formats=("png", "svg")):
         try:
             fig.savefig(temp, format=ext, metadata=metadata, bbox_inches="tight", dpi=120)
             os.replace(temp, final)
+            WRITTEN.append(final)
         except OSError as e:
             _remove_quietly(temp)
             plt.close(fig)
@@ -54,6 +64,7 @@ def write_text(path, text):
         with open(temp, "w", encoding="utf-8", newline="") as f:
             f.write(text)
         os.replace(temp, path)
+        WRITTEN.append(path)
     except OSError as e:
         # A full disk leaves no partial or empty file behind, and the error names the file.
         _remove_quietly(temp)

@@ -27,6 +27,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
+import command  # noqa: E402
 import gantt_sample  # noqa: E402
 import heatmap  # noqa: E402
 import latency_over_time  # noqa: E402
@@ -426,32 +427,21 @@ def main(argv):
     if not os.path.isdir(args.directory):
         print(f"{args.directory}: not a directory", file=sys.stderr)
         return 2
-    try:
-        coll = lr.load(args.directory)
-    except (ValueError, OSError, KeyError) as e:
-        print(f"report: {e}", file=sys.stderr)
-        return 2
+    coll = lr.load(args.directory)
     chosen = args.figures.split(",") if args.figures else coll.figures
     unknown = [c for c in chosen if table_figure(c) is None]
     if unknown:
         where = "--figures" if args.figures else f"{args.directory}/plan.json: figures"
-        print(f"report: {where}: {', '.join(unknown)} is not a column; expected some of " +
+        print(f"report: {where}: {', '.join(unknown)[:200]} is not a column; expected some of " +
               ", ".join(c for c, _, _ in lr.HEADLINE), file=sys.stderr)
         return 2
     CHOSEN[:] = [table_figure(c)[0] for c in chosen]
-    try:
-        if not figure:
-            figure = table_figure(CHOSEN[0]) if CHOSEN else default_figure(coll)
-        drawn = draw_everything(coll, args, figure)
-        write_markdown(coll, drawn, args.top, figure, args.title)
-    except OSError as e:
-        # A full disk or a read-only directory: one line, no traceback.
-        where = f"{e.filename}: " if e.filename else ""
-        print(f"report: cannot write {where}{e.strerror or e}", file=sys.stderr)
-        return 1
-    except KeyboardInterrupt:
-        print("report: interrupted; files written so far are whole", file=sys.stderr)
-        return 130
+    if not figure:
+        figure = table_figure(CHOSEN[0]) if CHOSEN else default_figure(coll)
+    # A damaged file, a full disk or a stop request: one line, and what was
+    # written so far taken back (command.run_main).
+    drawn = draw_everything(coll, args, figure)
+    write_markdown(coll, drawn, args.top, figure, args.title)
     plots_drawn = (len(drawn["distributions"]) + len(drawn["sweep"]) + len(drawn["gantt"]) +
                    (1 if drawn["heatmap"] else 0) + (1 if drawn["prediction"] else 0) + (1 if drawn["pacing"] else 0) +
                    (1 if drawn["over_time"] else 0))
@@ -461,4 +451,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv))
+    sys.exit(command.run_main("report", main, sys.argv))

@@ -43,4 +43,5 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1:]))
+    import command  # noqa: E402  (the contract of every analysis command: one line, never a traceback)
+    sys.exit(command.run_main("warp_strip", main, sys.argv[1:]))

@@ -14,6 +14,8 @@
 #include "latsim/scenario/config.hpp"
 #include "latsim/sweep/optimise.hpp"
 #include "latsim/sweep/run_table.hpp"
+#include "latsim/scenario/readable.hpp"
+#include "stop_signals.hpp"
 
 namespace latsim::app {
 
@@ -38,13 +40,22 @@ int command_capacity(int argc, char** argv) {
   app.add_option("--pointer", pointer, "the JSON pointer of the count to vary")->capture_default_str();
   app.add_option("--metric", metric, "figure that must stay at or below the threshold")->capture_default_str();
   app.add_option("--threshold", threshold, "largest acceptable value of the metric (0: no field missed)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative_number())
       ->capture_default_str();
   app.add_option("--max", hi, "upper bound of the search")->capture_default_str();
   app.add_option("--out,-o", out_dir, "also write DIR/capacity.json (the result and every count tried)");
   app.add_option("--set", sets, "override a value: /json/pointer=value (repeatable)");
   add_max_events_option(app, max_events);
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
+  if (!out_dir.empty())
+    if (const auto rc = refuse_out_dir("latsim capacity", out_dir)) return *rc;
+  if (hi < lo) {
+    std::fprintf(stderr, "latsim capacity: --max must be at least %lld, got %lld\n", static_cast<long long>(lo),
+                 static_cast<long long>(hi));
+    return kExitBadInput;
+  }
+  const StopSignals& signals = StopSignals::installed();
+  const std::string name = scenario::readable(file, 2 * scenario::kQuotedChars);
   nlohmann::json tried = nlohmann::json::array();
   // Prints the result and, when asked, writes it with every count tried.
   auto finish = [&](int64_t max_count, const char* note) {
@@ -65,6 +76,7 @@ int command_capacity(int argc, char** argv) {
       s.push_back(pointer + "=" + std::to_string(n));
       run::RunOptions options;
       options.max_events = max_events;
+      options.stop = &signals.flag();
       const auto summary = run::run_scenario(run::load_scenario(file, s), options);
       const auto& f = summary["figures"];
       // A fraction of no ended field judges nothing (it reads 0): a load at
@@ -91,12 +103,17 @@ int command_capacity(int argc, char** argv) {
     else if (*largest == hi) finish(hi, " (within the threshold up to --max: raise it)");
     else finish(*largest, "");
   } catch (const MissingMetric& e) {
-    std::fprintf(stderr, "latsim capacity: --metric %s: %s\n", metric.c_str(), e.text.c_str());
+    std::fprintf(stderr, "%s: --metric %s: %s\n", name.c_str(), scenario::readable(metric, scenario::kQuotedChars).c_str(),
+                 scenario::readable(e.text).c_str());
     return kExitBadInput;
+  } catch (const run::RunInterrupted& e) {
+    std::fprintf(stderr, "latsim capacity: stopped by %s after %zu count(s): %s; nothing written\n", signals.name(),
+                 tried.size(), e.what());
+    return signals.exit_code();
   } catch (const scenario::ScenarioError& e) {
     return bad_input(file, e);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "%s: %s\n", file.c_str(), e.what());
+    std::fprintf(stderr, "%s: %s\n", name.c_str(), scenario::readable(e.what()).c_str());
     return kExitFailure;
   }
   return kExitOk;

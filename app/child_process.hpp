@@ -15,8 +15,10 @@ struct ChildResult {
 };
 
 /// Runs argv[0] (searched on PATH when it has no slash) with argv, inheriting
-/// stdin, stdout and stderr, and waits for it. Throws std::runtime_error when
-/// it cannot be started.
+/// stdin, stdout and stderr, and waits for it. The child is in a process
+/// group of its own, is passed a stop request on (StopSignals::add_child) and
+/// ends with its parent (SIGTERM when the parent dies, however it dies).
+/// Throws std::runtime_error when it cannot be started.
 ChildResult run_child(const std::vector<std::string>& argv);
 
 /// The running program's own executable (/proc/self/exe).

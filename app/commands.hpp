@@ -10,6 +10,7 @@
 
 namespace CLI {
 class App;
+class Validator;
 }
 
 namespace latsim::app {
@@ -23,8 +24,19 @@ using run::kExitOk;
 /// here (help printed: 0; bad options, message printed: 2), nothing otherwise.
 std::optional<int> parse_options(CLI::App& app, int argc, char** argv);
 
+/// A finite number of 0 or more; refusing others in one line that quotes the
+/// value as given (cut when long), never a bound such as DBL_MAX in full.
+CLI::Validator non_negative_number();
+
 /// --max-events N: the largest event estimate a run may have (run::RunOptions::max_events).
 void add_max_events_option(CLI::App& app, double& max_events);
+
+/// What is wrong with an output directory before any work starts, if
+/// anything: empty, not a directory, or under something that is not one.
+std::optional<std::string> out_dir_problem(const std::string& out_dir);
+/// out_dir_problem as the command's one line ("latsim optimise: --out ...");
+/// kExitBadInput when there is a problem.
+std::optional<int> refuse_out_dir(const std::string& command, const std::string& out_dir);
 
 /// The command line as summary.json records it: "latsim" and the subcommand's arguments.
 std::vector<std::string> command_line_of(int argc, char** argv);

@@ -11,9 +11,11 @@
 
 #include "child_process.hpp"
 #include "commands.hpp"
+#include "stop_signals.hpp"
 #include "latsim/capture/capture.hpp"
 #include "latsim/results/run_files.hpp"
 #include "latsim/sweep/compare.hpp"
+#include "latsim/scenario/readable.hpp"
 
 namespace latsim::app {
 
@@ -32,7 +34,7 @@ int command_compare(int argc, char** argv) {
                  "Compositor_FrameTiming CSV")
       ->required();
   app.add_option("run", run, "run directory (presentmon.csv, figures.json, summary.json), or a PresentMon CSV")->required();
-  app.add_option("--out,-o", out, "output directory (default: RUN/compare, or beside a RUN file)");
+  auto* out_option = app.add_option("--out,-o", out, "output directory (default: RUN/compare, or beside a RUN file)");
   app.add_option("--application", application, "the capture's process, by Application (when it holds several)");
   app.add_option("--process-id", process_id, "the capture's process, by ProcessID (when it holds several)")
       ->check(CLI::Range(int64_t{1}, int64_t{1} << 40));
@@ -43,35 +45,36 @@ int command_compare(int argc, char** argv) {
       ->check(CLI::Range(0.0, 10.0));
   app.add_flag("--no-plots", no_plots, "write the tables only");
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
+  // An --out given empty is a mistake, not the default.
+  if (out_option->count() > 0)
+    if (const auto rc = refuse_out_dir("latsim compare", out)) return *rc;
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::is_regular_file(capture, ec)) {
-    std::cerr << "compare: " << capture << ": not a regular file\n";
+    std::cerr << "compare: " << scenario::quote_value(capture) << ": not a regular file\n";
     return kExitBadInput;
   }
   if (!fs::is_directory(run, ec) && !fs::is_regular_file(run, ec)) {
-    std::cerr << "compare: " << run << ": neither a run directory nor a capture file\n";
+    std::cerr << "compare: " << scenario::quote_value(run) << ": neither a run directory nor a capture file\n";
     return kExitBadInput;
   }
   const fs::path out_dir = !out.empty() ? fs::path(out)
                            : fs::is_directory(run, ec) ? fs::path(run) / "compare"
                                                        : fs::absolute(run).parent_path() / "compare";
-  if (fs::exists(out_dir, ec) && !fs::is_directory(out_dir, ec)) {
-    std::cerr << "compare: --out " << out_dir.string() << ": exists and is not a directory\n";
-    return kExitBadInput;
-  }
+  if (const auto rc = refuse_out_dir("latsim compare", out_dir.string())) return *rc;
   sweep::CompareRequest request{capture, run, {application, std::nullopt}, ks_threshold, mean_tolerance};
   if (process_id != 0) request.select.process_id = process_id;
   sweep::Comparison comparison;
   try {
     comparison = sweep::compare_capture(request);
   } catch (const capture::CaptureError& e) {
-    std::cerr << "compare: " << e.what() << "\n";
+    std::cerr << scenario::readable(std::string("compare: ") + e.what()) << "\n";
     return kExitBadInput;
   } catch (const sweep::CompareError& e) {
-    std::cerr << "compare: " << e.what() << "\n";
+    std::cerr << scenario::readable(std::string("compare: ") + e.what()) << "\n";
     return kExitBadInput;
   }
+  const bool made_here = !fs::exists(out_dir, ec);
   try {
     fs::create_directories(out_dir);
     results::write_file_atomically(out_dir / "compare.csv", sweep::compare_csv(comparison));
@@ -84,7 +87,12 @@ int command_compare(int argc, char** argv) {
   if (!no_plots) {
     try {
       const ChildResult child = run_child({python_interpreter(), analysis_script("compare.py").string(), out_dir.string()});
-      if (child.exit_code == 130) return 130;
+      if (child.exit_code == 130 || child.exit_code == 143 || StopSignals::installed().requested()) {
+        // Stopped while drawing (the script said so and took its plots back): the tables go too.
+        for (const char* name : {"compare.csv", "compare_values.json", "compare.md"}) fs::remove(out_dir / name, ec);
+        if (made_here) fs::remove(out_dir, ec);
+        return child.exit_code == 130 || child.exit_code == 143 ? child.exit_code : StopSignals::installed().exit_code();
+      }
       if (child.exit_code != kExitOk) {
         std::cerr << "compare: the plots could not be drawn (python3 with matplotlib is needed); the tables are written\n";
         return kExitFailure;

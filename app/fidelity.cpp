@@ -1,5 +1,6 @@
 // latsim fidelity: what one step of a fidelity knob changes in a figure and
 // what it costs in wall time, events and memory.
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -18,6 +19,9 @@
 #include "latsim/scenario/config.hpp"
 #include "latsim/sweep/fidelity_table.hpp"
 #include "latsim/sweep/run_table.hpp"
+#include "latsim/io/temporaries.hpp"
+#include "latsim/scenario/readable.hpp"
+#include "stop_signals.hpp"
 
 namespace latsim::app {
 
@@ -58,6 +62,15 @@ std::string some_figure_names(const Json& summary) {
   return text;
 }
 
+// A stop request seen between levels or in one: the command says so and
+// ends, in one line: the level's run, stopped with it, has said it already.
+struct Stopped {
+  bool child_said_so = false;
+};
+
+// One line on stderr, however long or strange what it quotes.
+void say(const std::string& text) { std::cerr << scenario::readable("fidelity: " + text) << "\n"; }
+
 // Runs one level in its own process, so its peak memory is its own.
 FidelityLevel run_level(const FidelityRequest& request, const std::string& assignment, const std::string& value,
                         const fs::path& level_dir) {
@@ -70,6 +83,8 @@ FidelityLevel run_level(const FidelityRequest& request, const std::string& assig
   argv.insert(argv.end(), {"--max-events", max_events});
   if (request.progress) argv.push_back("--progress");
   const ChildResult child = run_child(argv);
+  if (StopSignals::installed().requested())
+    throw Stopped{child.exit_code == 128 + SIGINT || child.exit_code == 128 + SIGTERM};
   if (child.exit_code != 0)
     throw std::runtime_error("the run at " + assignment + " failed with exit status " + std::to_string(child.exit_code));
   const std::optional<Json> summary_read = results::read_summary(level_dir / "summary.json", "run the level again");
@@ -118,9 +133,11 @@ int command_fidelity(int argc, char** argv) {
   try {
     axis = parse_vary(request.vary);
   } catch (const std::invalid_argument& e) {
-    std::cerr << "fidelity: " << e.what() << "\n";
+    say(e.what());
     return kExitBadInput;
   }
+  if (const auto rc = refuse_out_dir("latsim fidelity", request.out_dir)) return *rc;
+  const StopSignals& signals = StopSignals::installed();
   // Every level must be a valid scenario before anything runs or is written;
   // each one's expected events (declared rates x duration) price it.
   // The coarsest level is also run in memory below, from the same build.
@@ -134,6 +151,7 @@ int command_fidelity(int argc, char** argv) {
       if (!coarsest) {
         coarsest_doc.emplace(run::load_scenario(request.scenario_file, overrides));
         run::RunOptions in_memory;
+        in_memory.stop = &signals.flag();
         in_memory.seed = request.seed;
         in_memory.max_events = request.max_events;
         coarsest = std::make_unique<run::PreparedRun>(*coarsest_doc, in_memory);
@@ -143,8 +161,8 @@ int command_fidelity(int argc, char** argv) {
       expected_events.push_back(
           run::estimate_scenario_events(run::load_scenario(request.scenario_file, overrides), request.max_events));
     } catch (const scenario::ScenarioError& e) {
-      std::cerr << request.scenario_file << ": " << e.pointer() << ": " << e.message() << " (at " << axis.pointer
-                << "=" << value << ")\n";
+      const std::string at = scenario::readable_pointer(axis.pointer) + "=" + scenario::quote_value(value);
+      std::cerr << scenario::readable(e.line(request.scenario_file) + " (at " + at + ")") << "\n";
       return kExitBadInput;
     }
   }
@@ -154,8 +172,9 @@ int command_fidelity(int argc, char** argv) {
   try {
     const Json summary = coarsest->run();
     if (!find_figure(summary, request.metric)) {
-      std::cerr << "fidelity: --metric " << request.metric << " is not a figure of " << request.scenario_file
-                << " (it has " << some_figure_names(summary) << ", ...; every one is in a run's figures.json)\n";
+      std::cerr << scenario::readable(request.scenario_file, 2 * scenario::kQuotedChars) << ": --metric "
+                << scenario::quote_value(request.metric) << " is not a figure of it (it has "
+                << some_figure_names(summary) << ", ...; every one is in a run's figures.json)\n";
       return kExitBadInput;
     }
     // The cost before it is paid: each level's expected events at the pace the
@@ -169,12 +188,22 @@ int command_fidelity(int argc, char** argv) {
     }
     std::fprintf(stderr, "fidelity: %zu levels, expected events %s; at the first level's pace about %.3g s in all\n",
                  axis.values.size(), levels_text.c_str(), total_s);
+  } catch (const run::RunInterrupted& e) {
+    say(std::string("stopped by ") + signals.name() + ": " + e.what() + "; nothing written");
+    return signals.exit_code();
   } catch (const std::exception& e) {
-    std::cerr << "fidelity: " << e.what() << "\n";
+    say(e.what());
     return kExitFailure;
   }
 
   const fs::path out_dir = request.out_dir;
+  // A directory this command makes is removed whole when it is stopped (the
+  // watchdog's deadline included): an unfinished table leaves nothing.
+  std::error_code ec;
+  const bool made_here = !fs::exists(out_dir, ec);
+  const fs::path made = made_here ? out_dir : out_dir / "levels";
+  const bool owned = made_here || !fs::exists(made, ec);
+  if (owned) io::register_temporary(made);
   std::vector<FidelityLevel> levels;
   try {
     fs::create_directories(out_dir / "levels");
@@ -185,20 +214,33 @@ int command_fidelity(int argc, char** argv) {
                    axis.values[i].c_str(), request.metric.c_str(), levels.back().metric,
                    static_cast<unsigned long long>(levels.back().events), levels.back().wall_s);
     }
+  } catch (const Stopped& stopped) {
+    if (owned) fs::remove_all(made, ec);
+    io::unregister_temporary(made);
+    if (!stopped.child_said_so)
+      say(std::string("stopped by ") + signals.name() + " after " + std::to_string(levels.size()) + " of " +
+        std::to_string(axis.values.size()) + " level(s); nothing written");
+    return signals.exit_code();
   } catch (const std::invalid_argument& e) {
-    std::cerr << "fidelity: " << e.what() << "\n";
+    say(e.what());
     return kExitBadInput;
   } catch (const std::exception& e) {
-    std::cerr << "fidelity: " << e.what() << "\n";
+    say(e.what());
     return kExitFailure;
   }
+  io::unregister_temporary(made);
   compute_errors(levels);
   const std::string markdown = fidelity_markdown(axis, request.metric, levels);
   std::fputs(markdown.c_str(), stdout);
   try {
     results::write_file_atomically(out_dir / "fidelity.csv", fidelity_csv(axis, request.metric, levels));
     results::write_file_atomically(out_dir / "fidelity.md", markdown);
-    if (plot(out_dir) != 0) {
+    const int plotted = plot(out_dir);
+    if (signals.requested()) {
+      say(std::string("stopped by ") + signals.name() + " while drawing the plot; the tables are written");
+      return signals.exit_code();
+    }
+    if (plotted != 0) {
       std::cerr << "fidelity: the plot could not be drawn (python3 with matplotlib is needed); the tables are written\n";
       return kExitFailure;
     }

@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "latsim/run/runner.hpp"
+#include "stop_signals.hpp"
 
 namespace {
 
@@ -47,6 +48,9 @@ int main(int argc, char** argv) {
     std::printf("latsim %s (%s)\n", latsim::run::latsim_version().c_str(), latsim::run::latsim_git_revision().c_str());
     return kExitOk;
   }
+  // Every command, whatever phase it is in, answers SIGINT and SIGTERM
+  // within StopSignals::deadline(); those that watch the flag sooner.
+  const StopSignals signals("latsim " + cmd);
   // Each command sees its own name as argv[0].
   if (cmd == "run") return command_run(argc - 1, argv + 1);
   if (cmd == "validate") return command_validate(argc - 1, argv + 1);

@@ -4,8 +4,10 @@
 // replications, so two settings differ only by the setting).
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <algorithm>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -15,8 +17,10 @@
 #include "latsim/results/run_files.hpp"
 #include "latsim/run/runner.hpp"
 #include "latsim/scenario/config.hpp"
+#include "latsim/scenario/readable.hpp"
 #include "latsim/sweep/optimise.hpp"
 #include "latsim/sweep/run_table.hpp"
+#include "stop_signals.hpp"
 
 namespace latsim::app {
 
@@ -42,6 +46,7 @@ std::optional<Range> parse_range(const std::string& text) {
   if (lo.empty() || end != lo.c_str() + lo.size()) return std::nullopt;
   r.hi = std::strtod(hi.c_str(), &end);
   if (hi.empty() || end != hi.c_str() + hi.size() || !(r.hi > r.lo)) return std::nullopt;
+  if (!std::isfinite(r.lo) || !std::isfinite(r.hi) || !std::isfinite(r.hi - r.lo)) return std::nullopt;
   return r;
 }
 
@@ -51,8 +56,18 @@ struct MissingFigure : std::runtime_error {
 };
 
 int usage_error(const std::string& text) {
-  std::fprintf(stderr, "latsim optimise: %s\n", text.c_str());
+  std::fprintf(stderr, "latsim optimise: %s\n", scenario::readable(text).c_str());
   return kExitBadInput;
+}
+
+// The finest tolerance a search may ask for: a billionth of the interval or
+// of the values in it. The golden section keeps 0.618 of the interval a
+// step, so even this one ends after ln(1e9)/ln(1.618) = 44 steps (48
+// settings with the first two probes and the ends); a finer one asks for
+// differences double precision cannot hold near the values, and the search
+// would never narrow to it.
+double finest_tolerance(const Range& r) {
+  return std::max({r.hi - r.lo, std::fabs(r.lo), std::fabs(r.hi)}) / 1e9;
 }
 
 }  // namespace
@@ -71,8 +86,10 @@ int command_optimise(int argc, char** argv) {
                                          "rotation_latency_ms.p99");
   app.add_option("--maximise", maximise, "figure to maximise instead");
   app.add_option("--constraint", constraints, "FIGURE<=VALUE or FIGURE>=VALUE (repeatable), e.g. frames_missed<=2");
-  app.add_option("--tolerance", tolerance, "width of the final interval, in the pointer's unit (default: 1/1000 of it)")
-      ->check(CLI::NonNegativeNumber);
+  auto* tolerance_option = app.add_option(
+      "--tolerance", tolerance,
+      "width of the final interval, in the pointer's unit (default: 1/1000 of it; at least 1e-9 of the interval and "
+      "of its ends)");
   app.add_option("--replications", replications, "replications per setting (0..N-1, the same for every setting)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
@@ -81,7 +98,7 @@ int command_optimise(int argc, char** argv) {
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
 
   const auto range = parse_range(vary);
-  if (!range) return usage_error("--vary " + vary + ": expected /json/pointer=LO:HI with LO < HI");
+  if (!range) return usage_error("--vary " + scenario::quote_value(vary) + ": expected /json/pointer=LO:HI with finite LO < HI");
   if (minimise.empty() == maximise.empty()) return usage_error("give exactly one of --minimise and --maximise");
   const std::string objective = minimise.empty() ? maximise : minimise;
   std::vector<sweep::FigureBound> bounds;
@@ -90,7 +107,13 @@ int command_optimise(int argc, char** argv) {
     if (!b) return usage_error("--constraint " + c + ": expected FIGURE<=VALUE or FIGURE>=VALUE");
     bounds.push_back(*b);
   }
-  if (tolerance == 0) tolerance = (range->hi - range->lo) / 1000;
+  if (tolerance_option->count() == 0) tolerance = std::max((range->hi - range->lo) / 1000, finest_tolerance(*range));
+  if (!(tolerance >= finest_tolerance(*range)) || !std::isfinite(tolerance))
+    return usage_error("--tolerance must be a finite number of at least " + scenario::number_text(finest_tolerance(*range)) +
+                       " (1e-9 of the interval and of its ends), got " + scenario::number_text(tolerance));
+  if (!out_dir.empty())
+    if (const auto rc = refuse_out_dir("latsim optimise", out_dir)) return *rc;
+  const StopSignals& signals = StopSignals::installed();
 
   Json tried = Json::array();
   try {
@@ -106,6 +129,7 @@ int command_optimise(int argc, char** argv) {
       for (int r = 0; r < replications; ++r) {
         run::RunOptions options;
         options.replication = static_cast<uint64_t>(r);
+        options.stop = &signals.flag();
         const Json summary = run::run_scenario(doc, options);
         for (size_t i = 0; i <= bounds.size(); ++i) {
           const std::string& figure = i == 0 ? objective : bounds[i - 1].figure;
@@ -154,8 +178,13 @@ int command_optimise(int argc, char** argv) {
     return kExitBadInput;
   } catch (const MissingFigure& e) {
     return usage_error(e.what());
+  } catch (const run::RunInterrupted& e) {
+    std::fprintf(stderr, "latsim optimise: stopped by %s after %zu setting(s): %s; nothing written\n", signals.name(),
+                 tried.size(), e.what());
+    return signals.exit_code();
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "%s: %s\n", file.c_str(), e.what());
+    std::fprintf(stderr, "%s: %s\n", scenario::readable(file, 2 * scenario::kQuotedChars).c_str(),
+                 scenario::readable(e.what()).c_str());
     return kExitFailure;
   }
   return kExitOk;

@@ -9,6 +9,7 @@
 
 #include "child_process.hpp"
 #include "commands.hpp"
+#include "stop_signals.hpp"
 
 namespace latsim::app {
 
@@ -24,11 +25,11 @@ int command_report(int argc, char** argv) {
   app.add_option("--gantt-limit", gantt_limit,
                  "draw at most this many Gantt charts (default: a sweep's 6, one per point evenly spaced; "
                  "otherwise every run with a timeline)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   app.add_option("--top", top,
                  "a sweep's table in report.md: this many lowest and highest points (default 10; 0: every point); "
                  "latency_table.csv always has every point")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   app.add_option("--figure", figure,
                  "the column a sweep's table is sorted by and its heat map shows (default: the mean of the figure "
                  "the runs' pipelines declare first, rotation_latency_mean_ms behind a time warp, else mtp_mean_ms; "
@@ -54,10 +55,14 @@ int command_report(int argc, char** argv) {
     if (!figures.empty()) command.insert(command.end(), {"--figures", figures});
     const ChildResult child = run_child(command);
     // The script's own codes already follow the program's (0 ok, 1 cannot
-    // write, 2 bad input, 130 interrupted) and it has said why in one line.
+    // write, 2 bad input, 130 and 143 stopped) and it has said why in one line.
     if (child.exit_code == kExitOk || child.exit_code == kExitFailure || child.exit_code == kExitBadInput ||
-        child.exit_code == 130)
+        child.exit_code == 130 || child.exit_code == 143)
       return child.exit_code;
+    if (StopSignals::installed().requested()) {
+      std::cerr << "report: stopped by " << StopSignals::installed().name() << "\n";
+      return StopSignals::installed().exit_code();
+    }
     std::cerr << "report: the analysis script failed (exit status " << child.exit_code << ")\n";
     return kExitFailure;
   } catch (const std::exception& e) {

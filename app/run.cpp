@@ -26,16 +26,6 @@ using namespace sweep;  // the progress line and the staging clean-up this comma
 
 namespace {
 
-// What is wrong with --out before anything runs, if anything.
-std::optional<std::string> output_dir_problem(const std::string& out_dir) {
-  if (out_dir.empty()) return "must name a directory";
-  std::error_code ec;
-  const auto st = std::filesystem::status(out_dir, ec);
-  if (std::filesystem::exists(st) && !std::filesystem::is_directory(st))
-    return scenario::quote_value(out_dir) + " exists and is not a directory";
-  return std::nullopt;
-}
-
 // Removes what runs into the same directory left when they were killed:
 // staging directories "<out>.tmp.<pid>" of processes that are gone.
 void remove_stale_staging(const std::string& out_dir) {
@@ -79,12 +69,9 @@ int command_run(int argc, char** argv) {
                "longer than a few seconds always shows it)");
   add_max_events_option(app, max_events);
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
-  if (const auto problem = output_dir_problem(out_dir)) {
-    std::fprintf(stderr, "latsim run: --out %s\n", problem->c_str());
-    return kExitBadInput;
-  }
+  if (const auto rc = refuse_out_dir("latsim run", out_dir)) return *rc;
   remove_stale_staging(out_dir);
-  StopSignals signals;
+  const StopSignals& signals = StopSignals::installed();
   SimulationProgress shown(progress);
   run::RunOptions opt;
   opt.command_start = std::chrono::steady_clock::now();

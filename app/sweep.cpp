@@ -43,7 +43,7 @@ int sweep_here(const SweepRequest& request, const SweepPlan& plan, const std::op
   std::vector<size_t> selected;
   for (const auto& run : plan.runs())
     if (!shard || shard->contains(run.index)) selected.push_back(run.index);
-  StopSignals signals;
+  const StopSignals& signals = StopSignals::installed();
   SweepRequest stoppable = request;
   stoppable.stop = &signals.flag();
   const bool one_of_many = shard && shard->count > 1;
@@ -176,6 +176,7 @@ int command_sweep(int argc, char** argv) {
   mpi->excludes(shard);
   mpi->excludes(collect_flag);
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
+  if (const auto rc = refuse_out_dir("latsim sweep", request.out_dir)) return *rc;
   request.keep_given = keep->count() > 0;
   if (!*jobs) request.jobs = request.mpi ? 1u : available_cpus();
 

@@ -72,6 +72,8 @@ def _check_out(out):
     out = os.fspath(out)
     if not out:
         raise ValueError("out must name a directory")
+    if "\0" in out:
+        raise ValueError("out: a path with a NUL character (it would be cut short: another directory)")
     if os.path.exists(out) and not os.path.isdir(out):
         raise ValueError(f"out: {out!r} exists and is not a directory")
     return out

@@ -116,6 +116,11 @@ struct RunCall {
 // Reads, validates and runs the scenario as `latsim run` does: bad input is
 // reported before anything is written.
 py::tuple run(const RunCall& call) {
+  // A NUL cuts a path short where the system reads it: another file or directory, silently.
+  for (const auto& [what, path] : {std::pair<const char*, const std::string&>{"scenario", call.scenario},
+                                   std::pair<const char*, const std::string&>{"out", call.out_dir}})
+    if (path.find('\0') != std::string::npos)
+      throw py::value_error(std::string(what) + ": a path with a NUL character");
   run::RunOptions options;
   options.command_start = std::chrono::steady_clock::now();
   options.seed = call.seed;

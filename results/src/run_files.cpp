@@ -10,6 +10,7 @@
 #include <sstream>
 #include <utility>
 
+#include "latsim/io/temporaries.hpp"
 #include "latsim/renderer/png_writer.hpp"
 
 namespace latsim::results {
@@ -46,6 +47,12 @@ void make_directories(const fs::path& dir) {
 
 void write_file_atomically(const fs::path& file, std::string_view bytes) {
   const fs::path temp = file.string() + ".tmp." + std::to_string(::getpid());
+  // Listed while it exists: a program stopped at once removes it.
+  io::register_temporary(temp);
+  struct Unlist {
+    const fs::path& path;
+    ~Unlist() { io::unregister_temporary(path); }
+  } const unlist{temp};
   const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   check(fd >= 0, file);
   size_t done = 0;
@@ -100,6 +107,7 @@ void RunFiles::discard() noexcept {
   std::error_code ec;
   fs::remove_all(staging_, ec);
   staged_ = false;
+  io::unregister_temporary(staging_);
 }
 
 void RunFiles::prepare() {
@@ -108,6 +116,8 @@ void RunFiles::prepare() {
   // predecessor (pids are reused): nothing of ours is in it.
   std::error_code ec;
   fs::remove_all(staging_, ec);
+  // Listed before it exists: a program stopped at once removes it.
+  io::register_temporary(staging_);
   make_directories(staging_);
   staged_ = true;
 }
@@ -205,6 +215,7 @@ void RunFiles::commit(const std::string& last) {
   if (!fs::exists(dir_, ec)) {
     if (::rename(staging_.c_str(), dir_.c_str()) == 0) {
       staged_ = false;
+      io::unregister_temporary(staging_);
       return;
     }
     if (errno != EEXIST && errno != ENOTEMPTY) check(false, dir_);

@@ -13,7 +13,8 @@
   X(priority_pipeline)              \
   X(region_priority_pipeline)       \
   X(frame_stages_pipeline)          \
-  X(present_replay_pipeline)
+  X(present_replay_pipeline)        \
+  X(streaming_pipeline)
 
 // The registry's entries are defined in the pipelines' own folders.
 namespace latsim::pipelines {

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "latsim/des/stop_token.hpp"
 #include "latsim/run/builder.hpp"
 #include "latsim/run/builtin_pipelines.hpp"
 #include "latsim/run/event_budget.hpp"
@@ -41,6 +42,10 @@ void simulate(Run& run) {
     run.sim.run_until(run.duration);
   } catch (const results::WriteError&) {
     throw;
+  } catch (const des::StopRequested&) {
+    // A loop inside an event (the classification of head motion up to a far
+    // photon time) saw the stop request before the kernel did.
+    throw RunInterrupted(run.sim.now(), run.duration);
   } catch (const std::exception& e) {
     const auto kind = run.sim.failed_kind();
     const std::string name = kind ? run.sim.kind_name(*kind) : std::string("start");
@@ -77,6 +82,9 @@ RunFailure::RunFailure(std::string model, des::Time at, const std::string& cause
 
 RunInterrupted::RunInterrupted(des::Time at, des::Time end)
     : std::runtime_error("interrupted at simulated t = " + seconds_text(at) + " of " + seconds_text(end)), at_(at) {}
+
+RunInterrupted::RunInterrupted(const std::string& phase, des::Time end)
+    : std::runtime_error("interrupted " + phase + ", after simulating " + seconds_text(end)), at_(end) {}
 
 std::string latsim_version() { return LATSIM_VERSION; }
 std::string latsim_git_revision() { return LATSIM_GIT_REVISION; }
@@ -141,6 +149,9 @@ Json PreparedRun::run() {
   Run& run = *run_;
   const RunOptions& options = options_;
   const auto command_start = options.command_start.value_or(std::chrono::steady_clock::now());
+  // Loops outside the event queue (post-processing, long classifications)
+  // answer the same stop request as the kernel does.
+  const des::ScopedStopFlag stop_flag(options.stop);
   run.files.prepare();
   // Written as it is produced: memory does not grow with the run's length.
   if (run.files.enabled()) run.timeline.stream_to(run.files);
@@ -156,9 +167,15 @@ Json PreparedRun::run() {
   const auto t0 = std::chrono::steady_clock::now();
   simulate(run);
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  Json summary = write_results(run, doc_, options, figures_of(run), wall_s, command_start);
-  if (options.tables) keep_tables(run, *options.tables);
-  return summary;
+  try {
+    Json figures = figures_of(run);
+    Json summary = write_results(run, doc_, options, figures, wall_s, command_start);
+    if (options.tables) keep_tables(run, *options.tables);
+    return summary;
+  } catch (const des::StopRequested&) {
+    // The run's files are still staged: RunFiles removes them.
+    throw RunInterrupted("while computing and writing its figures", run.duration);
+  }
 }
 
 uint64_t builds_made() { return builds_made_.load(std::memory_order_relaxed); }

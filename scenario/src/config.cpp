@@ -5,6 +5,7 @@
 #include "latsim/scenario/schema.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <sstream>
 
@@ -43,11 +44,7 @@ std::string join_pointer(std::string_view pointer, std::string_view key) {
 
 namespace {
 
-std::string format_number(double x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
+std::string format_number(double x) { return number_text(x); }
 
 }  // namespace
 
@@ -131,9 +128,12 @@ int64_t ConfigNode::integer(std::string_view key, int64_t lo, int64_t hi) const 
   if (!v.is_number_integer() && !(v.is_number_float() && std::floor(v.get<double>()) == v.get<double>() &&
                                   std::fabs(v.get<double>()) < 9e15))
     fail(key, "expected an integer, got " + json_type_name(v));
+  const std::string range = "must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got ";
+  // An unsigned integer past int64's range is out of every range: said as written, not wrapped.
+  if (v.is_number_unsigned() && v.get<uint64_t>() > static_cast<uint64_t>(INT64_MAX))
+    fail(key, range + integer_text(v.get<uint64_t>()));
   const int64_t x = v.is_number_integer() ? v.get<int64_t>() : static_cast<int64_t>(v.get<double>());
-  if (x < lo || x > hi)
-    fail(key, "must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + std::to_string(x));
+  if (x < lo || x > hi) fail(key, range + integer_text(x));
   return x;
 }
 
@@ -158,6 +158,8 @@ bool ConfigNode::boolean(std::string_view key, bool def) const {
 std::string ConfigNode::string(std::string_view key) const {
   const Json& v = require(key);
   if (!v.is_string()) fail(key, "expected a string, got " + json_type_name(v));
+  // A NUL would cut a file name short where the system reads it: another file, silently.
+  if (v.get_ref<const std::string&>().find('\0') != std::string::npos) fail(key, "contains a NUL character (\\u0000)");
   return v.get<std::string>();
 }
 
@@ -200,6 +202,9 @@ std::vector<std::string> ConfigNode::strings(std::string_view key, std::vector<s
     if (!v[i].is_string())
       throw ScenarioError(join_pointer(join_pointer(pointer_, key), std::to_string(i)),
                           "expected a string, got " + json_type_name(v[i]));
+    if (v[i].get_ref<const std::string&>().find('\0') != std::string::npos)
+      throw ScenarioError(join_pointer(join_pointer(pointer_, key), std::to_string(i)),
+                          "contains a NUL character (\\u0000)");
     out.push_back(v[i].get<std::string>());
   }
   return out;
@@ -269,6 +274,9 @@ des::RationalSeconds ConfigNode::rate_as_period(std::string_view key, std::strin
     if (!(hz > 0)) fail(key, "frequency must be greater than zero, got " + format_number(hz));
     // Represent the decimal exactly enough: micro-hertz resolution.
     const double scaled = std::nearbyint(hz * 1e6);
+    if (scaled < 1.0)
+      fail(key, "a frequency given as a number must be at least 1e-06 Hz (its resolution), got " + format_number(hz) +
+                    "; a slower one as an exact fraction \"num/den\"");
     if (std::fabs(scaled - hz * 1e6) > 1e-3 || scaled > 9e15)
       fail(key, "give frequencies with at most 6 decimals, or as an exact fraction \"num/den\"");
     return des::RationalSeconds::period_of_hz(static_cast<int64_t>(scaled), 1'000'000);

@@ -51,6 +51,8 @@ std::vector<Include> includes_of(const Json& doc, const fs::path& file) {
   const auto add = [&](const std::string& where, const Json& name) {
     if (!name.is_string() || name.get<std::string>().empty())
       throw ScenarioError(where, "expected a file name, got " + (name.is_string() ? std::string("\"\"") : json_type_name(name)), file);
+    if (name.get_ref<const std::string&>().find('\0') != std::string::npos)
+      throw ScenarioError(where, "contains a NUL character (\\u0000)", file);
     fs::path p = name.get<std::string>();
     out.push_back({where, p.is_relative() ? file.parent_path() / p : p, p.parent_path()});
   };

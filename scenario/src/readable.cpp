@@ -1,5 +1,7 @@
 #include "latsim/scenario/readable.hpp"
 
+#include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
@@ -69,6 +71,17 @@ std::string readable(std::string_view text, size_t max_chars) {
   if (cut) out += "\u2026 (" + std::to_string(text.size()) + " bytes)";
   return out;
 }
+
+std::string number_text(double x) {
+  if (std::isnan(x)) return "nan";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  char buf[40];
+  const auto result = std::to_chars(buf, buf + sizeof buf, x);
+  return std::string(buf, result.ptr);
+}
+
+std::string integer_text(int64_t x) { return std::to_string(x); }
+std::string integer_text(uint64_t x) { return std::to_string(x); }
 
 std::string quote_value(std::string_view value) {
   bool cut = false;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "section_internal.hpp"
+#include "latsim/scenario/readable.hpp"
 
 namespace latsim::scenario {
 
@@ -54,11 +55,7 @@ KeySpec bounded_rate(const KeySpec& spec) {
 
 }  // namespace
 
-std::string format_number(double x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
+std::string format_number(double x) { return number_text(x); }
 
 KeySpec bounded_number(const KeySpec& spec) {
   KeySpec b = spec;

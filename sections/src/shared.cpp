@@ -1,5 +1,7 @@
 #include "latsim/sections/shared.hpp"
 
+#include <cmath>
+
 namespace latsim::sections {
 
 using scenario::KeySpec;
@@ -89,6 +91,22 @@ void bind_frames(Section& s, FramesParams& p, const HostParams& host) {
   s.check("eye", !(p.eye == 1 && !host.stereo), "eye 1 exists only on a stereo display (/host/stereo)");
 }
 
+// Interrupt handlers slower than the characters they serve back up without
+// end, the backlog carried from record to record: the run's last record
+// waits for the handlers of every record before it. Their total, like any
+// span a scenario implies, must fit the 1e6 s a run may last (a cost of 1e12
+// us passed the per-record check and overflowed simulated time mid-run).
+void check_interrupt_backlog(Section& s, const SharedParams& p) {
+  const tracker::SerialLinkParams& serial = p.transport.serial;
+  if (s.describing() || p.transport.type != tracker::TransportParams::Type::Serial ||
+      serial.host_mode != tracker::SerialLinkParams::Interrupt)
+    return;
+  const double records = std::ceil(p.duration_s / p.tracker.period.to_seconds());
+  scenario::check_span_at("/transport/per_char_interrupt_us", serial.per_char_interrupt_cost.to_seconds(),
+                          static_cast<double>(serial.record_bytes) * records,
+                          "record_bytes × the run's records (duration_s × /tracker/rate_hz)");
+}
+
 }  // namespace
 
 void bind(Section& s, SharedParams& p) {
@@ -129,6 +147,7 @@ void bind(Section& s, SharedParams& p) {
            {.required = true, .doc = "sampling the head pose"});
   s.object("transport", p.transport, [](Section& t, tracker::TransportParams& v) { bind(t, v); },
            {.doc = "the link from tracker to host"});
+  check_interrupt_backlog(s, p);
   const tracker::TrackerParams& tracker = p.tracker;
   s.object("host", p.host, [&tracker](Section& h, HostParams& v) { bind_host(h, v, tracker); },
            {.doc = "the application's view of the head"});

@@ -40,12 +40,14 @@ cat "$tmp/stderr"
 [ "$rc" -eq 2 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] && grep -q "/duration_s: no field ended" "$tmp/stderr"
 [ ! -s "$tmp/stdout" ]
 # A metric the runs do not report is a bad command line: one line naming the
-# figures they do report (the headline first), exit 2, nothing on stdout.
+# scenario file and the figures its runs do report (the headline first),
+# exit 2, nothing on stdout.
 set +e
 "$LATSIM" capacity "$scenario" --metric no_such_figure --set /duration_s=0.2 >"$tmp/stdout" 2>"$tmp/stderr"
 rc=$?
 set -e
 cat "$tmp/stderr"
 [ "$rc" -eq 2 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] && grep -q -- "--metric no_such_figure: this run reports no figure" "$tmp/stderr"
+grep -q "^$scenario: --metric" "$tmp/stderr"
 grep -q "missed_field_fraction" "$tmp/stderr"
 [ ! -s "$tmp/stdout" ]

@@ -290,4 +290,74 @@ expect_bad ignored_range "/pipeline/chunk_pixels: " "$(scenario ignored_range "{
 expect_bad ignored_nested "/pipeline/timewarp/strips: " "$(scenario ignored_nested "{$base}")" \
   --set '/pipeline/timewarp={"strips": "many", "stages": []}'
 [ "$fail" -eq 0 ] && echo "ok   event budget, ring rate, ignored keys checked"
+
+# 17. Options are checked before any work, by every command (issue 47): an
+# output path that is a file or lies under one, a tolerance no double can
+# reach (1e-300 ran without end; nan was exit 1 naming an internal
+# function), a bound out of range (printed DBL_MAX in full). Exit 2, one
+# line naming the option, within a CPU-time bound far below one run's cost,
+# and nothing made.
+# expect_usage NAME EXPECTED_TEXT COMMAND...
+expect_usage() {
+  local name=$1 expect=$2 rc width
+  shift 2
+  ( ulimit -t 20; "$@" ) >"$tmp/stdout" 2>"$tmp/stderr"
+  rc=$?
+  width=$(awk '{ if (length($0) > w) w = length($0) } END { print w + 0 }' "$tmp/stderr")
+  [ "$rc" -eq 2 ] || say_fail "$name: exit code $rc, want 2"
+  [ "$(wc -l <"$tmp/stderr")" -eq 1 ] || { say_fail "$name: $(wc -l <"$tmp/stderr") lines on stderr"; head -c 600 "$tmp/stderr"; }
+  [ "$width" -le 300 ] || say_fail "$name: an error line of $width characters"
+  grep -qF -- "$expect" "$tmp/stderr" || { say_fail "$name: stderr lacks '$expect':"; head -c 600 "$tmp/stderr"; }
+  grep -q "1.79769\|e+308" "$tmp/stderr" && say_fail "$name: a bound printed as DBL_MAX"
+}
+S=scenarios/hmd_60hz_direct.json
+vary=(--vary /pipeline/render/fixed_ms=1:10 --minimise motion_to_photon_ms.mean)
+for cmd in "run $S" "optimise $S ${vary[*]}" "capacity $S" \
+           "fidelity $S --vary /tracker/rate_hz=60,120 --metric motion_to_photon_ms.mean" \
+           "sweep scenarios/sweeps/tracker_rate.json" "compare $S $tmp"; do
+  # shellcheck disable=SC2086
+  expect_usage "${cmd%% *} --out /dev/null" "--out \"/dev/null\" exists and is not a directory" "$LATSIM" $cmd --out /dev/null
+  # shellcheck disable=SC2086
+  expect_usage "${cmd%% *} --out under a file" "which is not a directory" "$LATSIM" $cmd --out /dev/null/x
+done
+expect_usage "compare --out empty" "--out must name a directory" "$LATSIM" compare "$S" "$tmp" --out ""
+# 1e-9 of the interval's larger end (10 ms) is 1e-8: the golden section
+# keeps 0.618 of the interval a step, so that bound ends after 44 steps.
+expect_usage optimise_tolerance_tiny "--tolerance must be a finite number of at least 1e-08" \
+  "$LATSIM" optimise "$S" "${vary[@]}" --tolerance 1e-300
+expect_usage optimise_tolerance_nan "got nan" "$LATSIM" optimise "$S" "${vary[@]}" --tolerance nan
+expect_usage optimise_vary_inf "expected /json/pointer=LO:HI with finite LO < HI" \
+  "$LATSIM" optimise "$S" --vary /pipeline/render/fixed_ms=0:inf --minimise motion_to_photon_ms.mean
+expect_usage capacity_threshold_huge 'got "1e999"' "$LATSIM" capacity "$S" --threshold 1e999
+expect_usage run_max_events_negative 'got "-1"' "$LATSIM" run "$S" --out "$tmp/max_events_neg" --max-events -1
+[ -e "$tmp/max_events_neg" ] && say_fail "run --max-events -1 made its output directory"
+
+# 18. Messages print numbers as given: an integer past int64 is not wrapped
+# (2^63 was "-9223372036854775808"), a value just past a bound is not
+# rounded onto it (1e12 + 1 was "1e+12"); a NUL in a file name is refused
+# (it cut the name short: another file, read silently).
+expect_bad integer_2_63 "got 9223372036854775808" "$S" --set /scene/triangles=9223372036854775808
+expect_bad fixed_past_bound "got 1000000000001" "$S" --set /pipeline/render/fixed_ms=1000000000001
+expect_bad nul_in_path "/pipeline/render/trace/file: contains a NUL character" \
+  "$(scenario nul_in_path '{"include": "'"$PWD/$S"'", "pipeline": {"render": {"trace": {"file": "a\u0000b"}}}}')"
+expect_bad frequency_tiny "/tracker/rate_hz: a frequency given as a number must be at least 1e-06 Hz" "$S" \
+  --set /tracker/rate_hz=1e-9
+# An interrupt-driven serial host whose handlers (1e12 us a character) back
+# up past the 1e6 s a run may last: refused at the key, not a time overflow
+# in the middle of the run.
+expect_bad serial_interrupt_backlog "/transport/per_char_interrupt_us" scenarios/hmd_60hz_serial_interrupt.json \
+  --set /transport/per_char_interrupt_us=1e12
+# 1e9 us (1000 s) passes the per-record bound (32 characters: 32000 s), but
+# the backlog carried over the run's 3600 records (60 s at 60 Hz) is 32 x
+# 3600 = 115200 handlers: 1.152e8 s.
+expect_bad serial_interrupt_run_backlog "1000 s × record_bytes × the run's records (duration_s × /tracker/rate_hz) (115200)" \
+  scenarios/hmd_60hz_serial_interrupt.json --set /transport/per_char_interrupt_us=1e9
+# 19. Post-processing has a cost the event budget counts like events:
+# apparent latency's windows 1e-9 ms apart fit every window's samples at
+# every shift, 1e12 windows per simulated second (it passed validate, then
+# spun after the simulation without end); refused at the key that drives it.
+expect_bad apparent_latency_step "/apparent_latency/step_ms: about" scenarios/measurement/min_jerk_rig.json \
+  --set /apparent_latency/step_ms=1e-9
+grep -q "steps of work" "$tmp/stderr" || say_fail "apparent_latency_step: not counted as steps of work"
+[ "$fail" -eq 0 ] && echo "ok   options checked before work; numbers as given; NUL refused"
 exit $fail

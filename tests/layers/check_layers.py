@@ -20,7 +20,7 @@ import sys
 
 ROOT = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else ".")
 
-MODELS = {"tracker", "display", "renderer", "pxpl5", "arp", "capture", "measurement"}
+MODELS = {"tracker", "display", "renderer", "pxpl5", "arp", "capture", "measurement", "radio"}
 # The floor every library stands on: units and angle constants, the event
 # kernel, statistics and input files.
 BASE = {"units", "des", "stats", "io"}
@@ -38,6 +38,7 @@ ALLOWED = {
     "pxpl5": {"units", "des", "tracker", "pxpl5"},
     "arp": {"units", "des", "stats", "tracker", "renderer", "arp"},
     "measurement": {"units", "des", "tracker", "measurement"},
+    "radio": {"units", "des", "radio"},
     "sections": BASE | {"scenario", "sections"} | MODELS,
     "results": BASE | {"scenario", "sections", "results"} | MODELS,
     "pipelines": BASE | {"scenario", "sections", "results", "pipelines"} | MODELS,

@@ -100,6 +100,14 @@ std::vector<Case> every_pipeline() {
                    {{"display", progressive_60hz(640, 480)},
                     {"pipeline", {{"type", "present_replay"},
                                   {"capture", {{"file", LATSIM_SOURCE_DIR "/tests/pipelines/data/steady_present.csv"}}}}}}});
+  // A streamed headset without the client's re-projection (which would make the registration error the
+  // orientation's, not the whole pose's): the server's pose predicted for its measured photon time.
+  cases.push_back({"streaming", nullptr,
+                   {{"display", progressive_60hz(640, 480)},
+                    {"pipeline", {{"type", "streaming"},
+                                  {"server", {{"render", {{"fixed_ms", 4}}}, {"server_compositor_ms", 1}}},
+                                  {"encoder", {{"bitrate_mbps", 50}, {"fixed_ms", 3}}},
+                                  {"client", {{"decoder_fixed_ms", 4}, {"client_compositor_ms", 1}, {"reprojection", false}}}}}}});
   return cases;
 }
 

@@ -54,6 +54,12 @@ std::vector<Case> every_pipeline() {
       {"frame_stages with time warp", "modern/timewarp.json", {}},
       {"frame_stages with continuous time warp", "modern/continuous_timewarp.json", {}},
       {"present_replay", "measured/current_cpu_gpu.json", {}},
+      {"streaming", nullptr,
+       {{"display", small_60hz()},
+        {"pipeline", {{"type", "streaming"},
+                      {"server", {{"render", {{"fixed_ms", 4}}}}},
+                      {"encoder", {{"bitrate_mbps", 50}, {"fixed_ms", 3}}},
+                      {"client", {{"decoder_fixed_ms", 4}, {"client_compositor_ms", 1}}}}}}},
   };
 }
 

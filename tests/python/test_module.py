@@ -177,6 +177,38 @@ check(time.monotonic() - sent < 10, f"Ctrl-C took {time.monotonic() - sent:.1f} 
 check(not os.path.exists(long_out) and not [n for n in os.listdir(SCRATCH) if n.startswith("interrupted.tmp")],
       "an interrupted run left files")
 
+# 6b. SIGTERM while a run is writing into its staging directory ends the
+# process by SIGTERM, as Python's default would, but with the staging
+# directory removed first (it used to be left). Ready when the staging
+# directory exists: the run is under way.
+term_out = os.path.join(SCRATCH, "terminated")
+code = f"import latsim\nlatsim.run({BASE!r}, set={{'/duration_s': 100000}}, out={term_out!r})\n"
+child = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+ready_by = time.monotonic() + 120
+while time.monotonic() < ready_by and child.poll() is None and \
+        not [n for n in os.listdir(SCRATCH) if n.startswith("terminated.tmp")]:
+    time.sleep(0.01)
+check(child.poll() is None, f"SIGTERM: the run ended before the signal ({child.returncode})")
+sent = time.monotonic()
+child.send_signal(signal.SIGTERM)
+try:
+    _, err = child.communicate(timeout=30)
+except subprocess.TimeoutExpired:
+    child.kill()
+    _, err = child.communicate()
+check(child.returncode == -signal.SIGTERM, f"SIGTERM: exit {child.returncode}: {err.strip()[-300:]}")
+check(time.monotonic() - sent < 1.0, f"SIGTERM took {time.monotonic() - sent:.2f} s")
+check(not os.path.exists(term_out) and not [n for n in os.listdir(SCRATCH) if n.startswith("terminated.tmp")],
+      "a run stopped by SIGTERM left files")
+
+# 6c. A NUL in a path is refused, not cut short (it named another directory).
+try:
+    latsim.run(BASE, set={"/duration_s": 0.1}, out=os.path.join(SCRATCH, "nul\0cut"))
+    check(False, "a NUL in out was accepted")
+except ValueError as e:
+    check("NUL" in str(e), f"a NUL in out: {e}")
+check(not os.path.exists(os.path.join(SCRATCH, "nul")), "a NUL in out: the path cut short was written")
+
 # 7. A sweep: its table is latsim sweep's results.csv but for wall time.
 sweep_doc = {"base": BASE, "overrides": {"/duration_s": 1},
              "axes": [{"pointer": "/display/refresh_hz", "values": [60, 120]},

@@ -39,6 +39,8 @@ std::string headline_set(const Json& scenario) {
   if (type == "pxpl5_slats") return "pxpl5_slats";
   // A replay's frames come at the capture's pace: what the present path made of them.
   if (type == "present_replay") return "present_replay";
+  // A streamed headset: what the camera sees beside what the tool reports, the link, and the frames it costs.
+  if (type == "streaming") return "streaming";
   return {};
 }
 

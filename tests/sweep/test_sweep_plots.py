@@ -39,7 +39,8 @@ PERSISTENCE_LABELS = ["lit_ms=0.48, response_ms=1, type=global", "lit_ms=1, resp
 DEVICES = ["Index 90 Hz", "Quest 2 72 Hz", "Vive 90 Hz"]
 ZIP = {
     "description": "three devices side by side", "base": BASE, "mode": "zip", "replications": 2, "seed": 1,
-    "overrides": {"/duration_s": 0.2},
+    # The /tracker values replace the profile's IMU chain, which its fusion predictor needs: predict at constant velocity.
+    "overrides": {"/duration_s": 0.2, "/host/prediction": {"type": "constant_velocity"}},
     "axes": [{"pointer": "/description", "label": "device", "values": DEVICES},
              {"pointer": "/display/persistence", "label": "persistence", "values": PERSISTENCE},
              {"pointer": "/tracker", "values": [{"rate_hz": 500, "internal_delay_ms": 0},

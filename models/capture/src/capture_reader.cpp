@@ -119,6 +119,9 @@ class Reader {
     for (const std::string& name : request_.columns) {
       const auto at = find_column(header_, name);
       if (!at) fail(missing_column(header_, capture_.generation, name));
+      // Two columns of one name: which one the capture means cannot be told (the first was taken, silently).
+      if (std::find(header_.begin() + static_cast<std::ptrdiff_t>(*at) + 1, header_.end(), name) != header_.end())
+        fail("column \"" + shown(name) + "\" appears twice in the header: which one is meant cannot be told");
       if (const auto why = not_a_duration(capture_.generation, name)) fail(*why);
       layout_.wanted.push_back(*at);
       layout_.needed = std::max(layout_.needed, *at + 1);

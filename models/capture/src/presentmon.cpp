@@ -130,6 +130,10 @@ class FrameReader {
     if (not_available(out_.generation, v)) return std::nullopt;
     const std::optional<double> x = parse_number(v);
     if (!x) rows_.fail("column " + rows_.header()[*c] + " holds '" + std::string(v.substr(0, 40)) + "', not a number");
+    // The bound of the capture reader (capture_reader.cpp), so that both
+    // readers give one verdict on one file: 1e9 ms is eleven days a frame.
+    if (!std::isfinite(*x) || std::fabs(*x) > 1e9)
+      rows_.fail("column " + rows_.header()[*c] + " holds '" + std::string(v.substr(0, 40)) + "', out of range (|x| <= 1e9)");
     return x;
   }
 

@@ -1,4 +1,5 @@
 #include "latsim/measurement/apparent_latency.hpp"
+#include "latsim/des/stop_token.hpp"
 #include "latsim/units/units.hpp"
 
 #include <algorithm>
@@ -133,6 +134,7 @@ ApparentLatencyResult apparent_latency(std::span<const ShownSample> shown, const
   size_t cached_from = 0;
   std::vector<double> coarse(static_cast<size_t>(grid.n));
   for (int64_t k = 0; p.step * k <= last; ++k) {
+    des::check_stop();  // a window costs a fit over its samples: microseconds at least
     const des::Time centre = p.step * k;
     const tracker::MotionPhase phase = phases.phase_at(centre);
     const auto begin = std::lower_bound(shown.begin(), shown.end(), centre - half, photon_before);

@@ -1,5 +1,7 @@
 #include "latsim/measurement/camera_rig.hpp"
 
+#include "latsim/des/stop_token.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -20,7 +22,9 @@ struct Readings {
 std::optional<Readings> readings(const FilmedSignal& signal, const des::PeriodicSchedule& camera, int64_t first,
                                  int64_t n, des::Time exposure, des::Time row_offset) {
   std::vector<std::optional<double>> seen(static_cast<size_t>(n));
+  uint64_t steps = 0;
   for (int64_t k = 0; k < n; ++k) {
+    des::check_stop_every(steps, 1024);
     const des::Time open = camera.at(first + k) + row_offset;
     seen[static_cast<size_t>(k)] = signal.seen(open, open + exposure);
   }
@@ -189,7 +193,9 @@ RigResult film(const FilmedSignal& object, const FilmedSignal& display, const de
   enum class State { Settling, Rest, Moving } state = State::Settling;
   double rest_r = 0.0, rest_d = 0.0;
   int64_t start = -1, shown = -1;
+  uint64_t steps = 0;
   for (int64_t k = 0; k < n; ++k) {
+    des::check_stop_every(steps, 1024);
     const double rk = (*r)[static_cast<size_t>(k)], dk = d->value[static_cast<size_t>(k)];
     if (state == State::Rest && std::abs(rk - rest_r) > p.threshold_deg) {
       state = State::Moving;

@@ -1,4 +1,5 @@
 #include "latsim/tracker/motion_phase.hpp"
+#include "latsim/des/stop_token.hpp"
 #include "latsim/units/units.hpp"
 
 #include <algorithm>
@@ -48,7 +49,11 @@ void MotionPhaseClassifier::extend_to(int64_t k) {
       last_rest_end_ = params_.step;
     }
   }
+  uint64_t steps = 0;
   while (evaluated_ < k) {
+    // An instant far past the run (a photon a long response later) costs a
+    // step per grid interval: a stop request must not wait for them all.
+    des::check_stop_every(steps, 4096);
     const double speed = speed_of_next_interval();
     const bool moving = speed > threshold_rad_s_;
     if (moving != last_moving_) {

@@ -91,3 +91,13 @@ TEST_CASE("files that are not captures") {
   CHECK(error_of(fifo, {"x"}).find("not a regular file") != std::string::npos);
   std::filesystem::remove(fifo);
 }
+
+TEST_CASE("a column named twice in the header is refused, not read from its first place") {
+  // Two MsGPUBusy columns with different values: the first was taken silently.
+  const TempFile f("twice.csv", "Application,ProcessID,MsGPUBusy,MsGPUBusy\na.exe,1,2.0,3.0\n");
+  CHECK(error_of(f.path(), {"MsGPUBusy"}) ==
+        f.path().string() + ":1: column \"MsGPUBusy\" appears twice in the header: which one is meant cannot be told");
+  // A column not read may repeat: nothing depends on which is which.
+  const TempFile g("twice_unread.csv", "Application,ProcessID,MsCPUBusy,MsCPUBusy,MsGPUBusy\na.exe,1,1,1,2.0\n");
+  CHECK(read_capture(g.path(), CaptureRequest{{"MsGPUBusy"}, {}}).columns.at(0).values.size() == 1);
+}

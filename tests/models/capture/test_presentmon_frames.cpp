@@ -5,7 +5,9 @@
 // limiters and the display's refresh; the warnings a replay gives.
 #include <catch2/catch.hpp>
 
+#include "latsim/capture/capture.hpp"
 #include "latsim/capture/presentmon.hpp"
+#include "temp_file.hpp"
 
 using namespace latsim::capture;
 
@@ -95,4 +97,17 @@ TEST_CASE("presentmon: a replay warns of an uncapped, a composed, another refres
   // Presenter.exe 11648: sync interval 0 with tearing; 12268: Composed: Flip.
   CHECK(has(warnings("Presenter.exe", 11648, 59.954, false), "uncapped"));
   CHECK(has(warnings("Presenter.exe", 12268, 59.954, false), "desktop compositor"));
+}
+
+TEST_CASE("presentmon: a cell the capture reader refuses is refused here too (one verdict per file)") {
+  // 1e308 ms passed this reader and printed 310 digits in compare.md; the
+  // capture reader refuses anything past 1e9 ms. Both readers on one file:
+  const std::string header = "Application,ProcessID,MsBetweenPresents,MsGPUBusy,MsCPUBusy\n";
+  const test::TempFile f("pm_1e308.csv", header + "a.exe,1,16.6,1e308,1\n");
+  CHECK_THROWS_WITH(read_presentmon(f.path(), {"a.exe", 1}), Catch::Contains("out of range"));
+  CHECK_THROWS_WITH(read_capture(f.path(), CaptureRequest{{"MsGPUBusy"}, {}}), Catch::Contains("out of range"));
+  // 1e9 ms itself is within both.
+  const test::TempFile g("pm_1e9.csv", header + "a.exe,1,16.6,1e9,1\n");
+  CHECK(read_presentmon(g.path(), {"a.exe", 1}).frames.at(0).gpu_busy_ms.value() == Approx(1e9));
+  CHECK(read_capture(g.path(), CaptureRequest{{"MsGPUBusy"}, {}}).columns.at(0).values.size() == 1);
 }

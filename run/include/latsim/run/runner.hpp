@@ -107,6 +107,8 @@ class RunFailure : public std::runtime_error {
 class RunInterrupted : public std::runtime_error {
  public:
   RunInterrupted(des::Time at, des::Time end);
+  /// Stopped after the simulation, `phase` ("while computing ...") naming where.
+  RunInterrupted(const std::string& phase, des::Time end);
   des::Time at() const { return at_; }
 
  private:

@@ -1,0 +1,62 @@
+"""The contract of every analysis script run as a command (latsim report,
+compare's plots, fidelity's plot): whatever goes wrong is one line on stderr
+naming the file, never a traceback, and what the command wrote so far is
+taken back. Exit 0; 1 when a file cannot be written; 2 when a file read is
+damaged; 130 or 143 when SIGINT or SIGTERM stopped it (latsim passes its
+own stop request on as SIGTERM or SIGINT).
+"""
+
+import os
+import signal
+import sys
+
+
+def _take_back():
+    """Removes the files this process wrote (plotting.WRITTEN), when it wrote any."""
+    plotting = sys.modules.get("plotting")
+    if plotting is not None:
+        plotting.remove_written()
+
+
+def _one_line(text, limit=400):
+    text = " ".join(str(text).split())
+    return text if len(text) <= limit else text[:limit] + "…"
+
+
+def run_main(name, main, argv):
+    """main(argv)'s exit code, under the contract above."""
+    stopped_by = []
+
+    def on_term(signum, _frame):
+        stopped_by.append(signum)
+        raise KeyboardInterrupt
+    signal.signal(signal.SIGTERM, on_term)
+    try:
+        return main(argv)
+    except KeyboardInterrupt:
+        _take_back()
+        print(f"{name}: stopped by {'SIGTERM' if stopped_by else 'SIGINT'}; nothing written", file=sys.stderr)
+        sys.stderr.flush()
+        # At once: an interpreter that unloads matplotlib takes longer than
+        # the second a stop may take (latsim's watchdog would kill it).
+        os._exit(143 if stopped_by else 130)
+    except OSError as e:
+        # A full disk or a read-only directory.
+        _take_back()
+        where = f"{e.filename}: " if e.filename else ""
+        print(_one_line(f"{name}: cannot write {where}{e.strerror or e}"), file=sys.stderr)
+        return 1
+    except RecursionError as e:
+        _take_back()
+        print(_one_line(f"{name}: a file read is nested too deeply ({e}); nothing written"), file=sys.stderr)
+        return 2
+    except ValueError as e:
+        # latsim_results.DamagedFile names the file; a ValueError of its own still gets one line.
+        _take_back()
+        print(_one_line(f"{name}: {e}; nothing written"), file=sys.stderr)
+        return 2
+    except Exception as e:  # noqa: BLE001  (what no check foresaw: still one line, never a traceback)
+        _take_back()
+        print(_one_line(f"{name}: a file read is not as latsim writes it ({type(e).__name__}: {e}); "
+                        "nothing written"), file=sys.stderr)
+        return 2

@@ -1,0 +1,20 @@
+// Temporaries a program that must end at once removes first: the staging
+// directories and temporary files of work in progress.
+#pragma once
+
+#include <filesystem>
+
+namespace latsim::io {
+
+/// Adds `path` (a staging directory, a temporary file) to the process's list
+/// of temporaries; the owner removes it from the list once it is committed or
+/// removed. A program told to stop that cannot wait for its work to notice
+/// (StopSignals' deadline) removes every listed path before it exits.
+void register_temporary(const std::filesystem::path& path);
+void unregister_temporary(const std::filesystem::path& path);
+
+/// Removes every listed path and its contents (errors ignored); for the exit
+/// of a stopped program. Does not wait long for a thread that holds the list.
+void remove_registered_temporaries() noexcept;
+
+}  // namespace latsim::io
