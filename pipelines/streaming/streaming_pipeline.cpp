@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "latsim/results/figure_writer.hpp"
 #include "latsim/results/frame_recorder.hpp"
-#include "latsim/results/latency_recorder.hpp"
 #include "latsim/results/timeline.hpp"
 
 namespace latsim::pipelines::streaming {
@@ -38,7 +38,7 @@ des::Time StreamingPipeline::decode_time(const ClientSpec& c, const EncoderSpec&
 
 void StreamingPipeline::start(RunContext& ctx) {
   ctx_ = &ctx;
-  ctx.recorder.expects_images();
+  ctx.signals.shows_images();
   ctx.app_frames.declare({.missed = false, .rate = true}, {.sync_interval = 1, .allows_tearing = false});
   const display::RasterTiming& timing = ctx.display.timing();
   period_ = timing.field_start(1) - timing.field_start(0);
@@ -218,7 +218,7 @@ void StreamingPipeline::compose(int64_t field) {
     ++refreshes_without_image_;
     return;
   }
-  ctx_->recorder.image_due(ctx_->display.timing().field_start(field));
+  ctx_->signals.image_due(ctx_->display.timing().field_start(field));
   const des::Time now = ctx_->sim.now();
   const std::optional<tracker::PosePrediction> local = ctx_->host.pose_for(now, ctx_->frame_photon_time(field));
   const int64_t k = *newest_decoded_;
@@ -261,7 +261,7 @@ void StreamingPipeline::first_shown(Frame& f, int64_t k, int64_t field, des::Tim
   const des::Time photon = ctx_->frame_photon_time(field);
   if (photon > f.target + des::Time::ps(period_.ticks() / 2)) ++frames_late_;
   const des::Time vsync = ctx_->display.timing().field_start(field);
-  results::LatencyRecorder& r = ctx_->recorder;
+  results::FigureWriter& r = ctx_->figures;
   // ALVR's statistics: the game from the tracking's arrival at the server to
   // the frame's present; the decoder from the frame's arrival (its wait for
   // the decoder included); the decoder queue until a composition takes it;
@@ -293,7 +293,7 @@ void StreamingPipeline::first_shown(Frame& f, int64_t k, int64_t field, des::Tim
 }
 
 void StreamingPipeline::finish(RunContext& ctx) {
-  results::LatencyRecorder& r = ctx.recorder;
+  results::FigureWriter& r = ctx.figures;
   // Frames never shown: dropped on the link, or superseded by a newer one before any refresh picked them.
   r.set("game_frames", game_frames_);
   r.set("game_frames_skipped", game_skipped_);
@@ -316,8 +316,7 @@ void StreamingPipeline::finish(RunContext& ctx) {
   r.set("link.retransmissions", c.retransmissions);
   r.set("link.lost", c.lost);
   r.set("link.busy_fraction", ctx.sim.now() > des::Time::zero() ? c.busy.to_seconds() / ctx.sim.now().to_seconds() : 0.0);
-  r.declare_headline({"motion_to_photon_ms", "reported_total_ms", "rotation_latency_ms", "network_ms",
-                      "frames_late", "frames_dropped", "frames_reprojected"});
+  r.use_headline("streaming");
   if (frames_incomplete_ > 0)
     r.warn(std::to_string(frames_incomplete_) + " frames lost a packet on the link and were dropped (frames_incomplete)");
 }
