@@ -1,7 +1,7 @@
 """latency_over_time reads every shipped pipeline's fields.csv without taking a
 sentinel for a time, and plots first light as its label says.
 
-For each pipeline that docs/figures.md's headline table names, a shipped
+For each pipeline the figure registry names (results/figure_registry.json), a shipped
 scenario with that pipeline runs for one simulated second with --ledger. Each
 refresh's first-light latency is the latency of one lit span the recorder
 counted (its field's first line shown), so it must lie within that run's
@@ -18,7 +18,6 @@ import csv
 import glob
 import json
 import os
-import re
 import shutil
 import struct
 import subprocess
@@ -34,7 +33,7 @@ failures = []
 checked = []
 # A picosecond floored differently in a float sum: far below any sentinel's error (hundreds of ms).
 EPS_MS = 1e-6
-# Pipelines that show no whole images: no fields.csv rows to plot (docs/figures.md: "no whole images").
+# Pipelines that show no whole images: no fields.csv rows to plot (the registry's headline frameless: "no whole images").
 NO_FIELDS = {"frameless"}
 
 
@@ -45,17 +44,12 @@ def check(condition, message):
         print("FAILED:", message)
 
 
-def pipelines_in_docs():
-    """The pipeline names of docs/figures.md's headline table (its first column's back-quoted names)."""
-    with open(os.path.join(SOURCE_DIR, "docs", "figures.md"), encoding="utf-8") as f:
-        text = f.read()
-    table = text[text.index("| pipeline | headline | why |"):text.index("## Instants")]
+def pipelines_in_registry():
+    """The pipelines the figure registry names: every figure's producers but "all"."""
     names = set()
-    for line in table.splitlines()[2:]:
-        if line.startswith("|"):
-            # "`arp`, `priority`" names two; "`frame_stages` with `timewarp`" one.
-            for part in line.split("|")[1].split(","):
-                names.update(re.findall(r"`([^`]+)`", part)[:1])
+    for figure in latsim_results.read_registry(os.path.join(SOURCE_DIR, "results", "figure_registry.json"))["figures"]:
+        if isinstance(figure["pipelines"], list):
+            names.update(figure["pipelines"])
     return names
 
 
@@ -92,8 +86,8 @@ def within(value, dist):
 
 shutil.rmtree(SCRATCH, ignore_errors=True)
 os.makedirs(SCRATCH)
-documented = pipelines_in_docs()
-check(len(documented) >= 9, f"pipelines read from docs/figures.md: {sorted(documented)}")
+documented = pipelines_in_registry()
+check(len(documented) >= 9, f"pipelines read from results/figure_registry.json: {sorted(documented)}")
 candidates = scenarios_by_pipeline()
 sentinel_rows = 0
 for pipeline in sorted(documented):
