@@ -127,8 +127,16 @@ CASES = [
     ("results 1e308", sweep_dir, "results.csv", lambda p: big_cell(p, "point")),
     ("results junk", sweep_dir, "results.csv", lambda p: write(p, b"point,replication,run_id\n\x01,\x02,/\n")),
     ("point summary truncated", sweep_dir, os.path.join(sweep_run, "summary.json"), truncate_mid_line),
-    ("point summary deleted", sweep_dir, os.path.join(sweep_run, "summary.json"), os.remove),
 ]
+
+# A kept run's summary.json deleted is no damage: every run's figures are also
+# its record in the sweep's results store (docs/sweeps.md), which the report reads.
+deleted_dir = os.path.join(SCRATCH, "point_summary_deleted")
+shutil.copytree(sweep_dir, deleted_dir)
+os.remove(os.path.join(deleted_dir, sweep_run, "summary.json"))
+proc = latsim("report", deleted_dir)
+check(proc.returncode == 0 and "Traceback" not in proc.stderr,
+      f"point summary deleted: exit {proc.returncode}, want 0 (the store holds it): {proc.stderr.strip()[-300:]}")
 
 for number, (name, pristine, damaged, damage) in enumerate(CASES):
     case_dir = os.path.join(SCRATCH, f"case_{number}")
