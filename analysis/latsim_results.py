@@ -314,6 +314,11 @@ def _load_sweep(directory):
         if not run["run_id"] or "/" in run["run_id"] or run["run_id"] in (".", ".."):
             raise DamagedFile(results, f"line {line}: run_id: not a run directory's name")
         for column, value in run.items():
+            # A run id is a name (16 hex digits, all of them decimal digits about
+            # once in 1,850 runs) and an axis value is the sweep file's input:
+            # neither is a figure the bound guards.
+            if column == "run_id" or column.startswith("/"):
+                continue
             try:
                 float(value)
             except (TypeError, ValueError):

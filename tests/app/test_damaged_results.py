@@ -127,8 +127,27 @@ CASES = [
     ("results 1e308", sweep_dir, "results.csv", lambda p: big_cell(p, "point")),
     ("results junk", sweep_dir, "results.csv", lambda p: write(p, b"point,replication,run_id\n\x01,\x02,/\n")),
     ("point summary truncated", sweep_dir, os.path.join(sweep_run, "summary.json"), truncate_mid_line),
-    ("point summary deleted", sweep_dir, os.path.join(sweep_run, "summary.json"), os.remove),
 ]
+
+# A run id is 16 hex digits; about one in 1,850 is all decimal digits and then
+# reads as a number beyond any figure's bound: it is a name, no damage.
+digits_dir = os.path.join(SCRATCH, "run_id_digits")
+shutil.copytree(sweep_dir, digits_dir)
+old_id = os.path.basename(sweep_run)
+os.rename(os.path.join(digits_dir, sweep_run), os.path.join(digits_dir, "runs", "2774305458476704"))
+replace_text(os.path.join(digits_dir, "results.csv"), old_id, "2774305458476704")
+proc = latsim("report", digits_dir)
+check(proc.returncode == 0 and "Traceback" not in proc.stderr,
+      f"an all-digit run id: exit {proc.returncode}, want 0: {proc.stderr.strip()[-300:]}")
+
+# A kept run's summary.json deleted is no damage: every run's figures are also
+# its record in the sweep's results store (docs/sweeps.md), which the report reads.
+deleted_dir = os.path.join(SCRATCH, "point_summary_deleted")
+shutil.copytree(sweep_dir, deleted_dir)
+os.remove(os.path.join(deleted_dir, sweep_run, "summary.json"))
+proc = latsim("report", deleted_dir)
+check(proc.returncode == 0 and "Traceback" not in proc.stderr,
+      f"point summary deleted: exit {proc.returncode}, want 0 (the store holds it): {proc.stderr.strip()[-300:]}")
 
 for number, (name, pristine, damaged, damage) in enumerate(CASES):
     case_dir = os.path.join(SCRATCH, f"case_{number}")
