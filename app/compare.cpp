@@ -74,6 +74,7 @@ int command_compare(int argc, char** argv) {
     std::cerr << scenario::readable(std::string("compare: ") + e.what()) << "\n";
     return kExitBadInput;
   }
+  for (const std::string& w : comparison.warnings) std::cerr << scenario::readable("compare: warning: " + w) << "\n";
   const bool made_here = !fs::exists(out_dir, ec);
   try {
     fs::create_directories(out_dir);

@@ -111,6 +111,13 @@ int command_optimise(int argc, char** argv) {
   if (!(tolerance >= finest_tolerance(*range)) || !std::isfinite(tolerance))
     return usage_error("--tolerance must be a finite number of at least " + scenario::number_text(finest_tolerance(*range)) +
                        " (1e-9 of the interval and of its ends), got " + scenario::number_text(tolerance));
+  // A setting goes into the scenario as the key accepts it: a frequency to
+  // the micro-hertz, an integer whole; the search's interval must hold one.
+  const auto decimals = sweep::setting_decimals(run::scenario_schema().key_at(range->pointer));
+  if (!sweep::setting_in_steps(range->lo, range->lo, range->hi, decimals))
+    return usage_error("--vary " + scenario::quote_value(vary) + ": " + range->pointer + " takes values in steps of " +
+                       (*decimals == 0 ? std::string("1") : "1e-" + std::to_string(*decimals)) +
+                       ", and none lies in the interval");
   if (!out_dir.empty())
     if (const auto rc = refuse_out_dir("latsim optimise", out_dir)) return *rc;
   const StopSignals& signals = StopSignals::installed();
@@ -119,7 +126,8 @@ int command_optimise(int argc, char** argv) {
   try {
     // Checks every key (the pointer included) before the first run.
     run::validate_scenario(run::load_scenario(file, sets));
-    auto evaluate = [&](double x) {
+    auto evaluate = [&](double probe) {
+      const double x = *sweep::setting_in_steps(probe, range->lo, range->hi, decimals);
       std::vector<std::string> s = sets;
       s.push_back(range->pointer + "=" + sweep::format_number(x));
       const scenario::ScenarioDocument doc = run::load_scenario(file, s);

@@ -1,5 +1,6 @@
 #include "latsim/sweep/compare.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "compare_rows.hpp"
@@ -67,6 +68,13 @@ Comparison compare_capture(const CompareRequest& q) {
     if (!run.frames) throw CompareError(q.run.string() + ": the run wrote no presentmon.csv to compare a PresentMon capture with");
     const capture::PresentMonProcess cap = capture::read_presentmon(q.capture, q.select);
     out.capture_text = process_text(cap);
+    const bool timed = std::any_of(cap.frames.begin(), cap.frames.end(), [](const capture::PresentMonFrame& f) {
+      return f.between_presents_ms || f.in_present_ms || f.cpu_busy_ms || f.gpu_busy_ms || f.gpu_time_ms ||
+             f.until_displayed_ms || f.between_display_change_ms;
+    });
+    if (!timed)
+      out.warnings.push_back(process_text(cap) + " and not one timing value (every cell NA): only the share of "
+                             "frames never displayed is compared");
     if (const auto period = capture::refresh_period_ms(q.capture))
       out.notes.push_back("the capture's display refreshed at " + hz(1000.0 / *period) +
                           (run.refresh_hz > 0 ? "; the run's at " + hz(run.refresh_hz) : std::string()));
@@ -77,6 +85,9 @@ Comparison compare_capture(const CompareRequest& q) {
     const capture::RuntimeStats cap = capture::read_runtime_stats(q.capture);
     out.capture_text = q.capture.string() + " (" + capture::generation_name(g) + ", " + std::to_string(cap.rows_read) +
                        (cap.per_frame ? " frames" : " rows, " + std::to_string(cap.partial_rows) + " of them partial seconds left out") + ")";
+    if (std::all_of(cap.series.begin(), cap.series.end(), [](const auto& kv) { return kv.second.values.empty(); }))
+      out.warnings.push_back(q.capture.string() + ": " + std::to_string(cap.rows_read) +
+                             " rows and not one value of a statistic (every cell not available): nothing is compared");
     runtime_rows(cap, run, q, out);
   } else {
     throw CompareError(q.capture.string() + ": neither a PresentMon capture nor a runtime's statistics (OVR Metrics "

@@ -23,6 +23,25 @@ std::optional<FigureBound> parse_bound(const std::string& text) {
   return std::nullopt;
 }
 
+std::optional<int> setting_decimals(const scenario::KeySchema* key) {
+  if (key && key->type == "rate") return 6;
+  if (key && key->type == "integer") return 0;
+  return std::nullopt;
+}
+
+std::optional<double> setting_in_steps(double x, double lo, double hi, std::optional<int> decimals) {
+  if (!decimals) return x;
+  // Dividing the whole number of steps by 10^decimals gives the double
+  // nearest the decimal (multiplying by 10^-decimals, inexact, would not).
+  const double scale = std::pow(10.0, *decimals);
+  const auto at = [scale](double k) { return k / scale; };
+  double k = std::nearbyint(x * scale);
+  if (at(k) < lo) k += 1;
+  if (at(k) > hi) k -= 1;
+  if (at(k) < lo || at(k) > hi) return std::nullopt;
+  return at(k);
+}
+
 bool better(const Trial& a, const Trial& b) {
   if (a.violation != b.violation) return a.violation < b.violation;
   if (a.objective != b.objective) return a.objective < b.objective;

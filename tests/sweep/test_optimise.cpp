@@ -89,3 +89,32 @@ TEST_CASE("bisection finds the largest fitting count", "[optimise]") {
   CHECK(largest_fitting(fits, 0, 20) == 20);
   CHECK_FALSE(largest_fitting(fits, 40, 100));
 }
+
+TEST_CASE("a search's settings are rounded to what the key accepts, within the interval", "[optimise]") {
+  // A frequency given as a number has at most 6 decimals (micro-hertz):
+  // 1000.1234567891 is 1000.123457 (the seventh decimal, 7, rounds up).
+  CHECK(setting_in_steps(1000.1234567891, 500.0, 2000.0, 6) == 1000.123457);
+  CHECK(setting_in_steps(138.52908, 100.1, 200.7, 6) == 138.52908);
+  // The nearest step, 60.000000, lies below the interval: the next one up.
+  CHECK(setting_in_steps(60.0000004, 60.0000004, 61.0, 6) == 60.000001);
+  // The nearest, 61.000000, above it: the next one down.
+  CHECK(setting_in_steps(60.9999996, 60.0, 60.9999996, 6) == 60.999999);
+  // No micro-hertz step between 60.0000001 and 60.0000004.
+  CHECK_FALSE(setting_in_steps(60.0000002, 60.0000001, 60.0000004, 6).has_value());
+  // An integer key: whole numbers (2.6 is 3); none between 2.2 and 2.8.
+  CHECK(setting_in_steps(2.6, 1.0, 10.0, 0) == 3.0);
+  CHECK_FALSE(setting_in_steps(2.5, 2.2, 2.8, 0).has_value());
+  // Any other key: the setting as it is.
+  CHECK(setting_in_steps(0.1 + 0.2, 0.0, 1.0, std::nullopt) == 0.1 + 0.2);
+}
+
+TEST_CASE("the steps come from the key's declaration: a rate 6 decimals, an integer 0, others none", "[optimise]") {
+  latsim::scenario::KeySchema rate, integer, number;
+  rate.type = "rate";
+  integer.type = "integer";
+  number.type = "number";
+  CHECK(setting_decimals(&rate) == 6);
+  CHECK(setting_decimals(&integer) == 0);
+  CHECK_FALSE(setting_decimals(&number).has_value());
+  CHECK_FALSE(setting_decimals(nullptr).has_value());
+}

@@ -86,11 +86,15 @@ struct Layout {
 
 std::string missing_column(const std::vector<std::string>& header, Generation g, const std::string& name) {
   std::string text = "no column \"" + shown(name) + "\" in this " + generation_name(g) + " capture";
+  // The same quantity under another generation's name. The groups are padded
+  // with empty names, which no column request is an alias of.
+  std::vector<std::string> here;
   for (const auto& group : kAliases)
-    if (std::find(group.begin(), group.end(), name) != group.end())
+    if (!name.empty() && std::find(group.begin(), group.end(), name) != group.end())
       for (std::string_view alias : group)
         if (!alias.empty() && alias != name && find_column(header, alias))
-          text += " (here it is \"" + std::string(alias) + "\")";
+          here.push_back(std::string(1, '"').append(alias).append(1, '"'));
+  if (!here.empty()) text += " (here it is " + name_list(here) + ")";
   return text + "; its columns: " + name_list(header);
 }
 

@@ -161,7 +161,8 @@ class FrameReader {
     PresentMonFrame f;
     f.line = rows_.line();
     const std::string_view sync = cell(cols_.sync);
-    if (const auto s = parse_number(sync)) f.sync_interval = static_cast<int>(*s);
+    // D3D's sync intervals are 0 to 4; a number no int holds stays "not said".
+    if (const auto s = parse_number(sync); s && std::fabs(*s) <= 1e9) f.sync_interval = static_cast<int>(*s);
     f.mode = parse_present_mode(cell(cols_.mode));
     f.allows_tearing = cell(cols_.tearing) == "1";
     f.runtime = std::string(cell(cols_.runtime));

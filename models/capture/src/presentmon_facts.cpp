@@ -1,6 +1,7 @@
 // What a PresentMon capture says as a whole: its processes, its display's
 // refresh period, and what a replay of one of its processes should warn of.
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -12,6 +13,15 @@
 namespace latsim::capture {
 
 namespace {
+
+// A ProcessID as the readers take it: an integer (the whole text), or none
+// (a number no int64_t holds, 1e19 say, is none rather than wrapped).
+std::optional<int64_t> process_id_of(std::string_view text) {
+  int64_t id = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), id);
+  if (ec != std::errc{} || end != text.data() + text.size()) return std::nullopt;
+  return id;
+}
 
 
 double median(std::vector<double> v) {
@@ -37,7 +47,7 @@ std::vector<ProcessCount> presentmon_processes(const std::filesystem::path& file
     ProcessCount key;
     if (app && *app < rows.size()) key.application = std::string(rows[*app]);
     if (pid && *pid < rows.size())
-      if (const auto id = parse_number(rows[*pid])) key.process_id = static_cast<int64_t>(*id);
+      if (const auto id = process_id_of(rows[*pid])) key.process_id = *id;
     const auto [it, added] = at.try_emplace({key.application, key.process_id}, out.size());
     if (added) out.push_back(key);
     ++out[it->second].frames;

@@ -111,3 +111,29 @@ TEST_CASE("presentmon: a cell the capture reader refuses is refused here too (on
   CHECK(read_presentmon(g.path(), {"a.exe", 1}).frames.at(0).gpu_busy_ms.value() == Approx(1e9));
   CHECK(read_capture(g.path(), CaptureRequest{{"MsGPUBusy"}, {}}).columns.at(0).values.size() == 1);
 }
+
+TEST_CASE("presentmon: a ProcessID or SyncInterval no integer type holds is not a number read wrapped") {
+  // Found by fuzz_compare (tests/fuzz/regressions/compare/process_id_1e19.csv):
+  // 9999999999999000000 is above 2^63 - 1 = 9223372036854775807, and a
+  // SyncInterval of 1e300 above any int. The process list counts the rows
+  // (2 of 3, by hand) under no process id, the same verdict as the readers'
+  // (a ProcessID that is no integer leaves the process unnamed); the frame's
+  // sync interval stays "not said" (-1).
+  const latsim::capture::test::TempFile file(
+      "pid_1e19.csv",
+      "Application,ProcessID,SwapChainAddress,Runtime,SyncInterval,PresentFlags,AllowsTearing,PresentMode,"
+      "MsBetweenPresents,MsInPresentAPI,MsUntilDisplayed,MsBetweenDisplayChange\n"
+      "a.exe,9999999999999000000,0x1,DXGI,1e300,0,0,Hardware: Legacy Flip,16.6,0.1,10.0,16.6\n"
+      "a.exe,9999999999999000000,0x1,DXGI,1e300,0,0,Hardware: Legacy Flip,16.7,0.1,10.0,16.7\n"
+      "b.exe,12,0x1,DXGI,1,0,0,Hardware: Legacy Flip,16.7,0.1,10.0,16.7\n");
+  const auto processes = presentmon_processes(file.path());
+  REQUIRE(processes.size() == 2);
+  CHECK(processes[0].application == "a.exe");
+  CHECK(processes[0].process_id == 0);
+  CHECK(processes[0].frames == 2);
+  CHECK(processes[1].process_id == 12);
+  const PresentMonProcess a = read_presentmon(file.path(), {"a.exe", std::nullopt});
+  REQUIRE(a.frames.size() == 2);
+  CHECK_FALSE(a.process_id.has_value());
+  CHECK(a.frames[0].sync_interval == -1);
+}

@@ -62,6 +62,9 @@ struct Comparison {
   std::string capture_text, run_text;  ///< what each side is (file, process, frames or seconds)
   std::vector<CompareRow> rows;
   std::vector<std::string> notes;      ///< about the two sides as a whole (displays, replayed files)
+  /// Legal but doubtful: a capture with frames (or rows) and not one value
+  /// of any timing quantity (every cell NA), one line each.
+  std::vector<std::string> warnings;
 };
 
 /// Bad arguments or files: what() names the file (and line) and the reason.

@@ -11,6 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "latsim/scenario/schema.hpp"
+
 namespace latsim::sweep {
 
 /// A bound on a figure: "frames_missed<=2", "application_frame_rate_hz>=89.9".
@@ -22,6 +24,17 @@ struct FigureBound {
 
 /// Parses "FIGURE<=VALUE" or "FIGURE>=VALUE"; nullopt when malformed.
 std::optional<FigureBound> parse_bound(const std::string& text);
+
+/// How finely a key's values may be given, for a search over it: a frequency
+/// given as a number to the micro-hertz (scenario::ConfigNode::rate_as_period
+/// refuses more than 6 decimals), an integer to 1 (0 decimals); any other
+/// key, or one not declared, takes any double (nullopt).
+std::optional<int> setting_decimals(const scenario::KeySchema* key);
+
+/// x rounded to `decimals` (the nearest multiple of 10^-decimals), kept in
+/// [lo, hi] by taking the next multiple inward when the nearest lies outside;
+/// x itself when decimals is nullopt; nullopt when no multiple lies in [lo, hi].
+std::optional<double> setting_in_steps(double x, double lo, double hi, std::optional<int> decimals);
 
 /// One point tried: the objective and how far it breaks the bounds.
 struct Trial {
