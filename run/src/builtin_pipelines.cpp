@@ -14,7 +14,8 @@
   X(region_priority_pipeline)       \
   X(frame_stages_pipeline)          \
   X(present_replay_pipeline)        \
-  X(streaming_pipeline)
+  X(streaming_pipeline)            \
+  X(passthrough_pipeline)
 
 // The registry's entries are defined in the pipelines' own folders.
 namespace latsim::pipelines {
