@@ -108,6 +108,13 @@ std::vector<Case> every_pipeline() {
                                   {"server", {{"render", {{"fixed_ms", 4}}}, {"server_compositor_ms", 1}}},
                                   {"encoder", {{"bitrate_mbps", 50}, {"fixed_ms", 3}}},
                                   {"client", {{"decoder_fixed_ms", 4}, {"client_compositor_ms", 1}, {"reprojection", false}}}}}}});
+  // A see-through headset: the camera image re-projected to the head pose predicted for the refresh.
+  cases.push_back({"passthrough", nullptr,
+                   {{"display", progressive_60hz(640, 480)},
+                    {"pipeline", {{"type", "passthrough"},
+                                  {"camera", {{"exposure_ms", 2}, {"row_readout_us", 2}}},
+                                  {"isp", {{"fixed_ms", 3}}},
+                                  {"compositor", {{"reprojection_ms", 1}, {"composition_ms", 0.5}}}}}}});
   return cases;
 }
 

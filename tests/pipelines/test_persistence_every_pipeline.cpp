@@ -60,6 +60,12 @@ std::vector<Case> every_pipeline() {
                       {"server", {{"render", {{"fixed_ms", 4}}}}},
                       {"encoder", {{"bitrate_mbps", 50}, {"fixed_ms", 3}}},
                       {"client", {{"decoder_fixed_ms", 4}, {"client_compositor_ms", 1}}}}}}},
+      {"passthrough", nullptr,
+       {{"display", small_60hz()},
+        {"pipeline", {{"type", "passthrough"},
+                      {"camera", {{"height_px", 480}, {"exposure_ms", 2}, {"row_readout_us", 10}}},
+                      {"isp", {{"fixed_ms", 3}}},
+                      {"compositor", {{"reprojection_ms", 1}}}}}}},
   };
 }
 

@@ -41,6 +41,8 @@ std::string headline_set(const Json& scenario) {
   if (type == "present_replay") return "present_replay";
   // A streamed headset: what the camera sees beside what the tool reports, the link, and the frames it costs.
   if (type == "streaming") return "streaming";
+  // A see-through headset: how late the real world is seen, where the time goes, and the frames it costs.
+  if (type == "passthrough") return "passthrough";
   return {};
 }
 
