@@ -85,8 +85,8 @@ void bind(scenario::Section& s, PassthroughPipeline::Params& p, const sections::
                     {.doc = "a real object moving in front of the headset (the motions of /motion), for the rig"});
   std::optional<measurement::CameraRigParams> rig;
   s.optional_object("rig", rig, [](scenario::Section& r, measurement::CameraRigParams& v) { sections::bind(r, v, false); },
-                    {.doc = "the rig of latsim filming /pipeline/object and its image at display_point (its object key "
-                            "is not read: it films the real object)"});
+                    {.doc = "the rig of latsim filming /pipeline/object and its image at display_point: the keys of "
+                            "/measurement, whose object key can only be head here and is not used"});
   s.check("rig", !rig || object, "the rig films /pipeline/object: give one");
   if (rig && object) {
     spec.rig = RigSpec{*object, *rig};
