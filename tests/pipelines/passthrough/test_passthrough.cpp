@@ -136,6 +136,40 @@ TEST_CASE("passthrough: a free-running camera adds half a display period on aver
   CHECK(sum / 20.0 == Approx(16.71).margin(1e-6));
 }
 
+TEST_CASE("passthrough: a drifting free-running camera sweeps its phase and averages to the same") {
+  // 1000 ppm fast: frame k opens at 10k / 1.001 ms, 0.00999k ms earlier on
+  // the display's grid each frame, so over the 1000 refreshes of 10 s the
+  // phase sweeps 9.99 ms, almost once through a period, at an even pace:
+  // the mean is the phase average derived above, 16.71 ms, to within what
+  // the last 0.01 ms of the sweep and the first refreshes (before the first
+  // frame is shown) move it (well under 0.05 ms).
+  Json s = passthrough(
+      camera("global", {{"sync", "free"}, {"fps", 100}, {"phase_ms", 9.995}, {"rate_error_ppm", 1000}}),
+      kBeforeRetrace);
+  s["duration_s"] = 10;
+  const Json out = run(s);
+  CHECK(stat(out, "photon_to_photon_ms", "mean") == Approx(16.71).margin(0.05));
+  CHECK(stat(out, "photon_to_photon_ms", "min") == Approx(11.71).margin(0.02));
+  CHECK(stat(out, "photon_to_photon_ms", "max") == Approx(21.71).margin(0.02));
+}
+
+TEST_CASE("passthrough: a camera at half the refresh rate is re-projected twice per frame") {
+  // Frame k now opens 1 ms after retrace 2k: shown at retrace 2k + 1 as
+  // before (13.21 ms) and re-projected again for retrace 2k + 2 (23.21 ms):
+  // the mean is 18.21 ms, and every other composition repeats a frame.
+  Json cam = camera("global", kLocked);
+  cam["refreshes_per_frame"] = 2;
+  const Json out = run(passthrough(cam, kBeforeRetrace));
+  CHECK(stat(out, "photon_to_photon_ms", "min") == Approx(13.21).margin(kTol));
+  CHECK(stat(out, "photon_to_photon_ms", "max") == Approx(23.21).margin(kTol));
+  // Refreshes 1..99 show frames: 50 first showings (odd refreshes), 49
+  // repeats; the compositor also re-projects frame 49 for retrace 100 (at
+  // 998 ms), which the 1 s run ends at: 50 repeated compositions.
+  CHECK(stat(out, "photon_to_photon_ms", "mean") == Approx((50 * 13.21 + 49 * 23.21) / 99.0).margin(kTol));
+  CHECK(out.at("figures").at("camera_frames_repeated").get<int64_t>() == 50);
+  CHECK(stat(out, "scanout_ms", "mean") == Approx(kScanoutMs).margin(kTol));
+}
+
 TEST_CASE("passthrough: the rig filming a moving object through the headset measures photon-to-photon") {
   // A full-persistence panel holds the centre's value for the whole field
   // from its write: lit [w, w + 10 ms], middle w + 5, so photon-to-photon
