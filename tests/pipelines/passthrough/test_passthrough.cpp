@@ -89,6 +89,19 @@ TEST_CASE("passthrough: a global-shutter camera phase-locked to the display give
   CHECK(stat(out, "motion_to_photon_ms", "min") <= 2.401 + kTol);
 }
 
+TEST_CASE("passthrough: on a globally flashed panel the photons wait for the whole field") {
+  // A global flash of 2 ms with no response time lights every pixel of a
+  // field once its last line is written: 20 blank and 480 active lines fill
+  // the whole 10 ms field, so the flash is [10, 12] ms after the retrace
+  // that swapped the frame in, its middle 11 ms: photon-to-photon 10 + 11 -
+  // 2 = 19 ms, of which scanout 11.
+  Json s = passthrough(camera("global", kLocked), kBeforeRetrace);
+  s["display"]["persistence"] = {{"type", "global"}, {"lit_ms", 2}, {"response_ms", 0}};
+  const Json out = run(s);
+  CHECK(stat(out, "photon_to_photon_ms", "mean") == Approx(19.0).margin(kTol));
+  CHECK(stat(out, "scanout_ms", "mean") == Approx(11.0).margin(kTol));
+}
+
 TEST_CASE("passthrough: a rolling shutter sees the point's row later by its row offset") {
   // Row 500 (the centre of 1000 rows) opens 500 x 2 us = 1 ms after row 0:
   // exposed 10k + 2 to 10k + 4, middle 10k + 3. The last row still closes at
