@@ -46,7 +46,7 @@ def rows_of(coll):
         cells = [_ms(camera), _ms(total), "" if gap is None else f"{gap:+.2f}"]
         cells += [_ms(row.mean(f"{s}_ms.mean")) for s in STAGES]
         cells += [_count(row.mean(path)) for _, path in COUNTS]
-        out.append((row.name, cells))
+        out.append((lr.point_name(row, coll), cells))
     return out
 
 

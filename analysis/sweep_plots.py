@@ -170,6 +170,9 @@ def plot_pareto(coll):
     if len(front) <= MAX_PARETO_LABELS:
         names = [sweep_labels.cut(lr.point_name(rows[i], coll), LEGEND_CHARS) for i in front]
         plotting.annotate_apart(ax, [points[i] for i in front], names)
+    if max(p[0] for p in points) > 10 * max(1.0, min(p[0] for p in points)):
+        # Drops span decades (none on a clean link, hundreds on a saturated one): linear near 0, log beyond.
+        ax.set_xscale("symlog", linthresh=1.0)
     ax.set_xlabel(f"{x_label}, mean over replications")
     ax.set_ylabel(f"{y_label}, mean over replications")
     reps = max(r.replications() for r in rows)
