@@ -18,7 +18,9 @@ results.csv and one summary.json per point: the cost grows with the points
 drawn, not with the runs. Long work prints progress lines on stderr. A pacing
 table and pacing_pareto.{png,svg} when some row is paced (analysis/pacing_plot.py); a
 devices table when rows report apparent latency and a camera measurement
-(analysis/devices_table.py).
+(analysis/devices_table.py). A streaming stages table when rows stream
+(analysis/streaming_table.py), and for a sweep streaming_pareto.{png,svg}, latency
+against frames dropped (analysis/sweep_plots.py).
 """
 
 import argparse
