@@ -8,6 +8,8 @@
 // frames. A frame's delivery time is its last packet's arrival at the
 // headset minus the instant it was queued. Prints one line:
 //   frames=N mean_ms=M p50_ms=... p99_ms=... max_ms=... incomplete=K
+// and on stderr the packets missing from the counted frames and the MPDUs
+// for the headset that the access point's MAC discarded, by ns-3's reason.
 // The parameters and the output are those of bench/radio_link.cpp (latsim's
 // model); bench/radio_bench.sh builds this file against Debian's ns-3 (3.37)
 // and compares the two. Not part of latsim's build.
