@@ -173,6 +173,7 @@ def plot_pareto(coll):
     if max(p[0] for p in points) > 10 * max(1.0, min(p[0] for p in points)):
         # Drops span decades (none on a clean link, hundreds on a saturated one): linear near 0, log beyond.
         ax.set_xscale("symlog", linthresh=1.0)
+        ax.set_xlim(left=-0.5)  # no negative decades: a count of drops starts at 0
     ax.set_xlabel(f"{x_label}, mean over replications")
     ax.set_ylabel(f"{y_label}, mean over replications")
     reps = max(r.replications() for r in rows)
