@@ -18,7 +18,9 @@ results.csv and one summary.json per point: the cost grows with the points
 drawn, not with the runs. Long work prints progress lines on stderr. A pacing
 table and pacing_pareto.{png,svg} when some row is paced (analysis/pacing_plot.py); a
 devices table when rows report apparent latency and a camera measurement
-(analysis/devices_table.py).
+(analysis/devices_table.py). A streaming stages table when rows stream
+(analysis/streaming_table.py), and for a sweep streaming_pareto.{png,svg}, latency
+against frames dropped (analysis/sweep_plots.py).
 """
 
 import argparse
@@ -37,6 +39,7 @@ import devices_table  # noqa: E402
 import plotting  # noqa: E402
 import prediction  # noqa: E402
 import sweep_labels  # noqa: E402
+import streaming_table  # noqa: E402
 import sweep_plots  # noqa: E402
 from plotting import plt  # noqa: E402
 from progress import Progress  # noqa: E402
@@ -355,6 +358,12 @@ def write_markdown(coll, drawn, top, figure, title=None):
     md += latency_over_time.markdown(coll, drawn["over_time"])
     md += list(pacing_plot.markdown(coll, drawn["pacing"]))
     md += devices_table.markdown(coll)
+    md += streaming_table.markdown(coll)
+    if drawn.get("pareto"):
+        md += ["## Latency against frames dropped", "",
+               "Each sweep point's mean motion-to-photon latency against its mean frames dropped; the red line "
+               "joins the points no other point beats on both (the Pareto front), labelled with their axis "
+               "values.", "", f"![{drawn['pareto']}]({drawn['pareto']}.png)", ""]
     if drawn["prediction"] or prediction.has_prediction(coll):
         md += prediction.markdown(coll)
         if drawn["prediction"]:
@@ -384,6 +393,7 @@ def draw_everything(coll, args, figure):
     progress = Progress("plots against the axes", len(coll.axes))
     drawn["sweep"] = sweep_plots.draw(coll, sweep_figures(coll), progress)
     progress.finish()
+    drawn["pareto"] = sweep_plots.plot_pareto(coll)
     drawn["heatmap"] = heatmap.draw(coll, figure[1], figure[2]) if coll.kind == "sweep" else None
     limit = args.gantt_limit
     if limit is None and coll.kind == "sweep":

@@ -12,6 +12,7 @@ every figure stays within 2,000 px.
 import os
 
 import latsim_results as lr
+import pacing_plot
 import plotting
 import sweep_labels
 from plotting import plt
@@ -141,3 +142,41 @@ def draw(coll, figures, progress=None):
         if progress:
             progress.advance()
     return drawn
+
+
+
+# The Pareto plot's figures: latency (y) against frames dropped (x), by their results.csv columns.
+PARETO_LATENCY = "mtp_mean_ms"
+PARETO_DROPPED = "frames_dropped"
+# Front points labelled with their axis values; beyond this many the labels would pile up.
+MAX_PARETO_LABELS = 12
+
+
+def plot_pareto(coll):
+    """streaming_pareto: each sweep point's mean latency against its mean frames dropped (means over
+    replications), the Pareto front (pacing_plot.pareto_front) joined and labelled with the point's axis
+    values as the sweep file names them; None when fewer than two points report frames dropped."""
+    columns = {name: (path, label) for name, path, label in lr.HEADLINE}
+    (y_path, y_label), (x_path, x_label) = columns[PARETO_LATENCY], columns[PARETO_DROPPED]
+    rows = [r for r in coll.rows if r.values(x_path) and r.values(y_path)]
+    if coll.kind != "sweep" or len(rows) < 2:
+        return None
+    points = [(lr.mean_ci95(r.values(x_path))[0], lr.mean_ci95(r.values(y_path))[0]) for r in rows]
+    front = pacing_plot.pareto_front(points)
+    fig, ax = plt.subplots(figsize=(9, 6))
+    ax.scatter([p[0] for p in points], [p[1] for p in points], s=18, color="tab:grey", label="sweep point")
+    ax.plot([points[i][0] for i in front], [points[i][1] for i in front], marker="o", color="tab:red",
+            label="Pareto front (no point has fewer drops and less latency)")
+    if len(front) <= MAX_PARETO_LABELS:
+        names = [sweep_labels.cut(lr.point_name(rows[i], coll), LEGEND_CHARS) for i in front]
+        plotting.annotate_apart(ax, [points[i] for i in front], names)
+    if max(p[0] for p in points) > 10 * max(1.0, min(p[0] for p in points)):
+        # Drops span decades (none on a clean link, hundreds on a saturated one): linear near 0, log beyond.
+        ax.set_xscale("symlog", linthresh=1.0)
+        ax.set_xlim(left=-0.5)  # no negative decades: a count of drops starts at 0
+    ax.set_xlabel(f"{x_label}, mean over replications")
+    ax.set_ylabel(f"{y_label}, mean over replications")
+    reps = max(r.replications() for r in rows)
+    ax.set_title(f"Latency against frames dropped (lower left is better): {len(rows)} points, {reps} replication(s)")
+    ax.legend(fontsize=7, loc="upper right")
+    return _save(fig, coll, "streaming_pareto")

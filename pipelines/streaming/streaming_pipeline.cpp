@@ -260,20 +260,25 @@ void StreamingPipeline::first_shown(Frame& f, int64_t k, int64_t field, des::Tim
   // Late: lit a refresh or more after the photon time the server predicted for.
   const des::Time photon = ctx_->frame_photon_time(field);
   if (photon > f.target + des::Time::ps(period_.ticks() / 2)) ++frames_late_;
-  const des::Time vsync = ctx_->display.timing().field_start(field);
   results::FigureWriter& r = ctx_->figures;
-  // ALVR's statistics: the game from the tracking's arrival at the server to
-  // the frame's present; the decoder from the frame's arrival (its wait for
-  // the decoder included); the decoder queue until a composition takes it;
-  // the network the rest of the tool's total, uplink and downlink together.
-  const des::Time total = vsync - f.report_sent;
+  // ALVR's statistics (alvr/client_core/src/statistics.rs and
+  // alvr/server_core/src/statistics.rs): the total from the tracking's
+  // sending to the submit plus the runtime's vsync queue, which ends at the
+  // display time the runtime predicts for the refresh (OpenXR's
+  // predictedDisplayTime: the photon time of the field, not its retrace).
+  // The game from the tracking's arrival at the server to the frame's
+  // present; the decoder from the frame's arrival (its wait for the decoder
+  // included); the decoder queue until a composition takes it; the network
+  // the rest of the total, uplink and downlink together.
+  const des::Time display_time = photon;
+  const des::Time total = display_time - f.report_sent;
   const des::Time game = f.game_end - f.report_received;
   const des::Time server_compositor = f.compositor_end - f.game_end;
   const des::Time encoder = f.encode_end - f.compositor_end;
   const des::Time decoder = f.decode_end - f.received;
   const des::Time decoder_queue = start - f.decode_end;
   const des::Time client_compositor = end - start;
-  const des::Time vsync_queue = vsync - end;
+  const des::Time vsync_queue = display_time - end;
   r.add("game_ms", game.to_ms());
   r.add("server_compositor_ms", server_compositor.to_ms());
   r.add("encoder_ms", encoder.to_ms());
@@ -283,7 +288,7 @@ void StreamingPipeline::first_shown(Frame& f, int64_t k, int64_t field, des::Tim
   r.add("decoder_queue_ms", decoder_queue.to_ms());
   r.add("client_compositor_ms", client_compositor.to_ms());
   r.add("vsync_queue_ms", vsync_queue.to_ms());
-  // What the tool reports: from the tracking sample the headset sent to the vsync that showed it.
+  // What the tool reports: from the tracking the headset sent to the predicted display time of the refresh that showed it.
   r.add("reported_total_ms", total.to_ms());
   // Measured directly: the encoder's end to the frame's last packet received; the report's trip.
   r.add("downlink_ms", (f.received - f.encode_end).to_ms());
