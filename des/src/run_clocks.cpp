@@ -5,12 +5,11 @@
 namespace latsim::des {
 
 const des::Clock& RunClocks::resolve(const std::string& name, const std::string& phase_pointer,
-                                     des::RationalSeconds nominal, des::ClockSettings& settings) {
+                                     des::RationalSeconds nominal, const des::ClockSettings& settings) {
   if (find(name) != nullptr) throw std::logic_error("clock \"" + name + "\" resolved twice");
   des::RandomStream stream(seed_, "clock." + name, replication_);
   clocks_.push_back(des::resolve_clock(name, nominal, settings, stream));
   const des::Clock& c = clocks_.back();
-  settings.phase = c.phase;
   // Whole picoseconds divided by 1e9 read back to the same tick (a double
   // carries 15 significant digits; a phase is far below 1e6 ms).
   phases_ms_.emplace_back(phase_pointer, static_cast<double>(c.phase.ticks()) / 1e9);

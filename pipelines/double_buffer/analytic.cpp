@@ -174,7 +174,7 @@ AnalyticInputs analytic_inputs(const RunContext& ctx, des::Time render_time) {
   in.transport = &ctx.transport;
   in.render_time = render_time;
   in.display_phase = display ? display->phase : des::Time::zero();
-  in.tracker_phase = ctx.tracker.clock.phase.value_or(des::Time::zero());
+  in.tracker_phase = tracker ? tracker->phase : des::Time::zero();
   in.poll_phase = poll ? poll->phase : des::Time::zero();
   in.integrate_tracker = varies(tracker) || varies(display);
   in.integrate_poll = poll && (varies(poll) || varies(display));

@@ -12,7 +12,7 @@ void RunContext::end_run_early(std::string why) {
 }
 
 const des::Clock& RunContext::clock(const std::string& name, const std::string& phase_pointer,
-                                    des::RationalSeconds nominal, des::ClockSettings settings) const {
+                                    des::RationalSeconds nominal, const des::ClockSettings& settings) const {
   return clocks.resolve(name, phase_pointer, nominal, settings);
 }
 

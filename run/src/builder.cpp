@@ -105,12 +105,15 @@ std::optional<std::string> phase_luck(const Run& run) {
   return std::string(text);
 }
 
+// Every clock of the run is resolved here, once: the phase each model runs
+// on is the resolved clock's (RunClocks), never written back into the bound
+// scenario, which stays as the scenario file and the defaults make it.
 void resolve_clocks(Run& run, uint64_t replication) {
-  sections::SharedParams& p = run.shared;
+  const sections::SharedParams& p = run.shared;
   run.clocks = std::make_unique<des::RunClocks>(run.seed, replication);
   // A rate error that leaves a period no 64-bit fraction holds is the scenario's problem, at its key.
   auto resolve = [&run](const char* name, const std::string& prefix, des::RationalSeconds period,
-                        des::ClockSettings& settings) -> const des::Clock& {
+                        const des::ClockSettings& settings) -> const des::Clock& {
     try {
       return run.clocks->resolve(name, prefix + "phase_ms", period, settings);
     } catch (const std::invalid_argument& e) {
@@ -118,7 +121,7 @@ void resolve_clocks(Run& run, uint64_t replication) {
     }
   };
   resolve("tracker", "/tracker/", p.tracker.period, p.tracker.clock);
-  tracker::SerialLinkParams& serial = p.transport.serial;
+  const tracker::SerialLinkParams& serial = p.transport.serial;
   if (p.transport.type == tracker::TransportParams::Type::Serial && serial.host_mode == tracker::SerialLinkParams::Poll)
     resolve("poll", "/transport/poll_", tracker::exact_period(serial.poll_interval), serial.poll_clock);
   if (p.transport.type == tracker::TransportParams::Type::UsbHid)
@@ -126,18 +129,35 @@ void resolve_clocks(Run& run, uint64_t replication) {
   if (p.tracker.imu && p.tracker.imu->reference)
     resolve("reference", "/tracker/imu/reference/", p.tracker.imu->reference->period, p.tracker.imu->reference->clock);
   if (p.controller && p.controller->tracker) {
-    tracker::TrackerParams& c = *p.controller->tracker;
+    const tracker::TrackerParams& c = *p.controller->tracker;
     resolve("controller", "/controller/tracker/", c.period, c.clock);
     if (c.imu && c.imu->reference)
       resolve("controller_reference", "/controller/tracker/imu/reference/", c.imu->reference->period,
               c.imu->reference->clock);
-    tracker::TransportParams& link = p.controller->transport;
+    const tracker::TransportParams& link = p.controller->transport;
     if (link.type == tracker::TransportParams::Type::UsbHid)
       resolve("controller_usb_poll", "/controller/transport/poll_", des::RationalSeconds{1, link.usb.poll_hz},
               link.usb.poll_clock);
   }
   resolve("display", "/display/", p.display.raster.field_period, p.display.clock);
   if (p.measurement) resolve("camera", "/measurement/", p.measurement->frame_period, p.measurement->clock);
+}
+
+// A tracker's parameters with the clocks the run resolved for its reports
+// and its reference: the models read their clocks from their parameters.
+tracker::TrackerParams tracker_as_resolved(const Run& run, tracker::TrackerParams t, const char* reports,
+                                           const char* reference) {
+  t.clock = run.clocks->find(reports)->settings();
+  if (t.imu && t.imu->reference) t.imu->reference->clock = run.clocks->find(reference)->settings();
+  return t;
+}
+
+// A link's parameters with the poll clocks the run resolved for it (those it has).
+tracker::TransportParams transport_as_resolved(const Run& run, tracker::TransportParams t, const char* serial_poll,
+                                               const char* usb_poll) {
+  if (const des::Clock* c = serial_poll ? run.clocks->find(serial_poll) : nullptr) t.serial.poll_clock = c->settings();
+  if (const des::Clock* c = run.clocks->find(usb_poll)) t.usb.poll_clock = c->settings();
+  return t;
 }
 
 // Builds one part of a run. Building depends on the scenario alone, so
@@ -178,12 +198,13 @@ std::shared_ptr<const display::ClockNoise> clock_noise(const display::RasterTimi
 void track_controller_chain(Run& run, const RunOptions& options) {
   const sections::ControllerParams& c = *run.shared.controller;
   const des::RandomStream stream(run.seed, "controller", options.replication);
-  auto device = std::make_unique<tracker::Tracker>(*c.tracker, *run.controller_motion, stream.substream("tracker"));
-  auto link = tracker::make_transport(c.transport, stream.substream("transport"));
+  const tracker::TrackerParams chain = tracker_as_resolved(run, *c.tracker, "controller", "controller_reference");
+  auto device = std::make_unique<tracker::Tracker>(chain, *run.controller_motion, stream.substream("tracker"));
+  auto link = tracker::make_transport(transport_as_resolved(run, c.transport, nullptr, "controller_usb_poll"),
+                                      stream.substream("transport"));
   std::unique_ptr<tracker::RuntimeFusion> fusion;
-  if (c.tracker->imu)
-    fusion = std::make_unique<tracker::RuntimeFusion>(*c.tracker->imu, *run.controller_motion,
-                                                      stream.substream("reference"));
+  if (chain.imu)
+    fusion = std::make_unique<tracker::RuntimeFusion>(*chain.imu, *run.controller_motion, stream.substream("reference"));
   const tracker::PredictionParams prediction = run.shared.host.prediction.value_or(tracker::PredictionParams{});
   run.host->track_controller(std::make_unique<DeviceFeed>(run.sim, std::move(device), std::move(link),
                                                           std::move(fusion), prediction, "controller"));
@@ -232,11 +253,13 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
   check_event_budget(run.estimate, options.max_events);
   built_from("/motion", "head motion", [&] { run.motion = tracker::make_motion(p.motion); });
   built_from("/tracker", "tracker", [&] {
-    run.tracker = std::make_unique<tracker::Tracker>(p.tracker, *run.motion,
+    run.tracker = std::make_unique<tracker::Tracker>(tracker_as_resolved(run, p.tracker, "tracker", "reference"),
+                                                     *run.motion,
                                                      des::RandomStream(run.seed, "tracker", options.replication));
   });
-  built_from("/transport", "transport", [&] { 
-    run.transport = tracker::make_transport(p.transport, des::RandomStream(run.seed, "transport", options.replication));
+  built_from("/transport", "transport", [&] {
+    run.transport = tracker::make_transport(transport_as_resolved(run, p.transport, "poll", "usb_poll"),
+                                            des::RandomStream(run.seed, "transport", options.replication));
   });
   Timeline* timeline = p.output.timeline && options.write_timeline ? &run.timeline : nullptr;
   run.timeline.set_max_entries(static_cast<size_t>(p.output.timeline_max_entries));
@@ -244,7 +267,7 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
   if (p.tracker.imu)
     built_from("/tracker/imu", "tracking chain", [&] {
       run.host->fuse_with(std::make_unique<tracker::RuntimeFusion>(
-          *p.tracker.imu, *run.motion, des::RandomStream(run.seed, "reference", options.replication)));
+          *run.tracker->params().imu, *run.motion, des::RandomStream(run.seed, "reference", options.replication)));
     });
   if (p.controller) {
     built_from("/controller/motion", "controller motion",
@@ -259,7 +282,7 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
   built_from("/display", "display", [&] {
     display::RasterParams raster = p.display.raster;
     raster.field_period = run.clocks->find("display")->period;
-    display::RasterTiming timing(raster, *p.display.clock.phase);
+    display::RasterTiming timing(raster, run.clocks->find("display")->phase);
     if (p.display.clock_noise) timing.set_clock_noise(clock_noise(timing, *p.display.clock_noise, run, options));
     run.display = std::make_unique<display::Display>(run.sim, timing, stereo ? 2 : 1, p.display.fidelity,
                                                      p.display.pixel_stride, p.display.pixel_events);
@@ -319,7 +342,7 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
 
   built_from("/pipeline", "pipeline", [&] {
     run.ctx = std::unique_ptr<RunContext>(new RunContext{
-        run.sim, run.seed, options.replication, run.duration, *run.motion, p.tracker, *run.transport, *run.host,
+        run.sim, run.seed, options.replication, run.duration, *run.motion, run.tracker->params(), *run.transport, *run.host,
         *run.display, p.display, p.scene ? &*p.scene : nullptr, run.images, rec.pipeline_figures(), rec.signals(),
         run.app_frames, run.files, *run.clocks, p.host.ipd_m,
         stereo, timeline, run.frames.get()});

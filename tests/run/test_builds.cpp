@@ -6,7 +6,9 @@
 
 #include <stdexcept>
 
+#include "latsim/run/builder.hpp"
 #include "latsim/run/prepared_run.hpp"
+#include "latsim/tracker/transport.hpp"
 #include "latsim/run/runner.hpp"
 #include "run_helpers.hpp"
 
@@ -81,5 +83,40 @@ TEST_CASE("a run's drawn phases are read from its clocks; the document stays as 
   for (const char* clock : {"/tracker/phase_ms", "/display/phase_ms"}) {
     const nlohmann::json::json_pointer p(clock);
     CHECK(summary.at("scenario")[p] == resolved[p]);
+  }
+}
+
+TEST_CASE("a clock's phase is decided once, by the run's clocks, and never written back", "[run][builds][clocks]") {
+  // The polled serial HMD with no phase keys: the tracker's, the kernel's
+  // poll timer's and the display's phases are drawn per replication.
+  nlohmann::json s = testing::base_scenario();
+  s["tracker"].erase("phase_ms");
+  s["display"].erase("phase_ms");
+  s["transport"] = {{"type", "serial"}, {"record_bytes", 32}, {"baud", 19200}, {"host", "poll"}, {"poll_interval_ms", 7}};
+  const auto doc = doc_of(s);
+  for (uint64_t replication : {0u, 1u, 2u}) {
+    run::RunOptions options;
+    options.replication = replication;
+    run::Run run;
+    run::build(run, doc, options);
+    // The bound scenario is what the file and the defaults make it: no phase.
+    CHECK_FALSE(run.shared.tracker.clock.phase.has_value());
+    CHECK_FALSE(run.shared.display.clock.phase.has_value());
+    CHECK_FALSE(run.shared.transport.serial.poll_clock.phase.has_value());
+    // Each model runs on the phase its clock drew: report 0 of the tracker,
+    // field 0 of the display and the poll timer all start at that phase.
+    const des::Clock& tracker = *run.clocks->find("tracker");
+    const des::Clock& display = *run.clocks->find("display");
+    const des::Clock& poll = *run.clocks->find("poll");
+    CHECK(tracker.drawn);
+    CHECK(run.tracker->nominal_time(0) == tracker.phase);
+    CHECK(run.display->timing().field_start(0) == display.phase);
+    const auto* serial = dynamic_cast<const tracker::SerialLink*>(run.transport.get());
+    REQUIRE(serial != nullptr);
+    CHECK(serial->params().poll_clock.phase == poll.phase);
+    // A drawn phase lies within one period (7 ms poll, 1/60 s tracker and display).
+    CHECK(poll.phase < des::Time::ms(7));
+    CHECK(tracker.phase.to_seconds() < 1.0 / 60.0);
+    CHECK(display.phase.to_seconds() < 1.0 / 60.0);
   }
 }

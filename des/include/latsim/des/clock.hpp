@@ -34,6 +34,9 @@ struct Clock {
   double rate_error_ppm = 0.0;
 
   PeriodicSchedule schedule() const { return PeriodicSchedule(phase, period); }
+  /// The settings of this clock as resolved (its phase fixed): what a model
+  /// that reads its clock from its parameters is built with.
+  ClockSettings settings() const { return ClockSettings{phase, rate_error_ppm}; }
 };
 
 /// Resolves a clock: a fixed phase is kept; otherwise the phase is drawn

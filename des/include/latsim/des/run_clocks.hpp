@@ -20,10 +20,11 @@ class RunClocks {
  public:
   RunClocks(uint64_t seed, uint64_t replication) : seed_(seed), replication_(replication) {}
 
-  /// Resolves clock `name` whose phase key lives at `phase_pointer`; fills
-  /// `settings.phase` with the phase used. The reference stays valid.
+  /// Resolves clock `name` whose phase key lives at `phase_pointer`. The
+  /// settings are only read: the phase used is the returned clock's (and
+  /// phases_ms()'s), decided here once. The reference stays valid.
   const des::Clock& resolve(const std::string& name, const std::string& phase_pointer, des::RationalSeconds nominal,
-                            des::ClockSettings& settings);
+                            const des::ClockSettings& settings);
   /// The clock called `name`, or nullptr when the run has none.
   const des::Clock* find(const std::string& name) const;
   const std::deque<des::Clock>& all() const { return clocks_; }

@@ -76,7 +76,7 @@ struct RunContext {
   /// by the scenario or drawn from stream "clock.<name>", recorded at
   /// `phase_pointer` in the resolved scenario; rate error applied.
   const des::Clock& clock(const std::string& name, const std::string& phase_pointer, des::RationalSeconds nominal,
-                          des::ClockSettings settings) const;
+                          const des::ClockSettings& settings) const;
   /// The eye pose of a head pose (mono: the head pose).
   tracker::Pose eye_pose(const tracker::Pose& head, int eye) const;
   /// An image of `eye` rendered from the predicted pose `p` between `start`
