@@ -54,7 +54,7 @@ def check_rate(name, f):
 
     The game thread asks for its next frame the cost after it was let go; it makes the
     next running start (SteamVR) or the next frame Monado paces when the cost is at most
-    a refresh period T. Then no refresh is missed. VRChat's 9.5 ms (engine/vrchat.json)
+    a refresh period T. Then no refresh is missed. VRChat's 9.5 ms (engine/vrchat/base.json)
     fits 80, 90 and 75 Hz (12.5, 11.1, 13.3 ms) and not 120 or 144 Hz (8.33, 6.94 ms),
     where it fits two periods: SteamVR counts its first frames late until `late_frames`
     (5) of them raise the throttle level, after which the application runs at half rate
