@@ -69,8 +69,14 @@ void Compositor::count_refresh(EyeImage& src, const JobRecord& warp) {
   // Counted once per refresh, at its first strip: an image that arrives
   // while a refresh is being warped strip by strip counts from the next one.
   if (clock_.slot_of(warp.deadline).strip != 0) return;
+  // Every refresh showing an application frame is its first showing or a
+  // re-warp: frames_shown + frames_rewarped, and a re-warp is planned
+  // (frames_synthesised) or missed (frames_missed).
   const int before = src.refreshes++;
-  if (before == 0) return;
+  if (before == 0) {
+    ++frames_shown_;
+    return;
+  }
   ++frames_rewarped_;
   // At half rate every image is planned to be shown twice (a throttled
   // runtime: n times); showings beyond that are misses.

@@ -42,6 +42,7 @@ class Compositor {
   int rewarps_of(int64_t image_id) const;
 
   int64_t warps() const { return warps_; }
+  int64_t frames_shown() const { return frames_shown_; }
   int64_t frames_rewarped() const { return frames_rewarped_; }
   int64_t frames_synthesised() const { return frames_synthesised_; }
   int64_t warps_late() const { return warps_late_; }
@@ -80,6 +81,7 @@ class Compositor {
   std::vector<Held> held_;  ///< in job order
   std::map<int64_t, int> rewarps_;      ///< image id -> rewarps (recent images only)
   int64_t warps_ = 0;
+  int64_t frames_shown_ = 0;  ///< refreshes that showed an application frame for the first time
   int64_t frames_rewarped_ = 0;
   int64_t frames_synthesised_ = 0;
   int64_t warps_late_ = 0;

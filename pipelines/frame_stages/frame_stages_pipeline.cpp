@@ -198,6 +198,7 @@ void FrameStagesPipeline::finish(RunContext& ctx) {
   }
   r.use_headline("time_warp");
   warn_about_overload(ctx);
+  r.set("frames_shown", compositor_->frames_shown());
   r.set("frames_rewarped", compositor_->frames_rewarped());
   r.set("frames_synthesised", compositor_->frames_synthesised());
   r.set("warps", compositor_->warps());
