@@ -137,8 +137,7 @@ def _typed_axis(values, label):
     if not any(isinstance(v, (dict, list)) for v in values):
         return list(values)
     texts = [json.dumps(v, sort_keys=True) for v in values]
-    distinct = list(dict.fromkeys(texts))
-    labels = dict(zip(distinct, _sweep_labels.value_labels(distinct, label)))
+    labels = _sweep_labels.value_labels(list(dict.fromkeys(texts)), label)
     return [labels[t] for t in texts]
 
 
