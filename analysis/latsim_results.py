@@ -10,9 +10,11 @@ import io
 import json
 import math
 import os
+import re
 from fractions import Fraction
 
 import sweep_labels
+from intervals import mean_ci95, t975  # noqa: F401 (the report's and the plots' intervals)
 from latsim_store import SweepStore
 
 # Every figure is declared once, in the figure registry of the simulator
@@ -52,6 +54,56 @@ for _f in REGISTRY["figures"]:
 # Distributions drawn as CDFs, histograms and against sweep axes, in the registry's order:
 # (figure, its "plot" entry).
 PLOTS = [(f["name"], f["plot"]) for f in REGISTRY["figures"] if "plot" in f]
+
+
+# A distribution's statistics as figures.json and results.sqlite give them.
+STATISTICS = ("count", "mean", "stddev", "min", "p50", "p90", "p99", "p999", "max")
+
+
+def _name_pattern(name):
+    out = ""
+    for part in re.split(r"(<[a-z_]+>)", name):
+        if part == "<n>":
+            out += r"\d+"
+        elif part.startswith("<") and part[1:-1] in REGISTRY.get("placeholders", {}):
+            out += "(?:" + "|".join(re.escape(w) for w in REGISTRY["placeholders"][part[1:-1]]) + ")"
+        else:
+            out += re.escape(part)
+    return re.compile(out + r"\Z")
+
+
+_KINDS = [(_name_pattern(f["name"]), f["kind"]) for f in REGISTRY["figures"] if f["family"] != "summary"]
+
+
+def figure_kind(name):
+    """The registry's kind of the figure figures.json nests under `name`, or None."""
+    return next((kind for pattern, kind in _KINDS if pattern.match(name)), None)
+
+
+def figure_meaning(name):
+    """The registry's one-line meaning of a figure (its glossary entry is in docs/figures.md)."""
+    return next(f["meaning"] for f in REGISTRY["figures"] if f["name"] == name)
+
+
+def is_figure_path(path):
+    """Whether a table can hold `path`: a declared count, number or flag, or a
+    distribution's statistic (name.stat), as a sweep file's "figures" may
+    choose it (sweep::choosable_figures)."""
+    if figure_kind(path) in ("count", "number", "flag"):
+        return True
+    name, _, stat = path.rpartition(".")
+    return stat in STATISTICS and figure_kind(name) == "distribution"
+
+
+def whole_names(names, max_chars=200):
+    """Names joined by ", " and cut before the first whole name past max_chars ("..., … and N more")."""
+    text = ""
+    for i, name in enumerate(names):
+        item = (", " if i else "") + name
+        if i and len(text) + len(item) > max_chars:
+            return text + f", … and {len(names) - i} more"
+        text += item
+    return text
 
 
 def headline_figure(rows):
@@ -390,39 +442,6 @@ def histogram_edges(distribution):
     if last <= lowers[-1]:
         last = lowers[-1] + 1e-9
     return lowers + [last], counts
-
-
-# Two-sided 95 % quantiles of Student's t by degrees of freedom.
-_T975 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306, 9: 2.262,
-         10: 2.228, 11: 2.201, 12: 2.179, 13: 2.160, 14: 2.145, 15: 2.131, 16: 2.120, 17: 2.110,
-         18: 2.101, 19: 2.093, 20: 2.086, 21: 2.080, 22: 2.074, 23: 2.069, 24: 2.064, 25: 2.060,
-         26: 2.056, 27: 2.052, 28: 2.048, 29: 2.045, 30: 2.042, 40: 2.021, 60: 2.000, 120: 1.980}
-
-
-def t975(df):
-    """Student's t 97.5 % quantile; between tabulated points, linear in 1/df (exact to 3 decimals)."""
-    if df in _T975:
-        return _T975[df]
-    keys = sorted(_T975)
-    if df > keys[-1]:
-        lo, hi, t_lo, t_hi = keys[-1], math.inf, _T975[keys[-1]], 1.960
-    else:
-        hi = next(k for k in keys if k > df)
-        lo = max(k for k in keys if k < df)
-        t_lo, t_hi = _T975[lo], _T975[hi]
-    inv = lambda d: 0.0 if math.isinf(d) else 1.0 / d
-    frac = (inv(lo) - inv(df)) / (inv(lo) - inv(hi))
-    return t_lo + frac * (t_hi - t_lo)
-
-
-def mean_ci95(values):
-    """(mean, half width of the 95 % t-interval); the half width is 0 for fewer than two values."""
-    n = len(values)
-    mean = sum(values) / n
-    if n < 2:
-        return mean, 0.0
-    var = sum((v - mean) ** 2 for v in values) / (n - 1)
-    return mean, t975(n - 1) * math.sqrt(var / n)
 
 
 def quantile_of_buckets(edges, counts, fraction):

@@ -1,6 +1,6 @@
 """Pacing in `latsim report`: one table of each row's motion-to-photon and
-missed frames, and a Pareto plot of mean and p99 motion-to-photon against
-missed frames per minute (pacing_pareto.{png,svg}); the rows no other row
+frames_missed, and a Pareto plot of mean and p99 motion-to-photon against
+frames_missed per minute (pacing_pareto.{png,svg}); the rows no other row
 beats on both are joined as the front (docs/pacing.md).
 """
 
@@ -14,16 +14,20 @@ import plotting  # noqa: E402
 import sweep_labels  # noqa: E402
 from plotting import plt  # noqa: E402
 
-# Table columns: (header, figure path).
+# Table columns: (header, figure path). Counts are headed by their figure
+# names, each with one meaning (the registry's, docs/figures.md), the same in
+# every table.
 COLUMNS = [
     ("MTP mean (ms)", "motion_to_photon_ms.mean"),
     ("MTP p99 (ms)", "motion_to_photon_ms.p99"),
-    ("frames missed", "frames_missed"),
-    ("late to latch", "frames_late_to_latch"),
+    ("frames_missed", "frames_missed"),
+    ("frames_late_to_latch", "frames_late_to_latch"),
     ("latch slack mean (ms)", "latch_slack_ms.mean"),
     ("wake-up error mean (ms)", "wake_up_error_ms.mean"),
-    ("half-rate periods", "half_rate_periods"),
+    ("half_rate_periods", "half_rate_periods"),
 ]
+# The counts the caption defines.
+DEFINED = ("frames_missed", "frames_late_to_latch")
 
 
 def missed_per_minute(row):
@@ -69,11 +73,11 @@ def plot(coll):
         ax.scatter([p[0] for p in pts], [p[1] for p in pts], color="tab:blue", zorder=3)
         front = pareto_front(pts)
         ax.plot([pts[i][0] for i in front], [pts[i][1] for i in front], color="tab:red", label="Pareto front")
-        ax.set_xlabel("missed frames per minute")
+        ax.set_xlabel("frames_missed per minute")
         ax.set_ylabel(f"{label} motion-to-photon (ms)")
         ax.legend(fontsize=8)
         plotting.annotate_apart(ax, pts, [sweep_labels.cut(lr.point_name(r, coll)) for r in named])
-    fig.suptitle("Latency against missed frames (lower left is better)")
+    fig.suptitle("Latency against frames_missed (lower left is better)")
     plotting.save(fig, os.path.join(coll.directory, "pacing_pareto"))
     return "pacing_pareto"
 
@@ -82,10 +86,10 @@ def markdown(coll, plot_base):
     """The report section: the table, and the plot when drawn."""
     if not is_pacing_collection(coll):
         return []
-    header = ["name", "missed / min"] + [h for h, _ in COLUMNS]
-    lines = ["## Pacing: latency against missed frames", "",
-             "Missed frames are refreshes that showed no new application image; `late to latch` counts paced "
-             "frames done after the compositor's latch (docs/pacing.md).", "",
+    header = ["name", "frames_missed / min"] + [h for h, _ in COLUMNS]
+    meanings = "; ".join(f"`{name}`: {lr.figure_meaning(name)}" for name in DEFINED)
+    lines = ["## Pacing: latency against frames_missed", "",
+             f"{meanings} (docs/figures.md, docs/pacing.md).", "",
              "| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     for r in coll.rows:
         cells = [lr.point_name(r, coll), lr_fmt(missed_per_minute(r))] + [lr_fmt(r.mean(p)) for _, p in COLUMNS]

@@ -65,7 +65,7 @@ CHOSEN = []
 
 
 def chosen_columns():
-    return [h for name in CHOSEN for h in lr.HEADLINE if h[0] == name]
+    return [table_figure(name) for name in CHOSEN]
 
 
 def sweep_figures(coll):
@@ -206,10 +206,13 @@ def plot_distributions(coll):
 
 
 def table_figure(name):
-    """(column, figure path, label) of a headline figure named by column or by path, or None."""
+    """(column, figure path, label) of a headline figure named by column or by path, or of any
+    figure a table can hold named by its path (frames_missed, display_ms.p99), or None."""
     for column, path, label in lr.HEADLINE:
         if name in (column, path):
             return column, path, label
+    if lr.is_figure_path(name):
+        return name, name, name
     return None
 
 
@@ -428,8 +431,8 @@ def main(argv):
     args = parser.parse_args(argv[1:])
     figure = table_figure(args.figure) if args.figure is not None else ()
     if figure is None:
-        print(f"report: --figure {args.figure}: expected one of " + ", ".join(c for c, _, _ in lr.HEADLINE),
-              file=sys.stderr)
+        print(f"report: --figure {args.figure}: expected one of " + lr.whole_names([c for c, _, _ in lr.HEADLINE]) +
+              ", or a figure's path (frames_missed, motion_to_photon_ms.p99)", file=sys.stderr)
         return 2
     if (args.gantt_limit is not None and args.gantt_limit < 0) or args.top < 0:
         print("report: --gantt-limit and --top take a count (0 or more)", file=sys.stderr)
@@ -442,8 +445,9 @@ def main(argv):
     unknown = [c for c in chosen if table_figure(c) is None]
     if unknown:
         where = "--figures" if args.figures else f"{args.directory}/plan.json: figures"
-        print(f"report: {where}: {', '.join(unknown)[:200]} is not a column; expected some of " +
-              ", ".join(c for c, _, _ in lr.HEADLINE), file=sys.stderr)
+        print(f"report: {where}: {lr.whole_names(unknown)} is not a column nor a figure's path "
+              "(frames_missed, motion_to_photon_ms.p99); expected some of " +
+              lr.whole_names([c for c, _, _ in lr.HEADLINE]), file=sys.stderr)
         return 2
     CHOSEN[:] = [table_figure(c)[0] for c in chosen]
     if not figure:

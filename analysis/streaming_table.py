@@ -21,7 +21,7 @@ STAGES = ["game", "server_compositor", "encoder", "network", "decoder", "decoder
           "vsync_queue"]
 TOTAL = "reported_total_ms.mean"
 CAMERA = "motion_to_photon_ms.mean"
-COUNTS = [("dropped", "frames_dropped"), ("late", "frames_late"), ("re-projected", "frames_reprojected")]
+COUNTS = [("dropped", "frames_dropped"), ("late", "frames_late"), ("re-projected", "frames_rewarped")]
 
 
 def streaming_rows(coll):

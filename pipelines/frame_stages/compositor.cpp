@@ -69,8 +69,14 @@ void Compositor::count_refresh(EyeImage& src, const JobRecord& warp) {
   // Counted once per refresh, at its first strip: an image that arrives
   // while a refresh is being warped strip by strip counts from the next one.
   if (clock_.slot_of(warp.deadline).strip != 0) return;
+  // Every refresh showing an application frame is its first showing or a
+  // re-warp: frames_shown + frames_rewarped, and a re-warp is planned
+  // (frames_synthesised) or missed (frames_missed).
   const int before = src.refreshes++;
-  if (before == 0) return;
+  if (before == 0) {
+    ++frames_shown_;
+    return;
+  }
   ++frames_rewarped_;
   // At half rate every image is planned to be shown twice (a throttled
   // runtime: n times); showings beyond that are misses.
@@ -78,9 +84,21 @@ void Compositor::count_refresh(EyeImage& src, const JobRecord& warp) {
   else ctx_.app_frames.missed();
 }
 
+void Compositor::account_refresh(int64_t field) {
+  // A warp that ended late makes the next one aim past the refreshes it can
+  // no longer meet ("late" start): those refreshes get no warp at all.
+  if (last_accounted_field_ >= 0 && field > last_accounted_field_ + 1) {
+    refreshes_without_warp_ += field - last_accounted_field_ - 1;
+    gap_begin_ = last_accounted_field_ + 1;
+    gap_end_ = field;
+  }
+  last_accounted_field_ = std::max(last_accounted_field_, field);
+}
+
 bool Compositor::on_begin(JobRecord& warp) {
   if (spec_.mode == Mode::render) return true;
   if (!held_.empty()) release_held(ctx_.display.timing().field_start(clock_.slot_of(warp.deadline).field));
+  if (clock_.slot_of(warp.deadline).strip == 0) account_refresh(clock_.slot_of(warp.deadline).field);
   if (!newest_) {
     if (clock_.slot_of(warp.deadline).strip == 0) ++refreshes_without_image_;
     return false;

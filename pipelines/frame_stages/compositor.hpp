@@ -2,6 +2,7 @@
 // the beam, it re-projects the newest application image to the newest pose.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -42,10 +43,17 @@ class Compositor {
   int rewarps_of(int64_t image_id) const;
 
   int64_t warps() const { return warps_; }
+  int64_t frames_shown() const { return frames_shown_; }
   int64_t frames_rewarped() const { return frames_rewarped_; }
   int64_t frames_synthesised() const { return frames_synthesised_; }
   int64_t warps_late() const { return warps_late_; }
   int64_t refreshes_without_image() const { return refreshes_without_image_; }
+  /// Refreshes skipped before field `fields_seen` (the first the run did not
+  /// see start): the last warp may have aimed past the run's end.
+  int64_t refreshes_without_warp(int64_t fields_seen) const {
+    const int64_t beyond = gap_end_ - std::max(gap_begin_, fields_seen);
+    return refreshes_without_warp_ - std::max<int64_t>(0, beyond);
+  }
 
  private:
   /// A completed application image in an eye buffer.
@@ -67,6 +75,9 @@ class Compositor {
   /// Adopts the held frames whose retrace has come by `retrace`.
   void release_held(des::Time retrace);
   void count_refresh(EyeImage& src, const JobRecord& warp);
+  /// Accounts for the refresh of a warp's first strip, and for the refreshes
+  /// since the last one that no warp was begun for.
+  void account_refresh(int64_t field);
   void release_if_unused(int64_t frame);
   results::ImageRecord warped_record(const JobRecord& warp, int64_t frame, const EyeImage* src, int eye) const;
 
@@ -80,10 +91,14 @@ class Compositor {
   std::vector<Held> held_;  ///< in job order
   std::map<int64_t, int> rewarps_;      ///< image id -> rewarps (recent images only)
   int64_t warps_ = 0;
+  int64_t frames_shown_ = 0;  ///< refreshes that showed an application frame for the first time
   int64_t frames_rewarped_ = 0;
   int64_t frames_synthesised_ = 0;
   int64_t warps_late_ = 0;
   int64_t refreshes_without_image_ = 0;
+  int64_t refreshes_without_warp_ = 0;  ///< refreshes skipped: the warp aimed past them
+  int64_t last_accounted_field_ = -1;
+  int64_t gap_begin_ = 0, gap_end_ = 0;  ///< the last run of skipped refreshes, [begin, end)
 };
 
 }  // namespace latsim::pipelines::frame_stages

@@ -198,11 +198,14 @@ void FrameStagesPipeline::finish(RunContext& ctx) {
   }
   r.use_headline("time_warp");
   warn_about_overload(ctx);
+  r.set("frames_shown", compositor_->frames_shown());
   r.set("frames_rewarped", compositor_->frames_rewarped());
   r.set("frames_synthesised", compositor_->frames_synthesised());
   r.set("warps", compositor_->warps());
   r.set("warps_late", compositor_->warps_late());
   r.set("refreshes_without_image", compositor_->refreshes_without_image());
+  r.set("refreshes_without_warp",
+        compositor_->refreshes_without_warp(ctx.display.timing().field_at_or_after(ctx.sim.now())));
   r.list("residual_by_rewarps");
   int row = 0;
   for (size_t k = 0; k < residuals_->by_rewarps().size(); ++k) {

@@ -128,7 +128,7 @@ void PassthroughPipeline::compose_now(int64_t field) {
 
 void PassthroughPipeline::composed(int64_t field, int64_t k, const tracker::PosePrediction& pose, des::Time start) {
   const des::Time now = ctx_->sim.now();
-  if (ctx_->display.timing().field_at_or_after(now) > field) ++compositions_late_;
+  if (ctx_->display.timing().field_at_or_after(now) > field) ++warps_late_;
   // The camera image re-projected to each eye's viewpoint at the newest
   // head pose, predicted for the refresh it is meant for.
   for (int eye = 0; eye < ctx_->display.eyes(); ++eye) {
@@ -187,7 +187,7 @@ void PassthroughPipeline::finish(RunContext& ctx) {
   r.set("camera_frames_dropped", frames_dropped_);
   r.set("camera_frames_repeated", frames_repeated_);
   r.set("refreshes_without_image", refreshes_without_image_);
-  r.set("compositions_late", compositions_late_);
+  r.set("warps_late", warps_late_);
   if (spec_.rig) film_object(ctx);
   r.use_headline("passthrough");
 }

@@ -78,7 +78,7 @@ class PassthroughPipeline final : public Pipeline {
   std::optional<des::PeriodicSchedule> rig_camera_;
   des::KindId kind_readout_ = 0, kind_isp_ = 0, kind_compose_ = 0, kind_composed_ = 0;
   int64_t frames_read_ = 0, frames_shown_ = 0, frames_dropped_ = 0, frames_repeated_ = 0,
-          refreshes_without_image_ = 0, compositions_late_ = 0;
+          refreshes_without_image_ = 0, warps_late_ = 0;
 };
 
 /// Reads /pipeline of a passthrough scenario (passthrough/bind.cpp).

@@ -223,7 +223,7 @@ void StreamingPipeline::compose(int64_t field) {
   const std::optional<tracker::PosePrediction> local = ctx_->host.pose_for(now, ctx_->frame_photon_time(field));
   const int64_t k = *newest_decoded_;
   Frame& f = frames_.at(k);
-  if (f.picked) ++frames_reprojected_;
+  if (f.picked) ++frames_rewarped_;
   f.picked = true;
   const des::Time end = now + spec_.client.client_compositor;
   ctx_->sim.at(end, kind_client_, [this, field, k, pose = *local, now] { composed(field, k, pose, now); });
@@ -233,7 +233,7 @@ void StreamingPipeline::composed(int64_t field, int64_t k, const tracker::PosePr
   Frame& f = frames_.at(k);
   const des::Time now = ctx_->sim.now();
   const int64_t shown_field = ctx_->display.timing().field_at_or_after(now);
-  if (shown_field > field) ++compositions_late_;
+  if (shown_field > field) ++warps_late_;
   for (int eye = 0; eye < ctx_->display.eyes(); ++eye) {
     results::ImageRecord rec = ctx_->image_record(k, eye, f.pose, start, now);
     if (spec_.client.reprojection) {
@@ -307,9 +307,9 @@ void StreamingPipeline::finish(RunContext& ctx) {
   r.set("frames_dropped", frames_incomplete_ + frames_superseded_);
   r.set("frames_incomplete", frames_incomplete_);
   r.set("frames_superseded", frames_superseded_);
-  r.set("frames_reprojected", frames_reprojected_);
+  r.set("frames_rewarped", frames_rewarped_);
   r.set("refreshes_without_image", refreshes_without_image_);
-  r.set("compositions_late", compositions_late_);
+  r.set("warps_late", warps_late_);
   r.set("encoder_frame_time_ms", encode_.to_ms());
   r.set("frame_bytes", frame_bytes_);
   r.set("pose_reports_sent", pose_reports_sent_);

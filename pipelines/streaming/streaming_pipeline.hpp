@@ -91,7 +91,7 @@ class StreamingPipeline final : public Pipeline {
   des::KindId kind_game_ = 0, kind_compositor_ = 0, kind_slice_ = 0, kind_decode_ = 0, kind_client_ = 0,
               kind_report_ = 0;
   int64_t game_frames_ = 0, game_skipped_ = 0, frames_shown_ = 0, frames_late_ = 0, frames_incomplete_ = 0,
-          frames_superseded_ = 0, frames_reprojected_ = 0, refreshes_without_image_ = 0, compositions_late_ = 0,
+          frames_superseded_ = 0, frames_rewarped_ = 0, refreshes_without_image_ = 0, warps_late_ = 0,
           packets_sent_ = 0, pose_reports_sent_ = 0;
 };
 

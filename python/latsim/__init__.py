@@ -4,6 +4,14 @@ dicts and its tables as pandas DataFrames, without files.
     import latsim
     r = latsim.run("scenarios/hmd_60hz_direct.json", set={"/duration_s": 1})
     r.figures["motion_to_photon_ms"]["mean"]
+    t = latsim.sweep("scenarios/devices/devices_sweep.json")   # one row per run
+    latsim.mean_ci(t, "motion_to_photon_ms.mean", by="/description")
+
+Tables are tidy: one row per run (sweep point and replication), one column
+per scalar figure by its figures.json name, a distribution's statistics after
+a dot (motion_to_photon_ms.mean, .p50, .p99, ...), axis values as typed
+columns named by their pointer (a whole JSON object by the sweep's label
+for it).
 
 A scenario or sweep is a file path or a dict holding the same JSON. Bad input
 raises latsim.ScenarioError (a ValueError) whose text is the line `latsim`
@@ -18,9 +26,12 @@ import tempfile
 
 from ._latsim import RunFailure, ScenarioError, git_revision, version
 from . import _latsim
+from . import _tables
 from ._results import Result
+from ._tables import mean_ci
 
-__all__ = ["run", "sweep", "schema", "Result", "ScenarioError", "RunFailure", "version", "git_revision"]
+__all__ = ["run", "sweep", "load", "load_run", "compare", "mean_ci", "schema", "Result", "ScenarioError",
+           "RunFailure", "version", "git_revision"]
 __version__ = version
 
 # The name a scenario or sweep given as a dict goes by in messages.
@@ -80,7 +91,7 @@ def _check_out(out):
 
 
 def run(scenario, set=None, seed=None, replication=0, *, out=None, ledger=False, samples=False, timeline=False,
-        profile=False, base_dir=None):
+        profile=False, presentmon=False, base_dir=None):
     """Runs one scenario as `latsim run` does and returns a Result.
 
     scenario    -- a scenario file, or a dict of the same JSON (its include
@@ -95,7 +106,20 @@ def run(scenario, set=None, seed=None, replication=0, *, out=None, ledger=False,
     samples     -- Result.samples (and samples.csv in out)
     timeline    -- Result.timeline (kept while the scenario's /output/timeline is on)
     profile     -- wall time per model in summary["models"], as --profile
+    presentmon  -- Result.presentmon without out= (the run writes its files
+                   into a temporary directory, read back and removed)
     """
+    if presentmon and out is None:
+        import pandas
+        with tempfile.TemporaryDirectory(prefix="latsim-run-") as tmp:
+            result = run(scenario, set, seed, replication, out=tmp, ledger=ledger, samples=samples,
+                         timeline=timeline, profile=profile, base_dir=base_dir)
+            table = os.path.join(tmp, "presentmon.csv")
+            frames = pandas.read_csv(table) if os.path.exists(table) else None
+            if timeline:
+                result._tables["timeline"] = result.timeline.copy()
+        result.out, result._presentmon = None, frames
+        return result
     name, text = _source(scenario, base_dir, "scenario")
     overrides = _overrides(set)
     seed = _check_count("seed", seed, True)
@@ -118,8 +142,9 @@ def run(scenario, set=None, seed=None, replication=0, *, out=None, ledger=False,
 
 
 def sweep(sweep, jobs=None, *, out=None, ledger=False, samples=False, base_dir=None):
-    """Runs every run of a sweep as `latsim sweep` does and returns results.csv
-    as a DataFrame (one row per run, in plan order).
+    """Runs every run of a sweep as `latsim sweep` does and returns its tidy
+    table (one row per run, in plan order: run_id, point, the axes, seed,
+    replication, every scalar figure, events, wall_s), as latsim.load gives it.
 
     sweep  -- a sweep file, or a dict of the same JSON (its "base" relative to
               base_dir, default the working directory)
@@ -141,9 +166,8 @@ def sweep(sweep, jobs=None, *, out=None, ledger=False, samples=False, base_dir=N
 
 
 def _sweep_into(name, text, out_dir, jobs, ledger, samples):
-    import pandas
     outcome = _latsim.sweep(name, text, out_dir, jobs, bool(ledger), bool(samples))
-    results = pandas.read_csv(outcome["results_csv"])
+    results = _tables.sweep_table(out_dir)
     failures = outcome["failures"]
     if failures:
         shown = "; ".join(failures[:3]) + ("; ..." if len(failures) > 3 else "")
@@ -158,3 +182,41 @@ def schema(format="json-schema"):
     the reference as text (as `latsim schema` prints them)."""
     text = _latsim.schema(format)
     return json.loads(text) if format == "json-schema" else text
+
+
+def load(directory):
+    """The tidy table of any directory the `latsim` command writes: a run
+    (one row), a sweep (one row per finished run, from results.sqlite and
+    plan.json) or a directory of runs (one row each, named by directory)."""
+    return _tables.load(directory)
+
+
+def load_run(directory):
+    """A run directory as a Result: its figures, and its per-frame and
+    per-sample tables (frames, fields, tracker, samples, timeline,
+    presentmon) where the run wrote them."""
+    return Result.from_directory(directory)
+
+
+def compare(capture, run, *, application="", process_id=None, ks_threshold=0.1, mean_tolerance=0.1):
+    """Sets a capture beside a run as `latsim compare` does (its reader and
+    verdicts, not a second comparison) and returns compare.csv as a
+    DataFrame, one row per quantity; .attrs holds the warnings and notes.
+
+    capture -- a PresentMon, OVR Metrics Tool, VrApi or SteamVR frame timing capture
+    run     -- a run directory, a Result that wrote its files (out=), or another capture
+    """
+    import io
+    import pandas
+    if isinstance(run, Result):
+        if run.out is None:
+            raise ValueError("compare: the run wrote no files: run it with out=DIR")
+        run = run.out
+    if process_id is not None:
+        process_id = _check_count("process_id", process_id, False)
+    outcome = _latsim.compare(os.fspath(capture), os.fspath(run), application, process_id, float(ks_threshold),
+                              float(mean_tolerance))
+    table = pandas.read_csv(io.StringIO(outcome["csv"]), keep_default_na=False, na_values=[""])
+    table.attrs.update(warnings=list(outcome["warnings"]), notes=list(outcome["notes"]),
+                       capture=outcome["capture"], run=outcome["run"])
+    return table

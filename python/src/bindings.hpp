@@ -9,5 +9,7 @@ namespace latsim::python {
 void add_run(pybind11::module_& m);
 /// sweep(): every run of a sweep into a sweep directory and its tables.
 void add_sweep(pybind11::module_& m);
+/// compare(): a capture beside a run, as latsim compare's table.
+void add_compare(pybind11::module_& m);
 
 }  // namespace latsim::python

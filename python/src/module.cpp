@@ -17,6 +17,7 @@ PYBIND11_MODULE(_latsim, m) {
   latsim::python::add_errors(m);
   latsim::python::add_run(m);
   latsim::python::add_sweep(m);
+  latsim::python::add_compare(m);
   m.def(
       "schema",
       [](const std::string& format) {

@@ -1,5 +1,6 @@
 #include "latsim/scenario/config.hpp"
 
+#include "latsim/scenario/choice_list.hpp"
 #include "latsim/scenario/json_text.hpp"
 #include "latsim/scenario/readable.hpp"
 #include "latsim/scenario/schema.hpp"
@@ -215,9 +216,8 @@ std::string ConfigNode::choice(std::string_view key, std::string def,
   const std::string v = string(key, std::move(def));
   for (auto a : allowed)
     if (v == a) return v;
-  std::string list;
-  for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string("\"") + std::string(a) + "\"";
-  fail(key, "unknown value \"" + v + "\"; expected one of " + list);
+  fail(key, "unknown value \"" + v + "\"; expected one of " +
+                choice_list(std::vector<std::string>(allowed.begin(), allowed.end())));
 }
 
 std::vector<double> ConfigNode::numbers(std::string_view key) const {

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <vector>
 
+#include "latsim/scenario/choice_list.hpp"
+
 namespace latsim::scenario {
 
 namespace {
@@ -70,6 +72,17 @@ std::string readable(std::string_view text, size_t max_chars) {
   std::string out = readable_start(text, max_chars, cut);
   if (cut) out += "\u2026 (" + std::to_string(text.size()) + " bytes)";
   return out;
+}
+
+std::string choice_list(const std::vector<std::string>& names, size_t max_chars) {
+  std::string list;
+  for (size_t i = 0; i < names.size(); ++i) {
+    const std::string item = (i ? ", " : "") + quote_value(names[i]);
+    if (i > 0 && list.size() + item.size() > max_chars)
+      return list + ", \u2026 and " + std::to_string(names.size() - i) + " more";
+    list += item;
+  }
+  return list;
 }
 
 std::string number_text(double x) {

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "latsim/scenario/choice_list.hpp"
 #include "section_internal.hpp"
 #include "latsim/scenario/readable.hpp"
 
@@ -180,9 +181,7 @@ std::string Section::choice_name(std::string_view key, const std::string& curren
   const std::string v = spec.required ? node_->string(key) : node_->string(key, current);
   for (const auto& n : names)
     if (v == n) return v;
-  std::string list;
-  for (const auto& n : names) list += (list.empty() ? "\"" : ", \"") + n + "\"";
-  fail(key, "unknown value \"" + v + "\"; expected one of " + list);
+  fail(key, "unknown value \"" + v + "\"; expected one of " + choice_list(names));
 }
 
 void Section::choices(std::string_view key, std::vector<std::string>& v, const std::vector<std::string>& names,
@@ -196,10 +195,8 @@ void Section::choices(std::string_view key, std::vector<std::string>& v, const s
   v = node_->strings(key, v);
   for (size_t i = 0; i < v.size(); ++i) {
     if (std::find(names.begin(), names.end(), v[i]) != names.end()) continue;
-    std::string list;
-    for (const auto& n : names) list += (list.empty() ? "\"" : ", \"") + n + "\"";
     throw ScenarioError(join_pointer(join_pointer(pointer(), key), std::to_string(i)),
-                        "unknown value \"" + v[i] + "\"; expected one of " + list);
+                        "unknown value \"" + v[i] + "\"; expected one of " + choice_list(names));
   }
 }
 

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "latsim/scenario/choice_list.hpp"
 #include "latsim/scenario/json_text.hpp"
 #include "latsim/scenario/section.hpp"
 #include "section_internal.hpp"
@@ -74,9 +75,7 @@ void check_against(const KeySchema& k, const Json& value, const std::string& par
     std::string v;
     s.text(k.name, v, spec);
     if (std::find(k.choices.begin(), k.choices.end(), v) != k.choices.end()) return;
-    std::string list;
-    for (const auto& n : k.choices) list += (list.empty() ? "\"" : ", \"") + n + "\"";
-    throw ScenarioError(pointer, "unknown value \"" + v + "\"; expected one of " + list);
+    throw ScenarioError(pointer, "unknown value \"" + v + "\"; expected one of " + choice_list(k.choices));
   } else if (k.type == "rate") {
     des::RationalSeconds period{1, 1};
     s.rate(k.name, period, spec);

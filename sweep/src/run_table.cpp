@@ -1,10 +1,13 @@
 #include "latsim/sweep/run_table.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <set>
 
 #include "latsim/results/figure_registry.hpp"
 #include "latsim/sweep/plan.hpp"
+#include "latsim/sweep/run_row.hpp"
 
 namespace latsim::sweep {
 
@@ -63,6 +66,64 @@ std::vector<HeadlineColumn> headline_columns() {
   return columns;
 }
 
+namespace {
+
+// A declared name with its placeholders filled in by every word they stand
+// for; an index (<n>) cannot be listed, so such names are left out.
+void expand_name(const results::FigureRegistry& registry, const std::string& name, std::vector<std::string>& out) {
+  const size_t open = name.find('<');
+  if (open == std::string::npos) {
+    out.push_back(name);
+    return;
+  }
+  const size_t close = name.find('>', open);
+  const std::string word = name.substr(open + 1, close - open - 1);
+  if (word == "n") return;
+  for (const std::string& value : registry.placeholder(word))
+    expand_name(registry, name.substr(0, open) + value + name.substr(close + 1), out);
+}
+
+std::vector<std::string> make_choosable() {
+  std::vector<std::string> names;
+  std::set<std::string> seen;
+  auto add = [&](const std::string& name) {
+    if (seen.insert(name).second) names.push_back(name);
+  };
+  for (const auto& column : headline_columns())
+    if (column.name != "events" && column.name != "wall_s") add(column.name);
+  const results::FigureRegistry& registry = results::FigureRegistry::builtin();
+  for (const results::FigureDecl& d : registry.figures()) {
+    const bool scalar = d.kind == "count" || d.kind == "number" || d.kind == "flag";
+    if (d.family == "summary" || (!scalar && d.kind != "distribution")) continue;
+    std::vector<std::string> expanded;
+    expand_name(registry, d.name, expanded);
+    for (const std::string& name : expanded) {
+      if (scalar) add(name);
+      else
+        for (const char* stat : kDistributionStats) add(name + "." + stat);
+    }
+  }
+  return names;
+}
+
+}  // namespace
+
+const std::vector<std::string>& choosable_figures() {
+  static const std::vector<std::string> names = make_choosable();
+  return names;
+}
+
+std::vector<HeadlineColumn> table_columns(const std::vector<std::string>& chosen) {
+  std::vector<HeadlineColumn> columns = headline_columns();
+  for (const std::string& name : chosen) {
+    const bool known = std::any_of(columns.begin(), columns.end(), [&](const HeadlineColumn& c) {
+      return c.name == name || c.figure == name;
+    });
+    if (!known) columns.push_back({name, name});
+  }
+  return columns;
+}
+
 std::optional<double> find_figure(const Json& summary, const std::string& path) {
   if (summary.contains("figures")) {
     if (auto v = as_number(walk(summary["figures"], path))) return v;
@@ -85,7 +146,7 @@ std::string csv_field(const std::string& text) {
   return quoted + "\"";
 }
 
-std::string results_csv_header(const std::vector<std::string>& axis_pointers) {
+std::string results_csv_header(const std::vector<std::string>& axis_pointers, const std::vector<std::string>& chosen) {
   // Cells are appended one by one: building "," + cell temporaries trips
   // GCC 12's -Wrestrict false positive at -O2.
   std::string text = "run_id,point";
@@ -94,7 +155,7 @@ std::string results_csv_header(const std::vector<std::string>& axis_pointers) {
     text += csv_field(pointer);
   }
   text += ",seed,replication";
-  for (const auto& column : headline_columns()) {
+  for (const auto& column : table_columns(chosen)) {
     text += ',';
     text += column.name;
   }
@@ -104,6 +165,10 @@ std::string results_csv_header(const std::vector<std::string>& axis_pointers) {
 
 void append_results_csv_row(std::string& text, const RunRow& row) {
   static const std::vector<HeadlineColumn> columns = headline_columns();
+  append_results_csv_row(text, row, columns);
+}
+
+void append_results_csv_row(std::string& text, const RunRow& row, const std::vector<HeadlineColumn>& columns) {
   auto cell = [&text](const std::string& value) {
     text += ',';
     text += value;
@@ -120,9 +185,11 @@ void append_results_csv_row(std::string& text, const RunRow& row) {
   text += '\n';
 }
 
-std::string results_csv(const std::vector<std::string>& axis_pointers, const std::vector<RunRow>& rows) {
-  std::string text = results_csv_header(axis_pointers);
-  for (const auto& row : rows) append_results_csv_row(text, row);
+std::string results_csv(const std::vector<std::string>& axis_pointers, const std::vector<RunRow>& rows,
+                        const std::vector<std::string>& chosen) {
+  std::string text = results_csv_header(axis_pointers, chosen);
+  const std::vector<HeadlineColumn> columns = table_columns(chosen);
+  for (const auto& row : rows) append_results_csv_row(text, row, columns);
   return text;
 }
 

@@ -32,13 +32,6 @@ void bind_axis(scenario::Section& a, SweepFileAxis& x) {
           "expected a non-empty array of values");
 }
 
-std::vector<std::string> figure_names() {
-  std::vector<std::string> names;
-  for (const auto& column : headline_columns())
-    if (column.name != "events" && column.name != "wall_s") names.push_back(column.name);
-  return names;
-}
-
 }  // namespace
 
 void bind(scenario::Section& s, SweepFile& f) {
@@ -55,14 +48,16 @@ void bind(scenario::Section& s, SweepFile& f) {
   s.value("seed", f.seed, {.doc = "the seed of every run (default: the base scenario's)"});
   s.value("overrides", f.overrides, {.doc = "{\"/json/pointer\": value} applied to the base scenario first"});
   s.text("keep", f.keep, {.doc = "which runs keep their traces: \"figures\", \"first\", \"all\" or \"runs=I,J,...\""});
-  s.choices("figures", f.figures, figure_names(), {.doc = "the report's columns, by their results.csv names"});
+  s.choices("figures", f.figures, choosable_figures(),
+            {.doc = "the report's columns: results.csv column names, or any figure by its figures.json path "
+                    "(frames_missed, motion_to_photon_ms.p99), which then get results.csv columns too"});
   if (s.describing()) return;
   const bool seed_ok = f.seed.is_null() || f.seed.is_number_unsigned() ||
                        (f.seed.is_number_integer() && f.seed.get<int64_t>() >= 0);
   s.check("seed", seed_ok,
           "expected an integer from 0 to " + std::to_string(std::numeric_limits<uint64_t>::max()));
   s.check("overrides", f.overrides.is_object(), "expected an object of {\"/json/pointer\": value}");
-  s.check("figures", !s.has("figures") || !f.figures.empty(), "expected a non-empty array of results.csv column names");
+  s.check("figures", !s.has("figures") || !f.figures.empty(), "expected a non-empty array of results.csv column names or figure paths");
 }
 
 SweepFile read_sweep_file(const Json& sweep, const std::filesystem::path& file) {

@@ -96,7 +96,8 @@ size_t write_tables(const SweepPlan& plan, const SweepStore& store, unsigned thr
   std::vector<std::string> pointers;
   for (const auto& axis : plan.axes()) pointers.push_back(axis.pointer);
   temporaries_removed += store.remove_table_temporaries();
-  std::string csv = results_csv_header(pointers);
+  std::string csv = results_csv_header(pointers, plan.figures());
+  const std::vector<HeadlineColumn> columns = table_columns(plan.figures());
   threads = std::max(1u, threads);
   ResultsDbWriter db(store.out_dir() / "results.sqlite", pointers, threads);
   // A chunk of runs at a time, each thread reading a slice of it (inflating
@@ -128,7 +129,7 @@ size_t write_tables(const SweepPlan& plan, const SweepStore& store, unsigned thr
           if (positions[k] < 0) continue;
           const auto row = table_row(plan, store, index, reader, runs[begin + k], errors[k]);
           if (!row) break;
-          append_results_csv_row(lines[k], *row);
+          append_results_csv_row(lines[k], *row, columns);
           db.add_to_part(t, *row, positions[k]);
         }
         db.end_part(t);

@@ -302,6 +302,16 @@ proc = subprocess.run([sys.executable, REPORT, chosen_dir, "--figures", "mtp_p99
                       capture_output=True, text=True)
 check(proc.returncode == 2 and "nonsense" in proc.stderr and len(proc.stderr.strip().splitlines()) == 1,
       f"bad --figures: {proc.stderr}")
+# The choices listed are cut at a whole name: each before "…" is a column name.
+listed = proc.stderr.split("expected some of ", 1)[1].split(", \u2026")[0].split(", ")
+check(all(name in [c for c, _, _ in latsim_results.HEADLINE] for name in listed), f"whole names: {listed}")
+# Any figure a run reports, by its path, is a column too: a results.csv column's path names that
+# column (motion_to_photon_ms.p50 is mtp_p50_ms), any other figure's path heads its own.
+run_report(chosen_dir, "--figures", "mtp_p99_ms,motion_to_photon_ms.p50,motion_to_photon_ms.p90")
+with open(os.path.join(chosen_dir, "report.md")) as f:
+    header = [line for line in f.read().splitlines() if line.startswith("| name |")][0]
+check(header.endswith("| MTP p99 (ms) | 95 % interval | MTP p50 (ms) | motion_to_photon_ms.p90 |"),
+      f"figures chosen by their paths: {header}")
 with open(os.path.join(chosen_dir, "plan.json"), "w") as f:
     json.dump({"axes": [], "figures": ["frame_rate_hz"]}, f)
 run_report(chosen_dir)

@@ -42,7 +42,7 @@ def summary(mtp, dropped):
         "motion_to_photon_ms": {"count": 10, "mean": mtp, "p50": mtp, "p99": mtp + 5, "max": mtp + 6,
                                 "histogram": [[mtp - 1, 5], [mtp, 5]]},
         "reported_total_ms": {"count": 10, "mean": sum(stages.values())},
-        "frames_dropped": dropped, "frames_late": 1, "frames_reprojected": dropped,
+        "frames_dropped": dropped, "frames_late": 1, "frames_rewarped": dropped,
     })
     return {"latsim": {"version": "0.1.0", "git_revision": "fixture"}, "headline": ["motion_to_photon_ms"],
             "scenario": {"pipeline": {"type": "streaming"}, "display": {"refresh_hz": 90}},

@@ -9,6 +9,7 @@
 #include <set>
 #include <string>
 
+#include "latsim/scenario/choice_list.hpp"
 #include "latsim/sweep/plan.hpp"
 
 using latsim::sweep::expand_points;
@@ -153,6 +154,30 @@ TEST_CASE("a sweep file chooses the report's columns by their results.csv names"
              Catch::Contains("/figures: expected a non-empty array"));
   CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {axis}}, {"figures", {"wall_s"}}}),
              Catch::Contains("/figures/0:"));
+}
+
+TEST_CASE("a sweep file chooses any figure a run reports by its path; a refused one lists whole names", "[sweep]") {
+  Scratch s;
+  const Json axis = {{"pointer", "/display/refresh_hz"}, {"values", {60, 90}}};
+  // The application's counts and rates, a nested count and a distribution's statistic.
+  const std::vector<std::string> chosen{"frames_missed", "application_frame_rate_hz", "counts.fields",
+                                        "display_ms.p99", "frames_rewarped", "memories.0.renders"};
+  // memories.<n>.renders holds an index: it cannot be listed, so it is refused.
+  CHECK_THAT(error_of(s, {{"base", "base.json"}, {"axes", {axis}}, {"figures", chosen}}),
+             Catch::Contains("/figures/5: unknown value \"memories.0.renders\""));
+  const std::vector<std::string> listed(chosen.begin(), chosen.end() - 1);
+  CHECK(plan_of(s, {{"base", "base.json"}, {"axes", {axis}}, {"figures", listed}}).figures() == listed);
+  // The choices (hundreds of names) are cut before the first whole name past
+  // 200 characters: the list ends with a closing quote, then "… and N more".
+  const std::string error = error_of(s, {{"base", "base.json"}, {"axes", {axis}}, {"figures", {"latency"}}});
+  const size_t list = error.find("expected one of ");
+  const size_t more = error.find(", \u2026 and ");
+  REQUIRE(list != std::string::npos);
+  REQUIRE(more != std::string::npos);
+  CHECK(error[more - 1] == '"');
+  CHECK(more - (list + 16) <= latsim::scenario::kChoiceListChars);
+  CHECK_THAT(error, Catch::EndsWith(" more"));
+  CHECK(error.find("(") == std::string::npos);  // not cut by the message's length limit ("... (N bytes)")
 }
 
 TEST_CASE("a sweep without axes is the base scenario's replications", "[sweep]") {

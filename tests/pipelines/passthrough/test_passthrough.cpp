@@ -80,7 +80,7 @@ TEST_CASE("passthrough: a global-shutter camera phase-locked to the display give
   CHECK(fig(out, "photon_to_photon_ms").at("count").get<int64_t>() == 99);
   CHECK(f.at("camera_frames_dropped").get<int64_t>() == 0);
   CHECK(f.at("camera_frames_repeated").get<int64_t>() == 0);
-  CHECK(f.at("compositions_late").get<int64_t>() == 0);
+  CHECK(f.at("warps_late").get<int64_t>() == 0);
   // The compositor's pose: the newest 1 kHz sample at its start (10k + 8,
   // or the one a millisecond before when the sample of that very instant
   // comes after it), unpredicted; the first active line is lit 0.4 ms into

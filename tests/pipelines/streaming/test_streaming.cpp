@@ -109,7 +109,7 @@ TEST_CASE("streaming: an idle link with fixed encoder and decoder times gives th
         Approx(-0.5 * line_ms).margin(1e-3));
   CHECK(f.at("frames_late").get<int64_t>() == 0);
   CHECK(f.at("frames_dropped").get<int64_t>() == 0);
-  CHECK(f.at("frames_reprojected").get<int64_t>() == 0);
+  CHECK(f.at("frames_rewarped").get<int64_t>() == 0);
   // Retraces 0 to 120 in 2 s. Report 0 leaves as the run starts, before the
   // tracker's first sample is visible, so it is not sent and frame 0 has no
   // pose: frames 1 to 119 are shown at retraces 2 to 120 (the last at exactly
@@ -205,7 +205,7 @@ TEST_CASE("streaming: one lost packet and its retransmission make a frame miss i
   const Json out = run(s);
   const Json& f = out.at("figures");
   CHECK(f.at("link").at("retransmissions").get<int64_t>() == 1);
-  CHECK(f.at("frames_reprojected").get<int64_t>() == 1);
+  CHECK(f.at("frames_rewarped").get<int64_t>() == 1);
   CHECK(f.at("frames_superseded").get<int64_t>() == 1);
   CHECK(f.at("frames_dropped").get<int64_t>() == 1);
   CHECK(f.at("frames_incomplete").get<int64_t>() == 0);
@@ -215,6 +215,6 @@ TEST_CASE("streaming: one lost packet and its retransmission make a frame miss i
   s["pipeline"]["link"].erase("lose_first_transmission");
   const Json clean = run(s);
   CHECK(clean.at("figures").at("frames_dropped").get<int64_t>() == 0);
-  CHECK(clean.at("figures").at("frames_reprojected").get<int64_t>() == 0);
+  CHECK(clean.at("figures").at("frames_rewarped").get<int64_t>() == 0);
   CHECK(clean.at("figures").at("frames_shown").get<int64_t>() == 119);
 }

@@ -33,12 +33,27 @@ std::string format_number(double value);
 /// A CSV field, quoted when it holds a comma, quote or line break.
 std::string csv_field(const std::string& text);
 
+/// Every name a sweep file's "figures" (and `latsim report --figures`) may
+/// choose: the results.csv columns (but events and wall_s), then every
+/// figure the registry declares that a table can hold, by its figures.json
+/// path: a count, number or flag by name (placeholders other than <n>
+/// filled in), a distribution's statistics as name.stat.
+const std::vector<std::string>& choosable_figures();
+
+/// The registry's columns, then one per chosen figure that is none of
+/// them (named and looked up by its path).
+std::vector<HeadlineColumn> table_columns(const std::vector<std::string>& chosen);
+
 /// results.csv: run_id, point, one column per axis pointer, seed, replication,
-/// then the headline columns; one row per run, in the order given.
-std::string results_csv(const std::vector<std::string>& axis_pointers, const std::vector<RunRow>& rows);
+/// then the registry's columns and those of the chosen figures that are none
+/// of them; one row per run, in the order given.
+std::string results_csv(const std::vector<std::string>& axis_pointers, const std::vector<RunRow>& rows,
+                        const std::vector<std::string>& chosen = {});
 /// results.csv's header line, and one row appended to the text after it.
-std::string results_csv_header(const std::vector<std::string>& axis_pointers);
+std::string results_csv_header(const std::vector<std::string>& axis_pointers,
+                               const std::vector<std::string>& chosen = {});
 void append_results_csv_row(std::string& text, const RunRow& row);
+void append_results_csv_row(std::string& text, const RunRow& row, const std::vector<HeadlineColumn>& columns);
 
 /// A scalar figure of a run, flattened to a dotted name.
 struct FigureValue {
