@@ -10,10 +10,10 @@ import io
 import json
 import math
 import os
-import re
 from fractions import Fraction
 
 import sweep_labels
+from registry_names import name_pattern
 from intervals import mean_ci95, t975  # noqa: F401 (the report's and the plots' intervals)
 from latsim_store import SweepStore
 
@@ -60,19 +60,7 @@ PLOTS = [(f["name"], f["plot"]) for f in REGISTRY["figures"] if "plot" in f]
 STATISTICS = ("count", "mean", "stddev", "min", "p50", "p90", "p99", "p999", "max")
 
 
-def _name_pattern(name):
-    out = ""
-    for part in re.split(r"(<[a-z_]+>)", name):
-        if part == "<n>":
-            out += r"\d+"
-        elif part.startswith("<") and part[1:-1] in REGISTRY.get("placeholders", {}):
-            out += "(?:" + "|".join(re.escape(w) for w in REGISTRY["placeholders"][part[1:-1]]) + ")"
-        else:
-            out += re.escape(part)
-    return re.compile(out + r"\Z")
-
-
-_KINDS = [(_name_pattern(f["name"]), f["kind"]) for f in REGISTRY["figures"] if f["family"] != "summary"]
+_KINDS = [(name_pattern(f["name"], REGISTRY.get("placeholders", {})), f["kind"]) for f in REGISTRY["figures"] if f["family"] != "summary"]
 
 
 def figure_kind(name):

@@ -12,10 +12,10 @@ also carried).
 """
 import json
 import os
-import re
 import sqlite3
 
 from . import _intervals
+from . import _registry_names
 from . import _sweep_labels
 
 # The figure registry the build copied beside this file.
@@ -31,24 +31,11 @@ def registry():
     return _registry_cache[0]
 
 
-def _name_pattern(name, placeholders):
-    parts = re.split(r"(<[a-z_]+>)", name)
-    out = ""
-    for part in parts:
-        if part == "<n>":
-            out += r"\d+"
-        elif part.startswith("<") and part.endswith(">") and part[1:-1] in placeholders:
-            out += "(?:" + "|".join(re.escape(w) for w in placeholders[part[1:-1]]) + ")"
-        else:
-            out += re.escape(part)
-    return re.compile(out + r"\Z")
-
-
 def _declarations():
     """[(pattern, declaration)] of every figure, in registry order."""
     reg = registry()
     placeholders = reg.get("placeholders", {})
-    return [(_name_pattern(f["name"], placeholders), f) for f in reg["figures"]]
+    return [(_registry_names.name_pattern(f["name"], placeholders), f) for f in reg["figures"]]
 
 
 _declared = []
