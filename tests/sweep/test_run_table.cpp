@@ -125,9 +125,10 @@ TEST_CASE("results.csv has one row per run in the given order with the headline 
   CHECK(first.rfind("00000000000000aa,0,60,1,0,25.25,20,30.5,31,16.5,", 0) == 0);
   CHECK(second.rfind("00000000000000bb,1,60000/1001,1,0,26,", 0) == 0);
   // Registration error, rotation latency, the six figures of what a viewer
-  // or camera sees and the streaming tool's total and frames dropped are
-  // absent from these summaries: their cells stay empty.
-  CHECK_THAT(first, Catch::Contains(",60,0,,,,,,,,,,,,,1234,0.5"));
+  // or camera sees, the streaming tool's total, frames dropped and
+  // photon-to-photon latency are absent from these summaries: their 13
+  // cells stay empty.
+  CHECK_THAT(first, Catch::Contains(",60,0,,,,,,,,,,,,,,1234,0.5"));
 }
 
 TEST_CASE("results.sqlite holds runs, figures, distributions, histograms and models", "[sweep]") {
