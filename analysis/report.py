@@ -20,7 +20,8 @@ table and pacing_pareto.{png,svg} when some row is paced (analysis/pacing_plot.p
 devices table when rows report apparent latency and a camera measurement
 (analysis/devices_table.py). A streaming stages table when rows stream
 (analysis/streaming_table.py), and for a sweep streaming_pareto.{png,svg}, latency
-against frames dropped (analysis/sweep_plots.py).
+against frames dropped (analysis/sweep_plots.py). A passthrough stages table when
+rows report photon-to-photon latency (analysis/passthrough_table.py).
 """
 
 import argparse
@@ -39,6 +40,7 @@ import devices_table  # noqa: E402
 import plotting  # noqa: E402
 import prediction  # noqa: E402
 import sweep_labels  # noqa: E402
+import passthrough_table  # noqa: E402
 import streaming_table  # noqa: E402
 import sweep_plots  # noqa: E402
 from plotting import plt  # noqa: E402
@@ -362,6 +364,7 @@ def write_markdown(coll, drawn, top, figure, title=None):
     md += list(pacing_plot.markdown(coll, drawn["pacing"]))
     md += devices_table.markdown(coll)
     md += streaming_table.markdown(coll)
+    md += passthrough_table.markdown(coll)
     if drawn.get("pareto"):
         md += ["## Latency against frames dropped", "",
                "Each sweep point's mean motion-to-photon latency against its mean frames dropped; the red line "

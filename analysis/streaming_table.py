@@ -15,6 +15,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import latsim_results as lr  # noqa: E402
+import stage_table as st  # noqa: E402
 
 # ALVR's stage names (alvr/server_core/src/statistics.rs), in the order a frame goes through them.
 STAGES = ["game", "server_compositor", "encoder", "network", "decoder", "decoder_queue", "client_compositor",
@@ -26,15 +27,7 @@ COUNTS = [("dropped", "frames_dropped"), ("late", "frames_late"), ("re-projected
 
 def streaming_rows(coll):
     """The rows whose pipeline reports the tool's total latency."""
-    return [r for r in coll.rows if r.run_dirs and lr.find_figure(r.first_summary(), TOTAL) is not None]
-
-
-def _ms(value):
-    return "" if value is None else f"{value:.2f}"
-
-
-def _count(value):
-    return "" if value is None else f"{value:g}"
+    return st.rows_with(coll, TOTAL)
 
 
 def rows_of(coll):
@@ -42,27 +35,20 @@ def rows_of(coll):
     out = []
     for row in streaming_rows(coll):
         camera, total = row.mean(CAMERA), row.mean(TOTAL)
-        gap = camera - total if camera is not None and total is not None else None
-        cells = [_ms(camera), _ms(total), "" if gap is None else f"{gap:+.2f}"]
-        cells += [_ms(row.mean(f"{s}_ms.mean")) for s in STAGES]
-        cells += [_count(row.mean(path)) for _, path in COUNTS]
+        cells = [st.ms(camera), st.ms(total), st.signed_ms(st.difference(camera, total))]
+        cells += [st.ms(row.mean(f"{s}_ms.mean")) for s in STAGES]
+        cells += [st.count(row.mean(path)) for _, path in COUNTS]
         out.append((lr.point_name(row, coll), cells))
     return out
 
 
 def markdown(coll):
     """The report's streaming section, or nothing when no row streams."""
-    rows = rows_of(coll)
-    if not rows:
-        return []
     header = (["row", "camera MTP (ms)", "tool's total (ms)", "camera - tool (ms)"] +
               [f"`{s}` (ms)" for s in STAGES] + [f"frames {name}" for name, _ in COUNTS])
-    md = ["## Streaming stages", "",
-          "The stages as ALVR's statistics name them (means over replications, ms); the tool's total is "
-          "computed as ALVR computes it, from the pose report's sending to the display time the runtime "
-          "predicts for the refresh that shows the frame, and the eight stages add up to it (the network "
-          "time is what the total leaves). Beside it, the camera's motion-to-photon latency "
-          "(docs/streaming.md).", "",
-          "| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    md += ["| " + " | ".join([name.replace("|", "\\|")] + cells) + " |" for name, cells in rows]
-    return md + [""]
+    intro = ("The stages as ALVR's statistics name them (means over replications, ms); the tool's total is "
+             "computed as ALVR computes it, from the pose report's sending to the display time the runtime "
+             "predicts for the refresh that shows the frame, and the eight stages add up to it (the network "
+             "time is what the total leaves). Beside it, the camera's motion-to-photon latency "
+             "(docs/streaming.md).")
+    return st.section("Streaming stages", intro, header, rows_of(coll))

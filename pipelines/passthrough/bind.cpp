@@ -84,7 +84,11 @@ void bind(scenario::Section& s, PassthroughPipeline::Params& p, const sections::
   s.optional_object("object", object, [](scenario::Section& o, tracker::MotionParams& v) { sections::bind(o, v); },
                     {.doc = "a real object moving in front of the headset (the motions of /motion), for the rig"});
   std::optional<measurement::CameraRigParams> rig;
-  s.optional_object("rig", rig, [](scenario::Section& r, measurement::CameraRigParams& v) { sections::bind(r, v, false); },
+  s.optional_object("rig", rig,
+                    [](scenario::Section& r, measurement::CameraRigParams& v) {
+                      sections::bind(r, v, "a passthrough rig films the real object of /pipeline/object beside its "
+                                           "image, never a controller: leave object out");
+                    },
                     {.doc = "the rig of latsim filming /pipeline/object and its image at display_point: the keys of "
                             "/measurement, whose object key can only be head here and is not used"});
   s.check("rig", !rig || object, "the rig films /pipeline/object: give one");

@@ -31,7 +31,7 @@ void bind(Section& s, measurement::ApparentLatencyParams& p) {
                    "rest"});
 }
 
-void bind(Section& s, measurement::CameraRigParams& p, bool controller) {
+void bind(Section& s, measurement::CameraRigParams& p, std::string_view head_only) {
   s.doc(
       "A simulated latency-measurement rig: a high-speed camera films the real head (or object) and one point of "
       "eye 0's display, and latency is estimated per movement by frame counting (`measured_latency_ms`) and by the "
@@ -41,8 +41,7 @@ void bind(Section& s, measurement::CameraRigParams& p, bool controller) {
   s.choice("object", p.object, {{"head", Object::head}, {"controller", Object::controller}},
            {.doc = "what the camera films beside the display: the head, or the controller of /controller (drawn at "
                    "the display point)"});
-  s.check("object", controller || p.object == Object::head,
-          "the controller is filmed only in a scenario with /controller");
+  s.check("object", head_only.empty() || p.object == Object::head, head_only);
   s.rate("fps", p.frame_period, {.unit = "Hz", .doc = "camera frame rate (120, 240, 1000 …)"});
   clock(s, "", p.clock, "camera");
   s.duration("exposure_ms", p.exposure,

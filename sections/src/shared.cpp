@@ -168,7 +168,9 @@ void bind(Section& s, SharedParams& p) {
                     {.doc = "apparent latency (not computed when absent)"});
   const bool controller = p.controller.has_value();
   s.optional_object("measurement", p.measurement,
-                    [controller](Section& m, measurement::CameraRigParams& v) { bind(m, v, controller); },
+                    [controller](Section& m, measurement::CameraRigParams& v) {
+                      bind(m, v, controller ? "" : "the controller is filmed only in a scenario with /controller");
+                    },
                     {.doc = "a simulated camera measurement rig (none when absent)"});
 }
 

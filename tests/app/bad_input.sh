@@ -75,6 +75,10 @@ check persistence_no_lit "/display/persistence/lit_ms" "{$fs}" --set /display/pe
 check persistence_type "/display/persistence/type" "{$fs}" --set /display/persistence='{"type": "half"}'
 check persistence_response "/display/persistence/response_ms" "{$fs}" --set /display/persistence='{"type": "full", "response_ms": -1}'
 
+# A see-through headset's rig films the real object of /pipeline/object beside its image: never a controller.
+pt="$shared"', "pipeline": {"type": "passthrough", "camera": {"height_px": 1000, "exposure_ms": 2, "row_readout_us": 2, "shutter": "global", "sync": "display"}, "isp": {"fixed_ms": 1.5}, "compositor": {"start": "before_retrace", "lead_ms": 2, "reprojection_ms": 1}, "object": {"type": "still"}, "rig": {"fps": 1000}}'
+check passthrough_rig_controller "/pipeline/rig/object: a passthrough rig films the real object of /pipeline/object" "{$pt}" --set /pipeline/rig/object='"controller"'
+
 "$LATSIM" run "$tmp/none.json" --out "$tmp/out_none" 2>"$tmp/stderr"
 if [ $? -ne 2 ]; then echo "FAIL missing file: exit code"; fail=1; fi
 

@@ -126,9 +126,10 @@ TEST_CASE("results.csv has one row per run in the given order with the headline 
   CHECK(second.rfind("00000000000000bb,1,60000/1001,1,0,26,", 0) == 0);
   // Registration error (2 columns), rotation latency (2), the six figures of
   // what a viewer or camera sees, the nine counts and rates of application
-  // frames, compositors, Slats and streaming and the streaming tool's total
-  // are absent from these summaries: their 20 cells stay empty.
-  CHECK_THAT(first, Catch::Contains(",60,0" + std::string(20, ',') + ",1234,0.5"));
+  // frames, compositors, Slats and streaming, the streaming tool's total and
+  // photon-to-photon latency are absent from these summaries: their 21 cells
+  // stay empty.
+  CHECK_THAT(first, Catch::Contains(",60,0" + std::string(21, ',') + ",1234,0.5"));
 }
 
 TEST_CASE("results.sqlite holds runs, figures, distributions, histograms and models", "[sweep]") {

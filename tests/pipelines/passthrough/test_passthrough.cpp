@@ -209,4 +209,10 @@ TEST_CASE("passthrough: bad camera settings are refused at their pointer") {
   Json t = passthrough(camera("global", kLocked), kBeforeRetrace);
   t["pipeline"]["rig"] = {{"fps", 1000}};
   CHECK_THROWS_WITH(run(t), Catch::Contains("/pipeline/rig"));
+  // The rig films /pipeline/object: asking for the controller names that, not /controller.
+  t["pipeline"]["object"] = {{"type", "still"}};
+  t["pipeline"]["rig"]["object"] = "controller";
+  CHECK_THROWS_WITH(run(t), Catch::Contains("/pipeline/rig/object") &&
+                                Catch::Contains("films the real object of /pipeline/object") &&
+                                !Catch::Contains("/controller"));
 }

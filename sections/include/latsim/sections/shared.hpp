@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -113,8 +114,10 @@ void bind(scenario::Section& s, SceneParams& p);
 void bind(scenario::Section& s, tracker::PredictionParams& p, const tracker::TrackerParams& tracker);
 void bind(scenario::Section& s, tracker::MotionPhaseParams& p);
 void bind(scenario::Section& s, measurement::ApparentLatencyParams& p);
-/// /measurement; `controller`: the scenario tracks a controller (it may be filmed).
-void bind(scenario::Section& s, measurement::CameraRigParams& p, bool controller);
+/// /measurement, or a pipeline's rig with its keys. `head_only`: empty when the
+/// scenario tracks a controller (it may be filmed), else why `object` can only
+/// be the head there (the one-line error for `controller`).
+void bind(scenario::Section& s, measurement::CameraRigParams& p, std::string_view head_only);
 
 /// A clock's `<prefix>phase_ms` (absent: drawn per replication, uniformly
 /// over one period, from the clock's own stream) and `<prefix>rate_error_ppm`.
