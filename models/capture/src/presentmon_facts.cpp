@@ -88,6 +88,9 @@ std::optional<double> refresh_period_ms(const std::filesystem::path& file) {
     sum += v;
     periods += k;
   }
+  // The median of an even count is the mean of two intervals, which need not
+  // be a period itself: none may then fit it (1 and 2 ms: 1.5 ms).
+  if (periods == 0.0) return std::nullopt;
   return sum / periods;
 }
 

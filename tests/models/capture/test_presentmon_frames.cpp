@@ -80,6 +80,19 @@ TEST_CASE("presentmon: the display's refresh from its display-change intervals")
   CHECK(*refresh_period_ms(kDir + "test_case_0_v2.csv") == Approx(16.68).margin(0.01));
 }
 
+TEST_CASE("presentmon: no refresh when no interval is a whole number of the median's periods") {
+  // Two vsynced display changes, 1 ms and 2 ms apart: their median is 1.5 ms;
+  // 1 ms is one such period 33 % short, 2 ms one period 33 % long, both past
+  // the 10 % a whole number of periods may be off. No refresh period (found
+  // by fuzzing: the sum over no periods was 0/0, a NaN refresh).
+  const test::TempFile f("two_intervals.csv",
+                         "Application,ProcessID,SyncInterval,AllowsTearing,TimeInSeconds,MsBetweenPresents,"
+                         "MsBetweenDisplayChange\n"
+                         "app.exe,1,1,0,0.001,1,1\n"
+                         "app.exe,1,1,0,0.003,2,2\n");
+  CHECK_FALSE(refresh_period_ms(f.path()).has_value());
+}
+
 TEST_CASE("presentmon: a replay warns of an uncapped, a composed, another refresh rate, and busy that waits") {
   const auto period = refresh_period_ms(kDir + "test_case_0.csv");
   auto warnings = [&](const char* app, int64_t pid, double hz, bool busy) {

@@ -98,7 +98,8 @@ std::vector<ProcessCount> presentmon_processes(const std::filesystem::path& file
 /// no tearing) of every process: each interval is a whole number of periods,
 /// so the period is the sum of the intervals over the sum of their whole
 /// numbers, the numbers found from the median interval under 50 ms. None
-/// when the capture has no such interval.
+/// when the capture has no such interval, or none within 10 % of a whole
+/// number of that median.
 std::optional<double> refresh_period_ms(const std::filesystem::path& file);
 
 /// Warnings on replaying a process's frames on a display of `refresh_hz`:
