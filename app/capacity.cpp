@@ -107,8 +107,9 @@ int command_capacity(int argc, char** argv) {
                  scenario::readable(e.text).c_str());
     return kExitBadInput;
   } catch (const run::RunInterrupted& e) {
-    std::fprintf(stderr, "latsim capacity: stopped by %s after %zu count(s): %s; nothing written\n", signals.name(),
-                 tried.size(), e.what());
+    if (StopSignals::first_word())
+      std::fprintf(stderr, "latsim capacity: stopped by %s after %zu count(s): %s; nothing written\n",
+                   signals.name(), tried.size(), e.what());
     return signals.exit_code();
   } catch (const scenario::ScenarioError& e) {
     return bad_input(file, e);

@@ -189,7 +189,8 @@ int command_fidelity(int argc, char** argv) {
     std::fprintf(stderr, "fidelity: %zu levels, expected events %s; at the first level's pace about %.3g s in all\n",
                  axis.values.size(), levels_text.c_str(), total_s);
   } catch (const run::RunInterrupted& e) {
-    say(std::string("stopped by ") + signals.name() + ": " + e.what() + "; nothing written");
+    if (StopSignals::first_word())
+      say(std::string("stopped by ") + signals.name() + ": " + e.what() + "; nothing written");
     return signals.exit_code();
   } catch (const std::exception& e) {
     say(e.what());
@@ -217,9 +218,9 @@ int command_fidelity(int argc, char** argv) {
   } catch (const Stopped& stopped) {
     if (owned) fs::remove_all(made, ec);
     io::unregister_temporary(made);
-    if (!stopped.child_said_so)
+    if (!stopped.child_said_so && StopSignals::first_word())
       say(std::string("stopped by ") + signals.name() + " after " + std::to_string(levels.size()) + " of " +
-        std::to_string(axis.values.size()) + " level(s); nothing written");
+          std::to_string(axis.values.size()) + " level(s); nothing written");
     return signals.exit_code();
   } catch (const std::invalid_argument& e) {
     say(e.what());
@@ -237,7 +238,8 @@ int command_fidelity(int argc, char** argv) {
     results::write_file_atomically(out_dir / "fidelity.md", markdown);
     const int plotted = plot(out_dir);
     if (signals.requested()) {
-      say(std::string("stopped by ") + signals.name() + " while drawing the plot; the tables are written");
+      if (StopSignals::first_word())
+        say(std::string("stopped by ") + signals.name() + " while drawing the plot; the tables are written");
       return signals.exit_code();
     }
     if (plotted != 0) {

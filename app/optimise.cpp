@@ -187,8 +187,9 @@ int command_optimise(int argc, char** argv) {
   } catch (const MissingFigure& e) {
     return usage_error(e.what());
   } catch (const run::RunInterrupted& e) {
-    std::fprintf(stderr, "latsim optimise: stopped by %s after %zu setting(s): %s; nothing written\n", signals.name(),
-                 tried.size(), e.what());
+    if (StopSignals::first_word())
+      std::fprintf(stderr, "latsim optimise: stopped by %s after %zu setting(s): %s; nothing written\n",
+                   signals.name(), tried.size(), e.what());
     return signals.exit_code();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: %s\n", scenario::readable(file, 2 * scenario::kQuotedChars).c_str(),

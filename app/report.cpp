@@ -60,7 +60,7 @@ int command_report(int argc, char** argv) {
         child.exit_code == 130 || child.exit_code == 143)
       return child.exit_code;
     if (StopSignals::installed().requested()) {
-      std::cerr << "report: stopped by " << StopSignals::installed().name() << "\n";
+      if (StopSignals::first_word()) std::cerr << "report: stopped by " << StopSignals::installed().name() << "\n";
       return StopSignals::installed().exit_code();
     }
     std::cerr << "report: the analysis script failed (exit status " << child.exit_code << ")\n";

@@ -97,7 +97,8 @@ int command_run(int argc, char** argv) {
     return bad_input(file, e);
   } catch (const run::RunInterrupted& e) {
     shown.finish();
-    std::fprintf(stderr, "%s: stopped by %s: %s; nothing written\n", name.c_str(), signals.name(), e.what());
+    if (StopSignals::first_word())
+      std::fprintf(stderr, "%s: stopped by %s: %s; nothing written\n", name.c_str(), signals.name(), e.what());
     return signals.exit_code();
   } catch (const std::exception& e) {
     // RunFailure names the model and the simulated time; WriteError the file and the reason.

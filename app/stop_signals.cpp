@@ -23,6 +23,7 @@ std::atomic<bool> g_stop{false};
 volatile sig_atomic_t g_signal = 0;
 std::atomic<pid_t> g_child{0};
 std::atomic<bool> g_closing{false};
+std::atomic<bool> g_spoken{false};
 int g_wake[2] = {-1, -1};  // the handler's word to the watchdog
 struct sigaction g_previous_int {}, g_previous_term {};
 StopSignals* g_installed = nullptr;
@@ -52,8 +53,10 @@ void on_signal(int sig) {
   if (child > 0) ::kill(child, SIGKILL);
   io::remove_registered_temporaries();
   const char* name = g_signal == SIGINT ? "SIGINT" : "SIGTERM";
-  std::fprintf(stderr, "%s: stopped by %s (%s); nothing written\n", g_command.c_str(), name, why);
-  std::fflush(stderr);
+  if (!g_spoken.exchange(true)) {
+    std::fprintf(stderr, "%s: stopped by %s (%s); nothing written\n", g_command.c_str(), name, why);
+    std::fflush(stderr);
+  }
   ::_exit(128 + static_cast<int>(g_signal));
 }
 
@@ -92,6 +95,7 @@ StopSignals::StopSignals(std::string command) {
   g_stop.store(false);
   g_signal = 0;
   g_closing.store(false);
+  g_spoken.store(false);
   // The watchdog never takes the signals itself: a blocking call of the
   // main thread is what they must interrupt.
   sigset_t block, before;
@@ -145,6 +149,8 @@ void StopSignals::add_child(pid_t pid) {
 }
 
 void StopSignals::remove_child() { g_child.store(0); }
+
+bool StopSignals::first_word() { return !g_spoken.exchange(true); }
 
 std::chrono::milliseconds StopSignals::deadline() {
   if (const char* text = std::getenv("LATSIM_STOP_DEADLINE_MS")) {

@@ -43,6 +43,11 @@ class StopSignals {
   static void add_child(pid_t pid);
   static void remove_child();
 
+  /// True for the first caller only: the stop is said in one line, by the
+  /// command that stopped or by the watchdog that ended it, never by both
+  /// (they can race when the command stops just as the deadline passes).
+  static bool first_word();
+
   /// How long a command may take to stop after the first signal before the
   /// watchdog ends it: LATSIM_STOP_DEADLINE_MS when set (run_child sets a
   /// shorter one for its children, so that they end before their parent

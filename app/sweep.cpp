@@ -59,10 +59,11 @@ int sweep_here(const SweepRequest& request, const SweepPlan& plan, const std::op
   }
   const SweepTally& tally = out.tally;
   if (signals.requested()) {
-    std::fprintf(stderr,
-                 "sweep: stopped by %s: %zu of %zu run(s) finished %s, none partly written; run the same command "
-                 "again to finish\n",
-                 signals.name(), tally.finished(), selected.size(), tally.counts().c_str());
+    if (StopSignals::first_word())
+      std::fprintf(stderr,
+                   "sweep: stopped by %s: %zu of %zu run(s) finished %s, none partly written; run the same command "
+                   "again to finish\n",
+                   signals.name(), tally.finished(), selected.size(), tally.counts().c_str());
     return signals.exit_code();
   }
   if (tally.storage_problem) {

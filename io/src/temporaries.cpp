@@ -40,9 +40,20 @@ void remove_registered_temporaries() noexcept {
   // A thread that holds the list does so for a push or an erase: a moment.
   std::unique_lock lock(list_mutex(), std::defer_lock);
   if (!lock.try_lock_for(std::chrono::milliseconds(100))) return;
+  // The list stays locked until the program ends, which it does next: no
+  // other thread lists, and so makes, a new temporary meanwhile.
+  lock.release();
   for (const std::string& p : listed()) {
-    std::error_code ec;
-    std::filesystem::remove_all(p, ec);
+    // Another thread may be removing the same directory (its own stop) or
+    // still writing into it: remove_all gives up at an entry that vanished
+    // or a directory that filled meanwhile, so it is repeated until the path
+    // is gone, for at most about 100 ms.
+    for (int attempt = 0; attempt < 100; ++attempt) {
+      std::error_code ec;
+      std::filesystem::remove_all(p, ec);
+      if (!std::filesystem::exists(std::filesystem::symlink_status(p, ec))) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
   }
 }
 

@@ -13,8 +13,10 @@ namespace latsim::io {
 void register_temporary(const std::filesystem::path& path);
 void unregister_temporary(const std::filesystem::path& path);
 
-/// Removes every listed path and its contents (errors ignored); for the exit
-/// of a stopped program. Does not wait long for a thread that holds the list.
+/// Removes every listed path and its contents, again while another thread
+/// removes or fills it (for about 100 ms at most; errors ignored); for the
+/// exit of a stopped program: the list stays locked, so no temporary is
+/// listed after it. Does not wait long for a thread that holds the list.
 void remove_registered_temporaries() noexcept;
 
 }  // namespace latsim::io
