@@ -29,6 +29,12 @@ void register_temporary(const std::filesystem::path& path) {
   listed().push_back(path.string());
 }
 
+void register_temporary(const std::filesystem::path& path, const std::function<void()>& make) {
+  const std::lock_guard lock(list_mutex());
+  listed().push_back(path.string());
+  make();
+}
+
 void unregister_temporary(const std::filesystem::path& path) {
   const std::lock_guard lock(list_mutex());
   auto& paths = listed();

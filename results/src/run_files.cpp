@@ -43,17 +43,30 @@ void make_directories(const fs::path& dir) {
   if (ec) throw WriteError(dir, ec.value());
 }
 
+// Makes the folders of `name` inside the staging directory, never the
+// staging directory itself: once a program stopped at once has removed it, a
+// write fails rather than make it again behind the removal.
+void make_parents_inside(const fs::path& staging, const std::string& name) {
+  fs::path dir = staging;
+  for (const fs::path& part : fs::path(name).parent_path()) {
+    dir /= part;
+    std::error_code ec;
+    fs::create_directory(dir, ec);  // one that exists is no error
+    if (ec) throw WriteError(dir, ec.value());
+  }
+}
+
 }  // namespace
 
 void write_file_atomically(const fs::path& file, std::string_view bytes) {
   const fs::path temp = file.string() + ".tmp." + std::to_string(::getpid());
   // Listed while it exists: a program stopped at once removes it.
-  io::register_temporary(temp);
+  int fd = -1;
   struct Unlist {
     const fs::path& path;
     ~Unlist() { io::unregister_temporary(path); }
   } const unlist{temp};
-  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  io::register_temporary(temp, [&] { fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644); });
   check(fd >= 0, file);
   size_t done = 0;
   while (done < bytes.size()) {
@@ -116,9 +129,8 @@ void RunFiles::prepare() {
   // predecessor (pids are reused): nothing of ours is in it.
   std::error_code ec;
   fs::remove_all(staging_, ec);
-  // Listed before it exists: a program stopped at once removes it.
-  io::register_temporary(staging_);
-  make_directories(staging_);
+  // Listed as it is made: a program stopped at once removes it.
+  io::register_temporary(staging_, [&] { make_directories(staging_); });
   staged_ = true;
 }
 
@@ -178,7 +190,7 @@ StreamedFile RunFiles::stream(const std::string& name) {
   if (!enabled()) return StreamedFile{};
   prepare();
   const fs::path file = staging_ / name;
-  make_directories(file.parent_path());
+  make_parents_inside(staging_, name);
   return StreamedFile(file, dir_ / name);
 }
 
@@ -192,7 +204,7 @@ void RunFiles::write_text(const std::string& name, std::string_view text) {
   if (!enabled()) return;
   prepare();
   const fs::path file = staging_ / name;
-  make_directories(file.parent_path());
+  make_parents_inside(staging_, name);
   try {
     write_file_atomically(file, text);
   } catch (const WriteError& e) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 
 namespace latsim::io {
 
@@ -11,6 +12,10 @@ namespace latsim::io {
 /// removed. A program told to stop that cannot wait for its work to notice
 /// (StopSignals' deadline) removes every listed path before it exits.
 void register_temporary(const std::filesystem::path& path);
+/// Lists `path` and runs `make` (which creates it) while holding the list:
+/// a program stopped at once then either removes what `make` made or ends
+/// before `make` runs, never between the two.
+void register_temporary(const std::filesystem::path& path, const std::function<void()>& make);
 void unregister_temporary(const std::filesystem::path& path);
 
 /// Removes every listed path and its contents, again while another thread
