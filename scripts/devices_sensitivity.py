@@ -7,9 +7,10 @@ For every profile and assumption it runs the profile at the assumption's low
 and high value (and the profile as it is), each over the replications of the
 devices sweep, and prints a Markdown table of the camera figure's mean
 (measured_latency_ms, frame counting) at both ends and the change from the
-profile's own figure. Runs go two at a time; a run whose results are already in OUT_DIR is not run again:
+profile's own figure. Runs go two at a time; a run whose results are already in OUT_DIR is not run again;
+--only TEXT keeps the rows whose label holds TEXT:
 
-    python3 scripts/devices_sensitivity.py build/latsim [OUT_DIR]
+    python3 scripts/devices_sensitivity.py build/latsim [OUT_DIR] [--only TEXT]
 """
 
 import json
@@ -30,6 +31,10 @@ PROFILES = [
     ("vive_pro2_120hz.json", "Vive Pro 2 120 Hz"),
 ]
 
+VARY = ["/pipeline/stages/0/cost/variation=normal"]
+FRACTION = "/pipeline/stages/0/cost/variation_fraction="
+MEAN = "/pipeline/stages/0/cost/fixed_ms="
+
 # (label, [--set values at the low end], [at the high end]); each a plausible range docs/devices.md gives.
 ASSUMPTIONS = [
     ("running start 2 / 4 ms (3)", ["/pipeline/pacing/steamvr/running_start_ms=2"],
@@ -42,6 +47,16 @@ ASSUMPTIONS = [
       "/pipeline/stages/2/cost/fixed_ms=@0.8T"]),
     ("VRChat's game thread 8 / 12 ms (9.5): holds 120 Hz, not 144 / holds 80 Hz, not 90",
      ["/pipeline/stages/0/cost/fixed_ms=8"], ["/pipeline/stages/0/cost/fixed_ms=12"]),
+    # Frame-to-frame variability of the game thread (normal, sd as a fraction of the mean;
+    # docs/devices.md: 5 to 25 % from the captures in shared/data), at the profile's mean,
+    # then means near the 120 Hz budget (8.33 ms) with the captures' central spread (10 %).
+    ("game thread varying by 5 % / 25 % (none)", VARY + [FRACTION + "0.05"], VARY + [FRACTION + "0.25"]),
+    ("game thread 7 / 7.5 ms varying by 10 % (9.5, none)", VARY + [FRACTION + "0.1", MEAN + "7"],
+     VARY + [FRACTION + "0.1", MEAN + "7.5"]),
+    ("game thread 7.2 / 7.35 ms varying by 10 % (9.5, none)", VARY + [FRACTION + "0.1", MEAN + "7.2"],
+     VARY + [FRACTION + "0.1", MEAN + "7.35"]),
+    ("game thread 7.35 ms varying by 5 % / 20 % (9.5, none)", VARY + [FRACTION + "0.05", MEAN + "7.35"],
+     VARY + [FRACTION + "0.2", MEAN + "7.35"]),
     ("host: none / the Vive recording's delay on every USB link and its lost reports",
      ["/transport/os_jitter_ms=0", "/tracker/imu/report_loss_probability=0"],
      ["/transport/os_jitter_ms=1.83", "/transport/os_jitter=exponential", "/tracker/imu/report_loss_probability=0.472",
@@ -102,14 +117,22 @@ def mean_of(results):
 
 
 def main():
-    latsim = sys.argv[1]
-    out_dir = sys.argv[2] if len(sys.argv) > 2 else "/tmp/latsim_sensitivity"
+    args = sys.argv[1:]
+    only = None
+    if "--only" in args:
+        i = args.index("--only")
+        only = args[i + 1]
+        del args[i:i + 2]
+    latsim = args[0]
+    out_dir = args[1] if len(args) > 1 else "/tmp/latsim_sensitivity"
+    rows = [i for i, (label, _, _) in enumerate(ASSUMPTIONS) if only is None or only in label]
     os.makedirs(out_dir, exist_ok=True)
     jobs = []
     for name, _ in PROFILES:
         hz = refresh_of(name)
         jobs += [(latsim, out_dir, name, "base", [], r) for r in range(REPLICATIONS)]
-        for i, (_, low, high) in enumerate(ASSUMPTIONS):
+        for i in rows:
+            _, low, high = ASSUMPTIONS[i]
             jobs += [(latsim, out_dir, name, f"a{i}lo", expand(low, hz), r) for r in range(REPLICATIONS)]
             jobs += [(latsim, out_dir, name, f"a{i}hi", expand(high, hz), r) for r in range(REPLICATIONS)]
     with ThreadPoolExecutor(max_workers=2) as pool:
@@ -121,7 +144,8 @@ def main():
     print(header)
     print("|" + "---|" * (len(PROFILES) + 1))
     print("| the profile as it is | " + " | ".join(f"{mean_of(by[(n, 'base')]):.1f}" for n, _ in PROFILES) + " |")
-    for i, (label, _, _) in enumerate(ASSUMPTIONS):
+    for i in rows:
+        label = ASSUMPTIONS[i][0]
         cells = []
         for n, _ in PROFILES:
             base = mean_of(by[(n, "base")])

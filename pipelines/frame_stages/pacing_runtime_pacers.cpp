@@ -42,6 +42,7 @@ class SteamVrPacer final : public AppPacer {
 
   FramePlan plan(des::Time now, const PacingClock& clock) override {
     period_ = clock.period;
+    handovers_ = clock.handovers;
     const des::Time half = half_of(clock.period);
     if (last_wake_) judge(now, clock);
     const int level = throttle_.level();
@@ -67,8 +68,14 @@ class SteamVrPacer final : public AppPacer {
 
   void measured(const FrameSample& s) override {
     frame_time_ = s.gpu_done - s.woke;
-    latch_missed_ = latch_missed_ || s.missed;
-    gpu_early_ = gpu_early_ && s.gpu_done <= s.latch - period_;
+    // A frame that slipped hands its render thread's work over late too, so it
+    // misses its latch as well: one late frame, counted once.
+    latch_missed_ = latch_missed_ || (s.missed && s.woke != slipped_wake_);
+    // At the level below, frames start a refresh sooner, so each hand-over to
+    // the next frame's start (a render thread a frame behind) comes a refresh
+    // sooner, and so does the latch: judged at this level alone, a pipelined
+    // engine's GPU would never look early and the level would never fall.
+    gpu_early_ = gpu_early_ && s.gpu_done - period_ * handovers_ <= s.latch - period_;
   }
 
   std::vector<std::pair<std::string, int64_t>> counters() const override {
@@ -93,6 +100,7 @@ class SteamVrPacer final : public AppPacer {
     const des::Time first_possible = clock.next_display(now + p_.running_start) - p_.running_start;
     const bool slipped = first_possible > *last_wake_ + clock.period * n + half;
     const bool ready_early = n > 1 && first_possible <= *last_wake_ + clock.period * (n - 1) + half;
+    if (slipped) slipped_wake_ = *last_wake_;
     throttle_.frame(slipped || latch_missed_, ready_early && gpu_early_);
     latch_missed_ = false;
     gpu_early_ = true;
@@ -102,8 +110,10 @@ class SteamVrPacer final : public AppPacer {
   RuntimeThrottle throttle_;
   Showings showings_;
   des::Time period_ = des::Time::max();
+  int handovers_ = 0;
   des::Time frame_time_;
   std::optional<des::Time> last_display_, last_wake_;
+  des::Time slipped_wake_ = des::Time::max();  // the last frame judged late for slipping, by its wake-up
   bool latch_missed_ = false;
   bool gpu_early_ = true;
   int64_t throttled_frames_ = 0;

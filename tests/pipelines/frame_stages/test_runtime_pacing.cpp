@@ -91,3 +91,65 @@ TEST_CASE("SteamVR shows a frame no sooner than the refresh it was predicted for
   CHECK(value(f, "motion_to_photon_ms") == Approx(3.0 + 3.0 * t + 1.0 + 0.24 + 1.0).margin(0.6));
   CHECK(value(f, "frames_missed") == 0);
 }
+
+namespace {
+
+/// index_90hz.json for 4 s with VRChat's render thread (1.5 ms, a frame
+/// behind) and GPU (3 ms), its game thread taking `late_ms` in the frames
+/// `late(j)` picks and 10 ms in the others (cost_shape steps, one per frame).
+Json index_90hz_pattern(bool (*late)(int), double late_ms = 12.0) {
+  Json steps = Json::array();
+  for (int j = 0; j < 400; ++j) steps.push_back(Json::array({j, late(j) ? late_ms : 10.0}));
+  const Json shape = {{"steps", steps}};
+  std::string shape_set = "/pipeline/stages/0/cost_shape=";
+  shape_set.append(shape.dump());
+  return run_shipped("devices/index_90hz.json",
+                     {"/duration_s=4", "/pipeline/stages/0/cost/fixed_ms=10", "/pipeline/stages/1/cost/fixed_ms=1.5",
+                      "/pipeline/stages/2/cost/fixed_ms=3", shape_set});
+}
+
+}  // namespace
+
+TEST_CASE("SteamVR lowers the throttle after 30 frames that would have made full rate", "[pacing][steamvr]") {
+  // Frames 0-9 take 12 ms, the rest 10 ms (T = 11.11 ms). Frame k is judged
+  // when its thread asks for frame k + 1. Frames 0-4 slip past their running
+  // start (late); at the fifth, judged as frame 5 is planned, the level rises,
+  // so frames 5 on are planned at half rate. Frames 5-9 (12 ms) fit two
+  // refreshes (not late) but not one (not early). Frames 10 on are ready a
+  // refresh sooner (10 ms <= T), and their GPU would have been done in time
+  // at full rate: the render thread takes a frame when the next begins, a
+  // refresh sooner at full rate, so the GPU is done at W + T + 1.5 + 0.3 + 3
+  // ms, before that rate's latch W + 3 ms + 2T less the compositor's 0.5 ms.
+  // Thirty of them (frames 10-39) lower the level as frame 40 is planned:
+  // 35 frames throttled (5-39), raised once. The refreshes: frames 0-4 two
+  // each, 5-39 two each, then one each: 80 refreshes for 40 frames and 280
+  // frames in the other 280 of the 360, so 320 frames in 4 s (80 Hz).
+  const Json f = index_90hz_pattern([](int j) { return j < 10; });
+  CHECK(value(f, "throttle_raised") == 1);
+  CHECK(value(f, "throttled_frames") == 35);
+  CHECK(value(f, "application_frame_rate_hz") == Approx(80.0).margin(1.0));
+}
+
+TEST_CASE("SteamVR throttles a frame late in four and keeps it there", "[pacing][steamvr]") {
+  // Frames 3, 7, 11, ... take 12 ms. At full rate each of them is late: the
+  // fifth (frame 19) is judged as frame 20 is planned, and 5 of the last 20
+  // raise the level. Frames 0-19 took 15 refreshes plus 2 for each of the 5
+  // late ones: 25. At half rate no frame is late, but a 12 ms frame in every
+  // four ends each run of frames that would have made full rate at 3: the
+  // level never falls. The other 335 refreshes of the 4 s hold 167 frames,
+  // all throttled, at two refreshes each.
+  const Json f = index_90hz_pattern([](int j) { return j % 4 == 3; });
+  CHECK(value(f, "throttle_raised") == 1);
+  CHECK(value(f, "throttled_frames") == Approx(167.0).margin(1.0));
+}
+
+TEST_CASE("SteamVR leaves a frame late in eight at full rate", "[pacing][steamvr]") {
+  // Frames 7, 15, 23, ... take 12 ms: any 20 frames hold at most 3 of them,
+  // under the 5 that raise the level. Each costs one refresh more (the next
+  // running start it can make is two refreshes on): 8 frames in 9
+  // refreshes, 80 Hz, nothing throttled.
+  const Json f = index_90hz_pattern([](int j) { return j % 8 == 7; });
+  CHECK(value(f, "throttle_raised") == 0);
+  CHECK(value(f, "throttled_frames") == 0);
+  CHECK(value(f, "application_frame_rate_hz") == Approx(80.0).margin(1.0));
+}
