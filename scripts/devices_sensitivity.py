@@ -34,6 +34,7 @@ PROFILES = [
 VARY = ["/pipeline/stages/0/cost/variation=normal"]
 FRACTION = "/pipeline/stages/0/cost/variation_fraction="
 MEAN = "/pipeline/stages/0/cost/fixed_ms="
+CORRELATION = "/pipeline/stages/0/cost/variation_correlation_frames="
 
 # (label, [--set values at the low end], [at the high end]); each a plausible range docs/devices.md gives.
 ASSUMPTIONS = [
@@ -57,6 +58,15 @@ ASSUMPTIONS = [
      VARY + [FRACTION + "0.1", MEAN + "7.35"]),
     ("game thread 7.35 ms varying by 5 % / 20 % (9.5, none)", VARY + [FRACTION + "0.05", MEAN + "7.35"],
      VARY + [FRACTION + "0.2", MEAN + "7.35"]),
+    # The same load varying slowly: a first-order autoregression over N frames (docs/devices.md:
+    # the captures' per-second averages spread as much as their frames; 90, about a second, assumed).
+    ("game thread varying by 10 % over 30 / 300 frames (none)",
+     VARY + [FRACTION + "0.1", CORRELATION + "30"], VARY + [FRACTION + "0.1", CORRELATION + "300"]),
+    ("game thread 8 / 9 ms varying by 10 % over 90 frames (9.5, none)",
+     VARY + [FRACTION + "0.1", CORRELATION + "90", MEAN + "8"], VARY + [FRACTION + "0.1", CORRELATION + "90", MEAN + "9"]),
+    ("game thread 8.5 / 9.5 ms varying by 10 % over 90 frames (9.5, none)",
+     VARY + [FRACTION + "0.1", CORRELATION + "90", MEAN + "8.5"],
+     VARY + [FRACTION + "0.1", CORRELATION + "90", MEAN + "9.5"]),
     ("host: none / the Vive recording's delay on every USB link and its lost reports",
      ["/transport/os_jitter_ms=0", "/tracker/imu/report_loss_probability=0"],
      ["/transport/os_jitter_ms=1.83", "/transport/os_jitter=exponential", "/tracker/imu/report_loss_probability=0.472",

@@ -15,6 +15,13 @@ void bind(scenario::Section& s, renderer::RenderCost::Params& p) {
            {.doc = "random factor per frame"});
   s.number("variation_fraction", p.variation_fraction,
            {.min = 0.0, .max = 1.0, .doc = "uniform: ±fraction; normal: standard deviation as a fraction"});
+  s.number("variation_correlation_frames", p.variation_correlation_frames,
+           {.min = 0.0,
+            .doc = "normal: frames over which a frame's factor still correlates with the next ones (falling to 1/e); "
+                   "0: each frame drawn on its own"});
+  s.check("variation_correlation_frames",
+          p.variation_correlation_frames <= 0.0 || p.variation == renderer::RenderCost::Variation::Normal,
+          "only a normal variation is correlated from frame to frame");
   bind_trace(s, p);
 }
 

@@ -82,7 +82,8 @@ void bind_trace(Section& s, renderer::RenderCost::Params& p) {
                     {.doc = "a measured cost instead of the terms above: a capture column, one value per frame"});
   s.rule("trace", "a trace is the whole cost: no fixed_ms, per_primitive_us, per_pixel_ns or variation beside it");
   if (!keys) return;
-  for (const char* key : {"fixed_ms", "per_primitive_us", "per_pixel_ns", "variation", "variation_fraction"})
+  for (const char* key : {"fixed_ms", "per_primitive_us", "per_pixel_ns", "variation", "variation_fraction",
+                          "variation_correlation_frames"})
     s.check(key, !s.has(key), "a trace is the whole cost: leave this key out");
   p.trace = std::move(trace);
 }

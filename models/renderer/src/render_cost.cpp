@@ -1,6 +1,7 @@
 #include "latsim/renderer/render_cost.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 namespace latsim::renderer {
@@ -30,8 +31,17 @@ des::Time RenderCost::frame_time(des::RandomStream& stream) {
   double factor = 1.0;
   if (params_.variation == Variation::Uniform)
     factor = 1.0 + stream.uniform(-params_.variation_fraction, params_.variation_fraction);
-  else
+  else if (params_.variation_correlation_frames <= 0.0)
     factor = 1.0 + stream.normal(0.0, params_.variation_fraction);
+  else {
+    // x_j = r x_(j-1) + sqrt(1 - r^2) z_j keeps unit variance, the first x the
+    // stationary one, and correlates frames k apart by r^k = exp(-k / N).
+    const double r = std::exp(-1.0 / params_.variation_correlation_frames);
+    const double z = stream.normal(0.0, 1.0);
+    correlated_ = correlated_drawn_ ? r * correlated_ + std::sqrt(1.0 - r * r) * z : z;
+    correlated_drawn_ = true;
+    factor = 1.0 + params_.variation_fraction * correlated_;
+  }
   factor = std::max(factor, 0.0);
   return des::Time::from_seconds(nominal_.to_seconds() * factor);
 }

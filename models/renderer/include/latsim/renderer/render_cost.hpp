@@ -21,8 +21,9 @@ struct TraceCost {
 };
 
 /// Frame time = fixed + per primitive x primitives + per covered pixel x
-/// covered pixels, optionally varied by a random factor per frame; or, with a
-/// trace, the values of a capture column in turn (nominal: their mean).
+/// covered pixels, optionally varied by a random factor per frame (normal
+/// factors may be correlated from frame to frame); or, with a trace, the
+/// values of a capture column in turn (nominal: their mean).
 class RenderCost {
  public:
   enum class Variation { None, Uniform, Normal };
@@ -32,6 +33,9 @@ class RenderCost {
     double per_pixel_ns = 0.0;
     Variation variation = Variation::None;
     double variation_fraction = 0.0;  ///< uniform: +-fraction; normal: stddev as a fraction
+    /// normal: frames over which a frame's factor still correlates with the
+    /// next ones, falling to 1/e (a first-order autoregression); 0: independent
+    double variation_correlation_frames = 0.0;
     std::shared_ptr<const TraceCost> trace;  ///< set: the cost is measured and the terms above are unused
   };
 
@@ -61,6 +65,8 @@ class RenderCost {
   Params params_;
   des::Time nominal_;
   std::optional<capture::Replay> replay_;  // a copy of the cost starts from the position it had
+  double correlated_ = 0.0;  // the last correlated normal deviate (unit variance)
+  bool correlated_drawn_ = false;
 };
 
 }  // namespace latsim::renderer
