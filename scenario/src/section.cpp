@@ -237,6 +237,12 @@ void Section::duration(std::string_view key, des::Time& v, const KeySpec& spec) 
   } catch (const des::TimeOverflow&) {
     fail(key, "duration out of range");
   }
+  // A positive value shorter than the time unit rounds to 0 ps, out of a
+  // range that excludes 0 (a step of 1e-308 ms passed the range check, then
+  // never advanced; a window of it failed with no pointer).
+  if (x > 0 && v == des::Time::zero() && bounded.min && (*bounded.min > 0 || bounded.above_min))
+    fail(key, "rounds to 0 in the time unit, 1 ps (" + format_number(1.0 / scale) + " " + std::string(spec.unit) + "), got " +
+                  format_number(x));
 }
 
 void Section::duration(std::string_view key, std::optional<des::Time>& v, const KeySpec& spec) {

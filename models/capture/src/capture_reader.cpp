@@ -15,9 +15,6 @@ namespace latsim::capture {
 
 namespace {
 
-// Past this a list of names in a message is cut short: an error is one line.
-constexpr size_t kListBudgetChars = 110;
-
 /// Names of one quantity across the generations, for the hint of a missing column.
 constexpr std::array<std::array<std::string_view, 3>, 14> kAliases{{
     {"MsBetweenPresents", "msBetweenPresents", ""},
@@ -40,27 +37,6 @@ bool iequal(std::string_view a, std::string_view b) {
   return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
            return (x | 0x20) == (y | 0x20) && ((x >= 'A' && x <= 'Z') || (x >= 'a' && x <= 'z') || x == y);
          });
-}
-
-// A value as a message shows it: printable, not too long.
-std::string shown(std::string_view v) {
-  std::string out;
-  for (char c : v.substr(0, 40)) out.push_back(static_cast<unsigned char>(c) < 0x20 || c == 0x7f ? '?' : c);
-  if (v.size() > 40) out += "...";
-  return out;
-}
-
-// "a, b, c ... (N in all)" within the list budget.
-std::string name_list(const std::vector<std::string>& names) {
-  std::string out;
-  size_t shown_count = 0;
-  for (const std::string& n : names) {
-    if (out.size() + n.size() > kListBudgetChars) break;
-    out += (shown_count ? ", " : "") + shown(n);
-    ++shown_count;
-  }
-  if (shown_count < names.size()) out += ", ... (" + std::to_string(names.size()) + " in all)";
-  return out;
 }
 
 /// A process as the capture names it, with its rows.

@@ -53,6 +53,11 @@ bool LineSource::next(std::string_view& line) {
 
 bool LineSource::finish(std::string_view& line) {
   ++number_;
+  // No text capture holds a NUL: a cell holding one was read up to it, or a
+  // message quoting it was cut there (every reader of captures reads here).
+  if (const size_t nul = line.find('\0'); nul != std::string_view::npos)
+    throw CaptureError(file_, number_, "a NUL byte at column " + std::to_string(nul + 1) +
+                                           ": not a text file, or a damaged one");
   if (number_ == 1 && line.substr(0, 3) == "\xEF\xBB\xBF") line.remove_prefix(3);
   if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
   return true;

@@ -110,10 +110,10 @@ class FrameReader {
       take_row();
     }
     if (keys_.size() > 1) {
-      std::string names;
-      for (const auto& k : keys_) names += (names.empty() ? "" : ", ") + k;
+      const std::vector<std::string> names(keys_.begin(), keys_.end());
       throw CaptureError(rows_.file(), 0,
-                         std::to_string(keys_.size()) + " processes match: choose one with application and process_id: " + names);
+                         std::to_string(keys_.size()) + " processes match: choose one with application and process_id: " +
+                             name_list(names));
     }
     if (out_.frames.empty()) throw CaptureError(rows_.file(), 0, "no frames of the process asked for");
     derive();

@@ -21,6 +21,14 @@ struct VrApiFields {
   std::vector<std::string_view> keys, values;
 };
 
+/// A capture's text as a message quotes it: control characters as '?', at
+/// most 40 characters (then "...").
+std::string shown(std::string_view v);
+
+/// "a, b, c, ... (N in all)": names shown as above, cut at a whole name
+/// within about 110 characters, so that an error stays one readable line.
+std::string name_list(const std::vector<std::string>& names);
+
 /// Where column `name` is in a header (none: it has no such column).
 std::optional<size_t> find_column(const std::vector<std::string>& header, std::string_view name);
 
@@ -54,6 +62,7 @@ class RowSource {
 
  private:
   bool next_vrapi();
+  void refuse_repeated_names() const;
 
   LineSource lines_;
   std::vector<std::string> header_;
