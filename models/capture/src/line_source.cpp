@@ -1,6 +1,7 @@
 #include "line_source.hpp"
 
 #include "latsim/capture/capture.hpp"
+#include "latsim/des/stop_token.hpp"
 
 namespace latsim::capture {
 
@@ -31,6 +32,9 @@ bool LineSource::next(std::string_view& line) {
     }
     if (buffer_.size() - pos_ > kMaxLineBytes)
       throw CaptureError(file_, number_ + 1, "a line longer than " + std::to_string(kMaxLineBytes) + " bytes");
+    // A stop request is answered between pieces (a 256 MB capture takes
+    // seconds to read), where a command has set the thread's stop flag.
+    des::check_stop();
     buffer_.erase(0, pos_);
     pos_ = 0;
     const size_t had = buffer_.size();
