@@ -181,7 +181,7 @@ std::string Section::choice_name(std::string_view key, const std::string& curren
   const std::string v = spec.required ? node_->string(key) : node_->string(key, current);
   for (const auto& n : names)
     if (v == n) return v;
-  fail(key, "unknown value \"" + v + "\"; expected one of " + choice_list(names));
+  fail(key, "unknown value " + quote_value(v) + "; expected one of " + choice_list(names));
 }
 
 void Section::choices(std::string_view key, std::vector<std::string>& v, const std::vector<std::string>& names,
@@ -196,7 +196,7 @@ void Section::choices(std::string_view key, std::vector<std::string>& v, const s
   for (size_t i = 0; i < v.size(); ++i) {
     if (std::find(names.begin(), names.end(), v[i]) != names.end()) continue;
     throw ScenarioError(join_pointer(join_pointer(pointer(), key), std::to_string(i)),
-                        "unknown value \"" + v[i] + "\"; expected one of " + choice_list(names));
+                        "unknown value " + quote_value(v[i]) + "; expected one of " + choice_list(names));
   }
 }
 
