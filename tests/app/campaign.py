@@ -125,7 +125,7 @@ def attack_keys():
             if pointer.startswith(("/description", "/include")):
                 continue
             for value in HOSTILE:
-                count("keys")
+                count("keys/validate")
                 sets = ["--set", f"{pointer}={value}"]
                 what = f"{name} {pointer}={value[:20]}"
                 proc = latsim("validate", scenario, *sets, cpu_s=20)
@@ -135,6 +135,7 @@ def attack_keys():
                 if value == "-1":
                     continue
                 # Validated: a short run ends, exit 0 or 2, and leaves nothing.
+                count("keys/run")
                 shutil.rmtree(out, ignore_errors=True)
                 proc = latsim("run", scenario, *sets, "--set", "/duration_s=0.3", "-q", "--out", out, cpu_s=20)
                 check(proc.returncode in (0, 2), f"run {what}: exit {proc.returncode} after validate passed: "
@@ -197,7 +198,7 @@ def attack_options():
         cases.append(("--out", prefix, "n" * 300, True))
         cases.append(("--out", prefix, "/".join(["d"] * 2100), True))
     for option, prefix, value, must_refuse in cases:
-        count("options")
+        count("options/" + prefix[0])
         shutil.rmtree(out, ignore_errors=True)
         before = {d: sorted(os.listdir(d)) for d in (work, run_dir, sweep_dir)}
         proc = latsim(*prefix, option, value, cpu_s=30)
@@ -246,7 +247,7 @@ def attack_captures():
         with open(path, "rb") as f:
             data = f.read()
         for name, damaged, must_refuse in damaged_captures(data):
-            count("captures")
+            count("captures/compare")
             capture = os.path.join(work, f"{kind}_{name}.csv")
             with open(capture, "wb") as f:
                 f.write(damaged)
@@ -306,7 +307,7 @@ def attack_results():
              (sweep_dir, "results.csv", "NUL", nul), (sweep_dir, "results.csv", "escape", escape),
              (sweep_dir, "results.csv", "UTF-16", utf16)]
     for number, (pristine, name, how, damage) in enumerate(cases):
-        count("results")
+        count("results/report")
         case_dir = os.path.join(work, f"case_{number}")
         shutil.copytree(pristine, case_dir)
         rewrite(os.path.join(case_dir, name), damage)
@@ -319,7 +320,7 @@ def attack_results():
         one_line_error(what, proc, [name])
         check(snapshot(case_dir) == before, f"{what}: the report changed the directory")
     # A file turned into a directory: one line naming the run directory, never a traceback.
-    count("results")
+    count("results/report")
     case_dir = os.path.join(work, "summary_directory")
     shutil.copytree(run_dir, case_dir)
     to_directory(os.path.join(case_dir, "summary.json"))
@@ -338,7 +339,7 @@ def cpu_seconds(pid):
 
 def stop_while_busy(what, argv, out, sig, busy_cpu_s=0.2):
     """Starts argv, waits until it has spent busy_cpu_s of CPU (in the phase), signals it, checks the contract."""
-    count("signals")
+    count("signals/" + os.path.basename(argv[1]))
     child = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     deadline = time.monotonic() + 120
     while child.poll() is None and cpu_seconds(child.pid) < busy_cpu_s and time.monotonic() < deadline:
@@ -390,7 +391,7 @@ def attack_signals():
     proc = latsim("sweep", sweep_file, "--out", reference, "-j", "2")
     check(proc.returncode == 0, f"reference sweep: {proc.stderr[-300:]!r}")
     for sig in (signal.SIGTERM, signal.SIGINT, signal.SIGKILL):
-        count("signals")
+        count("signals/sweep")
         out = os.path.join(work, f"sweep_{sig.name}")
         child = subprocess.Popen([LATSIM, "sweep", sweep_file, "--out", out, "-j", "2"], stdout=subprocess.DEVNULL,
                                  stderr=subprocess.PIPE)
@@ -413,5 +414,5 @@ for attack in (attack_options, attack_captures, attack_results, attack_signals, 
     started = time.monotonic()
     attack()
     print(f"{attack.__name__}: {time.monotonic() - started:.1f} s")
-print("attacks: " + ", ".join(f"{k} {v}" for k, v in counts.items()))
+print("attacks: " + ", ".join(f"{k} {v}" for k, v in sorted(counts.items())))
 finish("hardening campaign")
