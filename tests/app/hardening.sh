@@ -401,15 +401,19 @@ expect_bad unknown_value_long '/motion/type: unknown value "zzzz' "$S" \
 # named twice (the first taken, silently) are refused by every reader.
 run_dir="$tmp/capture_base_run"
 "$LATSIM" run "$S" --out "$run_dir" -q --set /duration_s=1 2>/dev/null || say_fail "capture base run"
-for capture in scenarios/measured/captures/ovr-metrics/OGMP_1.csv scenarios/measured/captures/vrapi/vrapi_stats_lines.txt \
-               tests/models/capture/data/steamvr_frame_timing.csv; do
+# (A column no reader asks for may repeat: each file repeats one that is read.)
+for pair in "scenarios/measured/captures/ovr-metrics/OGMP_1.csv:Time Stamp" \
+            "scenarios/measured/captures/vrapi/vrapi_stats_lines.txt:FPS" \
+            "tests/models/capture/data/steamvr_frame_timing.csv:m_flSystemTimeInSeconds"; do
+  capture=${pair%%:*} column=${pair#*:}
   name=$(basename "$capture")
   python3 -c 'import sys; d = open(sys.argv[1], "rb").read(); n = len(d) // 3; open(sys.argv[2], "wb").write(d[:n] + b"\0" + d[n:])' \
     "$capture" "$tmp/nul_$name"
   expect_usage "capture_nul_$name" "a NUL byte at column" "$LATSIM" compare "$tmp/nul_$name" "$run_dir" --out "$tmp/cmp_nul" --no-plots
-  python3 -c 'import sys; h, _, rest = open(sys.argv[1], "rb").read().partition(b"\n"); first = h.split(b",")[0]
-open(sys.argv[2], "wb").write(h + b"," + first + b"\n" + rest)' "$capture" "$tmp/twice_$name"
-  expect_usage "capture_twice_$name" "appears twice in the header" "$LATSIM" compare "$tmp/twice_$name" "$run_dir" --out "$tmp/cmp_twice" --no-plots
+  python3 -c 'import sys; h, _, rest = open(sys.argv[1], "rb").read().partition(b"\n")
+sep = b"=72/72," if h.startswith(b"FPS=") else b","
+open(sys.argv[2], "wb").write(h + b"," + sys.argv[3].encode() + sep + b"\n" + rest)' "$capture" "$tmp/twice_$name" "$column"
+  expect_usage "capture_twice_$name" "column \"$column\" appears twice in the header" "$LATSIM" compare "$tmp/twice_$name" "$run_dir" --out "$tmp/cmp_twice" --no-plots
 done
 [ -e "$tmp/cmp_nul" ] || [ -e "$tmp/cmp_twice" ] && say_fail "a refused capture made compare's directory"
 # report: a control character in a table latsim wrote is damage (a NUL or an

@@ -97,11 +97,8 @@ class Reader {
     header_ = rows_.header();
     capture_.generation = rows_.vrapi() ? Generation::vrapi : detect_generation(header_);
     for (const std::string& name : request_.columns) {
-      const auto at = find_column(header_, name);
+      const auto at = rows_.column(name);
       if (!at) fail(missing_column(header_, capture_.generation, name));
-      // Two columns of one name: which one the capture means cannot be told (the first was taken, silently).
-      if (std::find(header_.begin() + static_cast<std::ptrdiff_t>(*at) + 1, header_.end(), name) != header_.end())
-        fail("column \"" + shown(name) + "\" appears twice in the header: which one is meant cannot be told");
       if (const auto why = not_a_duration(capture_.generation, name)) fail(*why);
       layout_.wanted.push_back(*at);
       layout_.needed = std::max(layout_.needed, *at + 1);
@@ -109,9 +106,9 @@ class Reader {
       display_.push_back(is_display_column(name));
       extremes_.emplace_back();
     }
-    layout_.application = find_column(header_, "Application");
-    layout_.process_id = find_column(header_, "ProcessID");
-    if (capture_.generation == Generation::v1) layout_.dropped = find_column(header_, "Dropped");
+    layout_.application = rows_.column("Application");
+    layout_.process_id = rows_.column("ProcessID");
+    if (capture_.generation == Generation::v1) layout_.dropped = rows_.column("Dropped");
     const ProcessSelect& sel = request_.select;
     if (!sel.application.empty() && !layout_.application)
       fail("an application is chosen but the capture has no Application column");

@@ -100,17 +100,16 @@ RowSource::RowSource(const std::filesystem::path& file) : lines_(file) {
     if (!csv_.split(line)) fail("an unterminated quote in the header");
     for (std::string_view f : csv_.fields()) header_.emplace_back(f);
   }
-  refuse_repeated_names();
 }
 
-void RowSource::refuse_repeated_names() const {
-  // Two columns (or VrApi keys) of one name: which one is meant cannot be
-  // told, whichever reader looks it up (the first was taken, silently).
-  std::vector<std::string_view> names(header_.begin(), header_.end());
-  std::sort(names.begin(), names.end());
-  for (size_t i = 1; i < names.size(); ++i)
-    if (!names[i].empty() && names[i] == names[i - 1])
-      fail("column \"" + shown(names[i]) + "\" appears twice in the header: which one is meant cannot be told");
+std::optional<size_t> RowSource::column(std::string_view name) const {
+  const auto at = find_column(header_, name);
+  // Two columns (or VrApi keys) of the name looked up: which one is meant
+  // cannot be told, whichever reader asks (the first was taken, silently).
+  // A column no reader asks for may repeat.
+  if (at && std::find(header_.begin() + static_cast<std::ptrdiff_t>(*at) + 1, header_.end(), name) != header_.end())
+    fail("column \"" + shown(name) + "\" appears twice in the header: which one is meant cannot be told");
+  return at;
 }
 
 bool RowSource::next(size_t max_fields) {

@@ -47,6 +47,9 @@ class RowSource {
   explicit RowSource(const std::filesystem::path& file);
 
   const std::vector<std::string>& header() const { return header_; }
+  /// Where column `name` is (none: no such column); throws CaptureError when
+  /// the header names it twice.
+  std::optional<size_t> column(std::string_view name) const;
   bool vrapi() const { return vrapi_; }
   /// The next data row, split into at most `max_fields` fields; false at the end.
   bool next(size_t max_fields = SIZE_MAX);
@@ -62,7 +65,6 @@ class RowSource {
 
  private:
   bool next_vrapi();
-  void refuse_repeated_names() const;
 
   LineSource lines_;
   std::vector<std::string> header_;

@@ -34,7 +34,7 @@ class StatsReader {
 
  private:
   std::optional<size_t> column(std::string_view name, bool required = true) {
-    const auto at = find_column(rows_.header(), name);
+    const auto at = rows_.column(name);
     if (!at && required)
       throw CaptureError(rows_.file(), 1, "no column \"" + shown(name) + "\" in this " +
                                               generation_name(out_.generation) + " file");
