@@ -1,4 +1,5 @@
 // Option parsing, the recorded command line and the one-line messages shared by the subcommands.
+#include <cctype>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -39,9 +40,10 @@ CLI::Validator number_text_check(const std::string& type) {
         }
         ok = ok && end == s + text.size();
         if (ok) return "";
-        return std::string(is_float ? "expected a finite number within a double's range" : is_unsigned ? "expected an integer from 0 to 18446744073709551615"
-                                                                            : "expected an integer from -9223372036854775808 to 9223372036854775807") +
-               ", got " + scenario::quote_value(text);
+        const char* expected = is_float      ? "expected a finite number within a double's range"
+                               : is_unsigned ? "expected an integer from 0 to 18446744073709551615"
+                                             : "expected an integer from -9223372036854775808 to 9223372036854775807";
+        return std::string(expected) + ", got " + scenario::quote_value(text);
       },
       "");
 }
@@ -103,7 +105,8 @@ std::optional<std::string> out_dir_problem(const std::string& out_dir) {
   // A name the file system cannot hold fails only when the results are
   // written, after all the work (a 3,000-character --out: exit 1 at the end).
   if (out_dir.size() >= PATH_MAX)
-    return scenario::quote_value(out_dir) + " is longer than a path may be (" + std::to_string(PATH_MAX - 1) + " bytes)";
+    return scenario::quote_value(out_dir) + " is longer than a path may be (" + std::to_string(PATH_MAX - 1) +
+           " bytes)";
   for (const auto& part : fs::path(out_dir))
     if (part.native().size() > NAME_MAX)
       return scenario::quote_value(out_dir) + " has a name longer than a file name may be (" + std::to_string(NAME_MAX) +

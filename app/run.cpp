@@ -102,7 +102,8 @@ int command_run(int argc, char** argv) {
   } catch (const des::StopRequested&) {
     shown.finish();
     if (StopSignals::first_word())
-      std::fprintf(stderr, "%s: stopped by %s while reading its input; nothing written\n", name.c_str(), signals.name());
+      std::fprintf(stderr, "%s: stopped by %s while reading its input; nothing written\n", name.c_str(),
+                   signals.name());
     return signals.exit_code();
   } catch (const run::RunInterrupted& e) {
     shown.finish();
