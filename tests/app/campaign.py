@@ -382,6 +382,7 @@ def attack_signals():
         out = os.path.join(work, "compare")
         stop_while_busy(f"compare reading a capture, {sig.name}", [LATSIM, "compare", big, run_dir, "--out", out],
                         out, sig)
+    os.remove(big)
     # A sweep interrupted three ways, then run again: the table of an undisturbed sweep.
     sweep_file = os.path.join(work, "sweep.json")
     with open(sweep_file, "w") as f:
