@@ -32,7 +32,7 @@ Attacks (the counts are printed at the end):
 
 Usage: campaign.py LATSIM SOURCE_DIR SCRATCH_DIR [--full]
 (--full: every scenario kind and every hostile value; the default is a
-sample that takes about a minute.)
+sample that takes under two minutes on two cores.)
 """
 
 import glob
