@@ -23,16 +23,61 @@ def _one_line(text, limit=400):
     return text if len(text) <= limit else text[:limit] + "…"
 
 
+def readable(line, limit=400):
+    """A line as latsim prints what a user gave (scenario/readable.hpp): control
+    characters escaped (\\t, \\xNN), and past `limit` characters its start
+    and its size."""
+    out = "".join(("\\t" if c == "\t" else f"\\x{ord(c):02X}") if ord(c) < 0x20 or ord(c) == 0x7F else c
+                  for c in line[:limit + 1])
+    if len(line) > limit:
+        out = out[:limit] + f"… ({len(line.encode('utf-8', 'replace'))} bytes)"
+    return out
+
+
+class ReadableLines:
+    """stderr whose every line is readable(): whatever a script prints, an
+    option or a cell it quotes included (report --figure once echoed an
+    escape sequence raw and 3,000 characters whole), stays one line of a
+    readable length."""
+
+    def __init__(self, stream, limit=400):
+        self._stream, self._limit, self._pending = stream, limit, ""
+
+    def write(self, text):
+        self._pending += text
+        while "\n" in self._pending:
+            line, self._pending = self._pending.split("\n", 1)
+            self._stream.write(readable(line, self._limit) + "\n")
+        return len(text)
+
+    def flush(self):
+        if self._pending:
+            self._stream.write(readable(self._pending, self._limit))
+            self._pending = ""
+        self._stream.flush()
+
+    def __getattr__(self, name):
+        return getattr(self._stream, name)
+
+
+def _main_flushed(main, argv):
+    try:
+        return main(argv)
+    finally:
+        sys.stderr.flush()
+
+
 def run_main(name, main, argv):
     """main(argv)'s exit code, under the contract above."""
     stopped_by = []
+    sys.stderr = ReadableLines(sys.stderr)
 
     def on_term(signum, _frame):
         stopped_by.append(signum)
         raise KeyboardInterrupt
     signal.signal(signal.SIGTERM, on_term)
     try:
-        return main(argv)
+        return _main_flushed(main, argv)
     except KeyboardInterrupt:
         _take_back()
         print(f"{name}: stopped by {'SIGTERM' if stopped_by else 'SIGINT'}; nothing written", file=sys.stderr)

@@ -10,6 +10,7 @@ import io
 import json
 import math
 import os
+import re
 from fractions import Fraction
 
 import sweep_labels
@@ -192,6 +193,12 @@ def find_figure(summary, path):
             node = node[key]
         if isinstance(node, dict) and "mean" in node:
             node = node["mean"]
+            # A distribution's mean is a number in every file latsim writes:
+            # anything else is damage, not an absent figure (a "mean" of "x"
+            # was drawn as no value, exit 0).
+            if not isinstance(node, (int, float)) or isinstance(node, bool):
+                raise DamagedFile(getattr(summary, "source", "summary.json"),
+                                  f"{path}: its mean holds {str(node)[:40]!r}, not a number")
         if isinstance(node, (int, float)) and not isinstance(node, bool):
             return float(node)
     return None
@@ -236,7 +243,18 @@ def read_json(path):
         raise DamagedFile(path, f"not a whole result file ({e})") from None
     if not isinstance(doc, dict):
         raise DamagedFile(path, f"expected a JSON object, found {type(doc).__name__}")
-    return doc
+    return ResultDoc(doc, path)
+
+
+class ResultDoc(dict):
+    """A result file's object, knowing its file: a value found damaged later names it."""
+
+    def __init__(self, doc, source):
+        super().__init__(doc)
+        self.source = source
+
+
+CONTROL_CHARACTER = re.compile("[\\x00-\\x08\\x0b\\x0c\\x0e-\\x1f\\x7f]")
 
 
 def read_csv(path, required=()):
@@ -247,11 +265,19 @@ def read_csv(path, required=()):
         # latsim ends every line of a table: a last line without its end was cut short.
         if text and not text.endswith("\n"):
             raise DamagedFile(path, "its last line has no end: the file was cut short")
+        # latsim writes no control character into a table (a NUL or an escape
+        # sequence in a cell or a column's name was read as text, exit 0).
+        bad = CONTROL_CHARACTER.search(text)
+        if bad:
+            raise DamagedFile(path, f"line {text.count(chr(10), 0, bad.start()) + 1}: a control character "
+                              f"(\\x{ord(bad.group()):02X}): not a table latsim writes")
         reader = csv.DictReader(io.StringIO(text, newline=""))
         rows = list(reader)
         header = reader.fieldnames or []
     except FileNotFoundError:
         raise DamagedFile(path, "missing (removed while the report read the directory?)") from None
+    except DamagedFile:
+        raise
     except (ValueError, UnicodeDecodeError, csv.Error) as e:
         raise DamagedFile(path, f"not a whole result table ({e})") from None
     missing = [c for c in required if c not in header]

@@ -13,6 +13,7 @@
 #include "commands.hpp"
 #include "stop_signals.hpp"
 #include "latsim/capture/capture.hpp"
+#include "latsim/des/stop_token.hpp"
 #include "latsim/results/run_files.hpp"
 #include "latsim/sweep/compare.hpp"
 #include "latsim/scenario/readable.hpp"
@@ -66,7 +67,12 @@ int command_compare(int argc, char** argv) {
   if (process_id != 0) request.select.process_id = process_id;
   sweep::Comparison comparison;
   try {
+    const des::ScopedStopFlag reading(&StopSignals::installed().flag());
     comparison = sweep::compare_capture(request);
+  } catch (const des::StopRequested&) {
+    if (StopSignals::first_word())
+      std::cerr << "compare: stopped by " << StopSignals::installed().name() << " while reading; nothing written\n";
+    return StopSignals::installed().exit_code();
   } catch (const capture::CaptureError& e) {
     std::cerr << scenario::readable(std::string("compare: ") + e.what()) << "\n";
     return kExitBadInput;

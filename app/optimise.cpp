@@ -104,7 +104,7 @@ int command_optimise(int argc, char** argv) {
   std::vector<sweep::FigureBound> bounds;
   for (const std::string& c : constraints) {
     const auto b = sweep::parse_bound(c);
-    if (!b) return usage_error("--constraint " + c + ": expected FIGURE<=VALUE or FIGURE>=VALUE");
+    if (!b) return usage_error("--constraint " + scenario::quote_value(c) + ": expected FIGURE<=VALUE or FIGURE>=VALUE");
     bounds.push_back(*b);
   }
   if (tolerance_option->count() == 0) tolerance = std::max((range->hi - range->lo) / 1000, finest_tolerance(*range));

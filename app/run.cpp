@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "latsim/des/stop_token.hpp"
 #include "latsim/results/run_files.hpp"
 #include "latsim/run/prepared_run.hpp"
 #include "latsim/run/runner.hpp"
@@ -89,12 +90,21 @@ int command_run(int argc, char** argv) {
   nlohmann::json summary;
   const std::string name = scenario::readable(file, 2 * scenario::kQuotedChars);
   try {
+    // Reading the files the scenario names (a capture of 256 MB takes
+    // seconds) answers a signal too, not only the simulation.
+    const des::ScopedStopFlag reading(&signals.flag());
     const auto doc = run::load_scenario(file, sets);
     // Built once, fully validated before the output directory is touched: bad input writes nothing.
     run::PreparedRun prepared(doc, opt);
     summary = prepared.run();
   } catch (const scenario::ScenarioError& e) {
     return bad_input(file, e);
+  } catch (const des::StopRequested&) {
+    shown.finish();
+    if (StopSignals::first_word())
+      std::fprintf(stderr, "%s: stopped by %s while reading its input; nothing written\n", name.c_str(),
+                   signals.name());
+    return signals.exit_code();
   } catch (const run::RunInterrupted& e) {
     shown.finish();
     if (StopSignals::first_word())

@@ -182,7 +182,8 @@ int command_sweep(int argc, char** argv) {
   if (!*jobs) request.jobs = request.mpi ? 1u : available_cpus();
 
   std::optional<Shard> slice;
-  if (!request.shard.empty()) {
+  // Given, even empty: "--shard ''" ran the whole sweep, as if not given.
+  if (shard->count() > 0) {
     try {
       slice = parse_shard(request.shard);
     } catch (const std::invalid_argument& e) {

@@ -10,6 +10,7 @@
 #include "latsim/sections/render_cost.hpp"
 #include "latsim/sections/shared.hpp"
 #include "latsim/pipelines/pipeline.hpp"
+#include "latsim/scenario/readable.hpp"
 #include "latsim/scenario/section.hpp"
 
 namespace latsim::pipelines::frame_stages {
@@ -121,7 +122,7 @@ std::vector<StageSpec> resolve(Section& s, const std::string& key, const std::ve
     const StageKeys& k = stages[i];
     const std::string at = s.pointer() + "/" + key + "/" + std::to_string(i);
     auto it = units.by_name.find(k.on);
-    s.check_pointer(at + "/on", it != units.by_name.end(), "no processor is named \"" + k.on + "\"");
+    s.check_pointer(at + "/on", it != units.by_name.end(), "no processor is named " + scenario::quote_value(k.on));
     StageSpec st;
     st.name = k.name;
     st.pointer = at;
@@ -154,7 +155,7 @@ std::vector<StageSpec> resolve(Section& s, const std::string& key, const std::ve
       int u = -1;
       for (size_t j = i; j < stages.size(); ++j)
         if (stages[j].name == k.until) u = static_cast<int>(j);
-      s.check_pointer(at + "/until", u >= 0, "\"" + k.until + "\" is not this stage or a later one");
+      s.check_pointer(at + "/until", u >= 0, scenario::quote_value(k.until) + " is not this stage or a later one");
       s.check_pointer(at + "/until", st.start == StartRule::late, "only a late stage has a span to meet a deadline");
       st.until = u;
     }
@@ -233,7 +234,7 @@ void bind(Section& s, FrameStagesPipeline::Params& p, const sections::SharedPara
   for (size_t i = 0; i < processors.size(); ++i)
     for (size_t j = 0; j < i; ++j)
       s.check_pointer(s.pointer() + "/processors/" + std::to_string(i) + "/name", processors[i].name != processors[j].name,
-                      "two processors are named \"" + processors[i].name + "\"");
+                      "two processors are named " + scenario::quote_value(processors[i].name));
   const Units units = expand(processors, s.pointer() + "/processors");
   spec.processors = units.specs;
   spec.stages = resolve(s, "stages", stages, units, spec.vsync ? StartRule::retrace : StartRule::after, shared);

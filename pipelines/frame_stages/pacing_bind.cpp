@@ -1,6 +1,8 @@
 #include "frame_stages/pacing_bind.hpp"
 #include "frame_stages/pacing_runtime_bind.hpp"
 
+#include "latsim/scenario/readable.hpp"
+
 namespace latsim::pipelines::frame_stages {
 
 namespace {
@@ -106,7 +108,7 @@ void resolve_pacing(Section& s, PacingKeys& k, const std::vector<StageSpec>& sta
     if (name.empty()) return -1;
     for (size_t i = 0; i < stages.size(); ++i)
       if (stages[i].name == name) return static_cast<int>(i);
-    s.check_pointer(base + "/" + key, false, "no stage is named \"" + name + "\"");
+    s.check_pointer(base + "/" + key, false, "no stage is named " + scenario::quote_value(name));
     return -1;
   };
   k.spec.stages.draw = index_of("draw_stage", k.draw_stage);

@@ -87,6 +87,13 @@ def _check_out(out):
         raise ValueError("out: a path with a NUL character (it would be cut short: another directory)")
     if os.path.exists(out) and not os.path.isdir(out):
         raise ValueError(f"out: {out!r} exists and is not a directory")
+    # As latsim run's --out (app/command_line.cpp): a name no file system
+    # holds is refused before the run, not found when its files are written.
+    shown = repr(out if len(out) <= 60 else out[:60] + "…") + ("" if len(out) <= 60 else f" ({len(out)} characters)")
+    if len(os.fsencode(out)) >= 4096:
+        raise ValueError(f"out: {shown} is longer than a path may be (4095 bytes)")
+    if any(len(os.fsencode(part)) > 255 for part in out.split(os.sep)):
+        raise ValueError(f"out: {shown} has a name longer than a file name may be (255 bytes)")
     return out
 
 

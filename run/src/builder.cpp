@@ -6,6 +6,7 @@
 #include <string>
 #include <stdexcept>
 
+#include "latsim/des/stop_token.hpp"
 #include "latsim/run/builtin_pipelines.hpp"
 #include "latsim/tracker/motion_and_transport.hpp"
 #include "latsim/units/units.hpp"
@@ -169,6 +170,8 @@ void built_from(const char* pointer, const char* what, F&& make) {
     make();
   } catch (const scenario::ScenarioError&) {
     throw;
+  } catch (const des::StopRequested&) {
+    throw;  // a signal while reading a file the scenario names: no problem of the scenario
   } catch (const std::bad_alloc&) {
     throw scenario::ScenarioError(pointer, std::string("not enough memory to build the ") + what);
   } catch (const std::exception& e) {

@@ -216,7 +216,7 @@ std::string ConfigNode::choice(std::string_view key, std::string def,
   const std::string v = string(key, std::move(def));
   for (auto a : allowed)
     if (v == a) return v;
-  fail(key, "unknown value \"" + v + "\"; expected one of " +
+  fail(key, "unknown value " + quote_value(v) + "; expected one of " +
                 choice_list(std::vector<std::string>(allowed.begin(), allowed.end())));
 }
 
@@ -298,7 +298,7 @@ des::RationalSeconds ConfigNode::rate_as_period(std::string_view key, std::strin
       if (used != b.size() || n <= 0 || d <= 0) throw std::invalid_argument("bad");
       return des::RationalSeconds::period_of_hz(n, d);
     } catch (const std::exception&) {
-      fail(key, "expected a frequency in Hz: a number or a positive fraction like \"60000/1001\", got \"" + s + "\"");
+      fail(key, "expected a frequency in Hz: a number or a positive fraction like \"60000/1001\", got " + quote_value(s));
     }
   }
   fail(key, "expected a frequency in Hz (a number or \"num/den\"), got " + json_type_name(v));

@@ -181,7 +181,7 @@ std::string Section::choice_name(std::string_view key, const std::string& curren
   const std::string v = spec.required ? node_->string(key) : node_->string(key, current);
   for (const auto& n : names)
     if (v == n) return v;
-  fail(key, "unknown value \"" + v + "\"; expected one of " + choice_list(names));
+  fail(key, "unknown value " + quote_value(v) + "; expected one of " + choice_list(names));
 }
 
 void Section::choices(std::string_view key, std::vector<std::string>& v, const std::vector<std::string>& names,
@@ -196,7 +196,7 @@ void Section::choices(std::string_view key, std::vector<std::string>& v, const s
   for (size_t i = 0; i < v.size(); ++i) {
     if (std::find(names.begin(), names.end(), v[i]) != names.end()) continue;
     throw ScenarioError(join_pointer(join_pointer(pointer(), key), std::to_string(i)),
-                        "unknown value \"" + v[i] + "\"; expected one of " + choice_list(names));
+                        "unknown value " + quote_value(v[i]) + "; expected one of " + choice_list(names));
   }
 }
 
@@ -237,6 +237,12 @@ void Section::duration(std::string_view key, des::Time& v, const KeySpec& spec) 
   } catch (const des::TimeOverflow&) {
     fail(key, "duration out of range");
   }
+  // A positive value shorter than the time unit rounds to 0 ps, out of a
+  // range that excludes 0 (a step of 1e-308 ms passed the range check, then
+  // never advanced; a window of it failed with no pointer).
+  if (x > 0 && v == des::Time::zero() && bounded.min && (*bounded.min > 0 || bounded.above_min))
+    fail(key, "rounds to 0 in the time unit, 1 ps (" + format_number(1.0 / scale) + " " + std::string(spec.unit) + "), got " +
+                  format_number(x));
 }
 
 void Section::duration(std::string_view key, std::optional<des::Time>& v, const KeySpec& spec) {

@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 
+#include "latsim/des/stop_token.hpp"
 #include "latsim/des/time.hpp"
 #include "section_internal.hpp"
 
@@ -208,6 +209,8 @@ void Section::guard(std::string_view key, const std::function<void()>& fn) {
     fn();
   } catch (const ScenarioError&) {
     throw;
+  } catch (const des::StopRequested&) {
+    throw;  // a signal while reading a file the key names: no problem of the key
   } catch (const std::exception& e) {
     fail(key, e.what());
   }

@@ -12,6 +12,7 @@
 
 #include "latsim/scenario/choice_list.hpp"
 #include "latsim/scenario/json_text.hpp"
+#include "latsim/scenario/readable.hpp"
 #include "latsim/scenario/section.hpp"
 #include "section_internal.hpp"
 
@@ -75,7 +76,7 @@ void check_against(const KeySchema& k, const Json& value, const std::string& par
     std::string v;
     s.text(k.name, v, spec);
     if (std::find(k.choices.begin(), k.choices.end(), v) != k.choices.end()) return;
-    throw ScenarioError(pointer, "unknown value \"" + v + "\"; expected one of " + choice_list(k.choices));
+    throw ScenarioError(pointer, "unknown value " + quote_value(v) + "; expected one of " + choice_list(k.choices));
   } else if (k.type == "rate") {
     des::RationalSeconds period{1, 1};
     s.rate(k.name, period, spec);

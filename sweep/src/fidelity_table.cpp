@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "latsim/scenario/readable.hpp"
 #include "latsim/sweep/run_table.hpp"
 
 namespace latsim::sweep {
@@ -20,11 +21,13 @@ FidelityAxis parse_vary(const std::string& text) {
   while (true) {
     const size_t comma = list.find(',', start);
     axis.values.push_back(list.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
-    if (axis.values.back().empty()) throw std::invalid_argument("--vary \"" + text + "\" has an empty value");
+    if (axis.values.back().empty())
+      throw std::invalid_argument("--vary " + scenario::quote_value(text) + " has an empty value");
     if (comma == std::string::npos) break;
     start = comma + 1;
   }
-  if (axis.values.size() < 2) throw std::invalid_argument("--vary \"" + text + "\" needs at least two values to compare");
+  if (axis.values.size() < 2)
+    throw std::invalid_argument("--vary " + scenario::quote_value(text) + " needs at least two values to compare");
   return axis;
 }
 

@@ -3,6 +3,8 @@
 #include <charconv>
 #include <stdexcept>
 
+#include "latsim/scenario/readable.hpp"
+
 namespace latsim::sweep {
 
 namespace {
@@ -14,8 +16,8 @@ size_t parse_index(std::string_view item, std::string_view whole) {
   size_t value = 0;
   const auto [end, error] = std::from_chars(item.data(), item.data() + item.size(), value);
   if (item.empty() || error != std::errc() || end != item.data() + item.size())
-    throw std::invalid_argument("\"" + std::string(whole) + "\": \"" + std::string(item) +
-                                "\" is not a run position; " + std::string(kExpected));
+    throw std::invalid_argument(scenario::quote_value(whole) + ": " + scenario::quote_value(item) +
+                                 " is not a run position; " + std::string(kExpected));
   return value;
 }
 
@@ -30,7 +32,7 @@ KeepPolicy KeepPolicy::parse(std::string_view text) {
   }
   constexpr std::string_view prefix = "runs=";
   if (text.substr(0, prefix.size()) != prefix)
-    throw std::invalid_argument("\"" + std::string(text) + "\": " + std::string(kExpected));
+    throw std::invalid_argument(scenario::quote_value(text) + ": " + std::string(kExpected));
   policy.kind = Kind::runs;
   std::string_view list = text.substr(prefix.size());
   while (true) {
@@ -44,7 +46,7 @@ KeepPolicy KeepPolicy::parse(std::string_view text) {
 
 void KeepPolicy::check_runs(size_t run_count) const {
   if (kind != Kind::runs || run_indices.empty() || *run_indices.rbegin() < run_count) return;
-  throw std::invalid_argument("\"" + text() + "\": run " + std::to_string(*run_indices.rbegin()) +
+  throw std::invalid_argument(scenario::quote_value(text()) + ": run " + std::to_string(*run_indices.rbegin()) +
                               " is not in the plan, whose runs are 0 to " + std::to_string(run_count - 1));
 }
 

@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "latsim/scenario/readable.hpp"
+
 namespace latsim::sweep {
 
 std::optional<FigureBound> parse_bound(const std::string& text) {
@@ -102,7 +104,7 @@ std::string missing_figure_message(const std::string& figure, const nlohmann::js
       if ((it->is_number() || (it->is_object() && it->contains("mean"))) &&
           std::find(names.begin(), names.end(), it.key()) == names.end())
         names.push_back(it.key());
-  std::string text = "this run reports no figure \"" + figure + "\"; it reports ";
+  std::string text = "this run reports no figure " + scenario::quote_value(figure) + "; it reports ";
   for (size_t i = 0; i < names.size() && i < max_names; ++i) text += (i ? ", " : "") + names[i];
   if (names.size() > max_names) text += ", ...";
   return text + " (every figure: figures.json)";

@@ -1,5 +1,7 @@
 #include "latsim/sweep/shard.hpp"
 
+#include "latsim/scenario/readable.hpp"
+
 #include <charconv>
 #include <cstdint>
 #include <cstdlib>
@@ -17,6 +19,7 @@ std::optional<uint64_t> to_count(const std::string& text) {
   return value;
 }
 
+// Values in `why` are quoted as messages quote what a user gave (quote_value: cut, control characters escaped).
 [[noreturn]] void reject(const std::string& why) { throw std::invalid_argument("--shard: " + why); }
 
 uint64_t env_integer(const EnvLookup& env, const std::string& name, std::optional<uint64_t> fallback) {
@@ -26,7 +29,7 @@ uint64_t env_integer(const EnvLookup& env, const std::string& name, std::optiona
     reject(name + " is not set");
   }
   const auto value = to_count(*text);
-  if (!value) reject(name + "=\"" + *text + "\" is not a task index (is this an array job?)");
+  if (!value) reject(name + "=" + scenario::quote_value(*text) + " is not a task index (is this an array job?)");
   return *value;
 }
 
@@ -86,13 +89,13 @@ Shard parse_shard(const std::string& text, const EnvLookup& env) {
            "for PBS, LSF or HTCondor pass the index and count as --shard I/N");
   }
   const auto slash = text.find('/');
-  if (slash == std::string::npos) reject("\"" + text + "\": expected I/N (e.g. 0/4) or env");
+  if (slash == std::string::npos) reject(scenario::quote_value(text) + ": expected I/N (e.g. 0/4) or env");
   const auto index = to_count(text.substr(0, slash));
   const auto count = to_count(text.substr(slash + 1));
-  if (!index || !count) reject("\"" + text + "\": expected I/N with non-negative integers (e.g. 0/4)");
-  if (*count == 0) reject("\"" + text + "\": the shard count must be at least 1");
+  if (!index || !count) reject(scenario::quote_value(text) + ": expected I/N with non-negative integers (e.g. 0/4)");
+  if (*count == 0) reject(scenario::quote_value(text) + ": the shard count must be at least 1");
   if (*index >= *count)
-    reject("\"" + text + "\": the index must be below the count (shards are numbered 0 to " +
+    reject(scenario::quote_value(text) + ": the index must be below the count (shards are numbered 0 to " +
            std::to_string(*count - 1) + ")");
   return Shard{static_cast<size_t>(*index), static_cast<size_t>(*count), text};
 }

@@ -306,7 +306,7 @@ expect_usage() {
   width=$(awk '{ if (length($0) > w) w = length($0) } END { print w + 0 }' "$tmp/stderr")
   [ "$rc" -eq 2 ] || say_fail "$name: exit code $rc, want 2"
   [ "$(wc -l <"$tmp/stderr")" -eq 1 ] || { say_fail "$name: $(wc -l <"$tmp/stderr") lines on stderr"; head -c 600 "$tmp/stderr"; }
-  [ "$width" -le 300 ] || say_fail "$name: an error line of $width characters"
+  [ "$width" -le "${usage_width:-300}" ] || say_fail "$name: an error line of $width characters"
   grep -qF -- "$expect" "$tmp/stderr" || { say_fail "$name: stderr lacks '$expect':"; head -c 600 "$tmp/stderr"; }
   grep -q "1.79769\|e+308" "$tmp/stderr" && say_fail "$name: a bound printed as DBL_MAX"
 }
@@ -325,7 +325,7 @@ expect_usage "compare --out empty" "--out must name a directory" "$LATSIM" compa
 # keeps 0.618 of the interval a step, so that bound ends after 44 steps.
 expect_usage optimise_tolerance_tiny "--tolerance must be a finite number of at least 1e-08" \
   "$LATSIM" optimise "$S" "${vary[@]}" --tolerance 1e-300
-expect_usage optimise_tolerance_nan "got nan" "$LATSIM" optimise "$S" "${vary[@]}" --tolerance nan
+expect_usage optimise_tolerance_nan 'got "nan"' "$LATSIM" optimise "$S" "${vary[@]}" --tolerance nan
 expect_usage optimise_vary_inf "expected /json/pointer=LO:HI with finite LO < HI" \
   "$LATSIM" optimise "$S" --vary /pipeline/render/fixed_ms=0:inf --minimise motion_to_photon_ms.mean
 expect_usage capacity_threshold_huge 'got "1e999"' "$LATSIM" capacity "$S" --threshold 1e999
@@ -360,4 +360,70 @@ expect_bad apparent_latency_step "/apparent_latency/step_ms: about" scenarios/me
   --set /apparent_latency/step_ms=1e-9
 grep -q "steps of work" "$tmp/stderr" || say_fail "apparent_latency_step: not counted as steps of work"
 [ "$fail" -eq 0 ] && echo "ok   options checked before work; numbers as given; NUL refused"
+
+# 20. Found by the campaign (tests/app/campaign.py), round three.
+# A positive duration shorter than the time unit rounds to 0 ps: refused at
+# its key where 0 is out of range (a 1e-308 ms apparent-latency step passed
+# validate and then never advanced; a flash, a motion-phase step or window of
+# 1e-308 ms failed with no pointer).
+for key in /apparent_latency/step_ms /display/persistence/lit_ms /motion_phases/step_ms /motion_phases/window_ms; do
+  expect_bad "rounds_to_zero_${key//\//_}" "$key: rounds to 0 in the time unit, 1 ps (1e-09 ms), got 1e-308" \
+    scenarios/measurement/min_jerk_rig.json --set "$key=1e-308"
+done
+# Number options are read whole, in range, as given: an unsigned -1 was
+# 18446744073709551615, "" was 0, 2^64 was clamped, 1e-400 (a --max-events of
+# 0) lifted the event budget.
+expect_usage seed_negative '--seed: expected an integer from 0 to 18446744073709551615, got "-1"' \
+  "$LATSIM" run "$S" --out "$tmp/seed_neg" --seed -1
+expect_usage seed_empty '--seed: expected an integer from 0 to 18446744073709551615, got ""' \
+  "$LATSIM" fidelity "$S" --out "$tmp/seed_empty" --seed "" --vary /tracker/rate_hz=60,120 --metric frames_missed
+expect_usage replication_2_64 'got "18446744073709551616"' \
+  "$LATSIM" run "$S" --out "$tmp/rep_big" --replication 18446744073709551616
+expect_usage max_events_underflow '--max-events: expected a finite number within a double'"'"'s range, got "1e-400"' \
+  "$LATSIM" validate "$S" --max-events 1e-400
+# A long or hostile option value is cut and escaped, and the line with its
+# hint stays within 400 characters (a 3,000-digit --jobs made a line of 454).
+usage_width=400 expect_usage jobs_long "--jobs" "$LATSIM" sweep scenarios/sweeps/tracker_rate.json --out "$tmp/jobs_long" -j "$(printf '9%.0s' $(seq 3000))"
+# --shard "" ran the whole sweep as if not given; an escape sequence was echoed raw.
+expect_usage shard_empty '--shard: "": expected I/N' "$LATSIM" sweep scenarios/sweeps/tracker_rate.json --out "$tmp/shard_empty" --shard ""
+[ -e "$tmp/shard_empty" ] && say_fail "shard_empty: the sweep ran"
+expect_usage shard_escape '--shard: "\x1B[31m": expected I/N' "$LATSIM" sweep scenarios/sweeps/tracker_rate.json \
+  --out "$tmp/shard_escape" --shard $'\e[31m'
+# An --out name no file system holds was found only when the results were
+# written, after the run (exit 1).
+expect_usage out_name_too_long "has a name longer than a file name may be (255 bytes)" \
+  "$LATSIM" run "$S" --out "$tmp/$(printf 'n%.0s' $(seq 300))"
+# An unknown choice quotes the value cut (a 5,000-character one made a line of 5,098).
+expect_bad unknown_value_long '/motion/type: unknown value "zzzz' "$S" \
+  --set "/motion/type=\"$(printf 'z%.0s' $(seq 5000))\""
+[ "$(awk '{ print length($0) }' "$tmp/stderr")" -le 400 ] || say_fail "unknown_value_long: a line over 400 characters"
+# Captures: a NUL byte (read as text, or a message cut at it) and a column
+# named twice (the first taken, silently) are refused by every reader.
+run_dir="$tmp/capture_base_run"
+"$LATSIM" run "$S" --out "$run_dir" -q --set /duration_s=1 2>/dev/null || say_fail "capture base run"
+# (A column no reader asks for may repeat: each file repeats one that is read.)
+for pair in "scenarios/measured/captures/ovr-metrics/OGMP_1.csv:Time Stamp" \
+            "scenarios/measured/captures/vrapi/vrapi_stats_lines.txt:FPS" \
+            "tests/models/capture/data/steamvr_frame_timing.csv:m_flSystemTimeInSeconds"; do
+  capture=${pair%%:*} column=${pair#*:}
+  name=$(basename "$capture")
+  python3 -c 'import sys; d = open(sys.argv[1], "rb").read(); n = len(d) // 3; open(sys.argv[2], "wb").write(d[:n] + b"\0" + d[n:])' \
+    "$capture" "$tmp/nul_$name"
+  expect_usage "capture_nul_$name" "a NUL byte at column" "$LATSIM" compare "$tmp/nul_$name" "$run_dir" --out "$tmp/cmp_nul" --no-plots
+  python3 -c 'import sys; h, _, rest = open(sys.argv[1], "rb").read().partition(b"\n")
+sep = b"=72/72," if h.startswith(b"FPS=") else b","
+open(sys.argv[2], "wb").write(h + b"," + sys.argv[3].encode() + sep + b"\n" + rest)' "$capture" "$tmp/twice_$name" "$column"
+  expect_usage "capture_twice_$name" "column \"$column\" appears twice in the header" "$LATSIM" compare "$tmp/twice_$name" "$run_dir" --out "$tmp/cmp_twice" --no-plots
+done
+[ -e "$tmp/cmp_nul" ] || [ -e "$tmp/cmp_twice" ] && say_fail "a refused capture made compare's directory"
+# report: a control character in a table latsim wrote is damage (a NUL or an
+# escape sequence in results.csv was read as text, exit 0); its one line names the file once.
+printf '{"base": "%s", "overrides": {"/duration_s": 0.5}, "axes": [{"pointer": "/tracker/rate_hz", "values": [60, 120]}]}' \
+  "$PWD/$S" >"$tmp/ctrl_sweep.json"
+"$LATSIM" sweep "$tmp/ctrl_sweep.json" --out "$tmp/ctrl_sweep" -j 2 >/dev/null 2>&1 || say_fail "control-character corpus sweep"
+sed -i '2s/,/,\x1b[2J/' "$tmp/ctrl_sweep/results.csv"
+expect_usage report_escape_in_table "results.csv: line 2: a control character (\x1B): not a table latsim writes" \
+  "$LATSIM" report "$tmp/ctrl_sweep"
+[ "$(grep -o 'results.csv' "$tmp/stderr" | wc -l)" -eq 1 ] || say_fail "report_escape_in_table: the file named more than once"
+[ "$fail" -eq 0 ] && echo "ok   campaign round three: rounding to 0 ps, number options, --shard, --out names, captures, tables"
 exit $fail

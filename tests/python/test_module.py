@@ -209,6 +209,16 @@ try:
 except ValueError as e:
     check("NUL" in str(e), f"a NUL in out: {e}")
 check(not os.path.exists(os.path.join(SCRATCH, "nul")), "a NUL in out: the path cut short was written")
+# A name of 300 bytes (a file name holds 255 on Linux) was refused only when
+# the run's files were written, as an OSError after the run: now before it.
+started = time.process_time()
+try:
+    latsim.run(BASE, set={"/duration_s": 1000}, out=os.path.join(SCRATCH, "n" * 300))
+    check(False, "an out name of 300 bytes was accepted")
+except ValueError as e:
+    check("255 bytes" in str(e), f"an out name of 300 bytes: {e}")
+# 1000 s of this scenario costs seconds of CPU; refused before it, it costs none.
+check(time.process_time() - started < 0.5, "an out name of 300 bytes: refused after the run")
 
 # 7. A sweep: its table is latsim sweep's (results.csv's runs and figures) but for wall time.
 sweep_doc = {"base": BASE, "overrides": {"/duration_s": 1},

@@ -15,9 +15,6 @@ namespace latsim::capture {
 
 namespace {
 
-// Past this a list of names in a message is cut short: an error is one line.
-constexpr size_t kListBudgetChars = 110;
-
 /// Names of one quantity across the generations, for the hint of a missing column.
 constexpr std::array<std::array<std::string_view, 3>, 14> kAliases{{
     {"MsBetweenPresents", "msBetweenPresents", ""},
@@ -40,27 +37,6 @@ bool iequal(std::string_view a, std::string_view b) {
   return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
            return (x | 0x20) == (y | 0x20) && ((x >= 'A' && x <= 'Z') || (x >= 'a' && x <= 'z') || x == y);
          });
-}
-
-// A value as a message shows it: printable, not too long.
-std::string shown(std::string_view v) {
-  std::string out;
-  for (char c : v.substr(0, 40)) out.push_back(static_cast<unsigned char>(c) < 0x20 || c == 0x7f ? '?' : c);
-  if (v.size() > 40) out += "...";
-  return out;
-}
-
-// "a, b, c ... (N in all)" within the list budget.
-std::string name_list(const std::vector<std::string>& names) {
-  std::string out;
-  size_t shown_count = 0;
-  for (const std::string& n : names) {
-    if (out.size() + n.size() > kListBudgetChars) break;
-    out += (shown_count ? ", " : "") + shown(n);
-    ++shown_count;
-  }
-  if (shown_count < names.size()) out += ", ... (" + std::to_string(names.size()) + " in all)";
-  return out;
 }
 
 /// A process as the capture names it, with its rows.
@@ -121,11 +97,8 @@ class Reader {
     header_ = rows_.header();
     capture_.generation = rows_.vrapi() ? Generation::vrapi : detect_generation(header_);
     for (const std::string& name : request_.columns) {
-      const auto at = find_column(header_, name);
+      const auto at = rows_.column(name);
       if (!at) fail(missing_column(header_, capture_.generation, name));
-      // Two columns of one name: which one the capture means cannot be told (the first was taken, silently).
-      if (std::find(header_.begin() + static_cast<std::ptrdiff_t>(*at) + 1, header_.end(), name) != header_.end())
-        fail("column \"" + shown(name) + "\" appears twice in the header: which one is meant cannot be told");
       if (const auto why = not_a_duration(capture_.generation, name)) fail(*why);
       layout_.wanted.push_back(*at);
       layout_.needed = std::max(layout_.needed, *at + 1);
@@ -133,9 +106,9 @@ class Reader {
       display_.push_back(is_display_column(name));
       extremes_.emplace_back();
     }
-    layout_.application = find_column(header_, "Application");
-    layout_.process_id = find_column(header_, "ProcessID");
-    if (capture_.generation == Generation::v1) layout_.dropped = find_column(header_, "Dropped");
+    layout_.application = rows_.column("Application");
+    layout_.process_id = rows_.column("ProcessID");
+    if (capture_.generation == Generation::v1) layout_.dropped = rows_.column("Dropped");
     const ProcessSelect& sel = request_.select;
     if (!sel.application.empty() && !layout_.application)
       fail("an application is chosen but the capture has no Application column");

@@ -1,6 +1,7 @@
 #include "line_source.hpp"
 
 #include "latsim/capture/capture.hpp"
+#include "latsim/des/stop_token.hpp"
 
 namespace latsim::capture {
 
@@ -31,6 +32,9 @@ bool LineSource::next(std::string_view& line) {
     }
     if (buffer_.size() - pos_ > kMaxLineBytes)
       throw CaptureError(file_, number_ + 1, "a line longer than " + std::to_string(kMaxLineBytes) + " bytes");
+    // A stop request is answered between pieces (a 256 MB capture takes
+    // seconds to read), where a command has set the thread's stop flag.
+    des::check_stop();
     buffer_.erase(0, pos_);
     pos_ = 0;
     const size_t had = buffer_.size();
@@ -53,6 +57,11 @@ bool LineSource::next(std::string_view& line) {
 
 bool LineSource::finish(std::string_view& line) {
   ++number_;
+  // No text capture holds a NUL: a cell holding one was read up to it, or a
+  // message quoting it was cut there (every reader of captures reads here).
+  if (const size_t nul = line.find('\0'); nul != std::string_view::npos)
+    throw CaptureError(file_, number_, "a NUL byte at column " + std::to_string(nul + 1) +
+                                           ": not a text file, or a damaged one");
   if (number_ == 1 && line.substr(0, 3) == "\xEF\xBB\xBF") line.remove_prefix(3);
   if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
   return true;

@@ -42,47 +42,47 @@ struct Columns {
 };
 
 
-Columns layout(const std::vector<std::string>& h, Generation g) {
+Columns layout(const RowSource& h, Generation g) {
   Columns c;
-  c.application = find_column(h, "Application");
-  c.process_id = find_column(h, "ProcessID");
-  c.sync = find_column(h, "SyncInterval");
-  c.mode = find_column(h, "PresentMode");
-  c.tearing = find_column(h, "AllowsTearing");
-  c.frame_type = find_column(h, "FrameType");
-  c.time_s = find_column(h, "TimeInSeconds");
-  c.scanout = find_column(h, "MsUntilScanout");
+  c.application = h.column("Application");
+  c.process_id = h.column("ProcessID");
+  c.sync = h.column("SyncInterval");
+  c.mode = h.column("PresentMode");
+  c.tearing = h.column("AllowsTearing");
+  c.frame_type = h.column("FrameType");
+  c.time_s = h.column("TimeInSeconds");
+  c.scanout = h.column("MsUntilScanout");
   switch (g) {
     case Generation::current:
-      c.runtime = find_column(h, "PresentRuntime");
-      c.between = find_column(h, "MsBetweenPresents");
-      c.in_present = find_column(h, "MsInPresentAPI");
-      if (!c.in_present) c.in_present = find_column(h, "MsCPUWait");
-      c.cpu_busy = find_column(h, "MsCPUBusy");
-      c.gpu_busy = find_column(h, "MsGPUBusy");
-      c.gpu_time = find_column(h, "MsGPUTime");
-      c.until_displayed = find_column(h, "MsUntilDisplayed");
-      c.display_change = find_column(h, "MsBetweenDisplayChange");
+      c.runtime = h.column("PresentRuntime");
+      c.between = h.column("MsBetweenPresents");
+      c.in_present = h.column("MsInPresentAPI");
+      if (!c.in_present) c.in_present = h.column("MsCPUWait");
+      c.cpu_busy = h.column("MsCPUBusy");
+      c.gpu_busy = h.column("MsGPUBusy");
+      c.gpu_time = h.column("MsGPUTime");
+      c.until_displayed = h.column("MsUntilDisplayed");
+      c.display_change = h.column("MsBetweenDisplayChange");
       break;
     case Generation::v2:
-      c.runtime = find_column(h, "PresentRuntime");
-      c.in_present = find_column(h, "CPUWait");
-      c.cpu_busy = find_column(h, "CPUBusy");
-      c.gpu_busy = find_column(h, "GPUBusy");
-      c.gpu_time = find_column(h, "GPUTime");
-      c.display_latency = find_column(h, "DisplayLatency");
-      c.displayed_time = find_column(h, "DisplayedTime");
+      c.runtime = h.column("PresentRuntime");
+      c.in_present = h.column("CPUWait");
+      c.cpu_busy = h.column("CPUBusy");
+      c.gpu_busy = h.column("GPUBusy");
+      c.gpu_time = h.column("GPUTime");
+      c.display_latency = h.column("DisplayLatency");
+      c.displayed_time = h.column("DisplayedTime");
       break;
     case Generation::v1:
-      c.runtime = find_column(h, "Runtime");
-      c.dropped = find_column(h, "Dropped");
-      c.between = find_column(h, "msBetweenPresents");
-      c.in_present = find_column(h, "msInPresentAPI");
-      c.gpu_busy = find_column(h, "msGPUActive");
-      c.render_start = find_column(h, "msUntilRenderStart");
-      c.render_complete = find_column(h, "msUntilRenderComplete");
-      c.until_displayed = find_column(h, "msUntilDisplayed");
-      c.display_change = find_column(h, "msBetweenDisplayChange");
+      c.runtime = h.column("Runtime");
+      c.dropped = h.column("Dropped");
+      c.between = h.column("msBetweenPresents");
+      c.in_present = h.column("msInPresentAPI");
+      c.gpu_busy = h.column("msGPUActive");
+      c.render_start = h.column("msUntilRenderStart");
+      c.render_complete = h.column("msUntilRenderComplete");
+      c.until_displayed = h.column("msUntilDisplayed");
+      c.display_change = h.column("msBetweenDisplayChange");
       break;
     default: break;
   }
@@ -101,7 +101,7 @@ class FrameReader {
       throw CaptureError(rows_.file(), 0,
                          std::string("not a PresentMon capture (its header is of a ") +
                              generation_name(out_.generation) + " file)");
-    cols_ = layout(rows_.header(), out_.generation);
+    cols_ = layout(rows_, out_.generation);
     if (!select_.application.empty() && !cols_.application)
       rows_.fail("an application is chosen but the capture has no Application column");
     if (select_.process_id && !cols_.process_id) rows_.fail("a process_id is chosen but the capture has no ProcessID column");
@@ -110,10 +110,10 @@ class FrameReader {
       take_row();
     }
     if (keys_.size() > 1) {
-      std::string names;
-      for (const auto& k : keys_) names += (names.empty() ? "" : ", ") + k;
+      const std::vector<std::string> names(keys_.begin(), keys_.end());
       throw CaptureError(rows_.file(), 0,
-                         std::to_string(keys_.size()) + " processes match: choose one with application and process_id: " + names);
+                         std::to_string(keys_.size()) + " processes match: choose one with application and process_id: " +
+                             name_list(names));
     }
     if (out_.frames.empty()) throw CaptureError(rows_.file(), 0, "no frames of the process asked for");
     derive();

@@ -40,7 +40,7 @@ std::string fmt(double v, const char* format) {
 
 std::vector<ProcessCount> presentmon_processes(const std::filesystem::path& file) {
   RowSource rows(file);
-  const auto app = find_column(rows.header(), "Application"), pid = find_column(rows.header(), "ProcessID");
+  const auto app = rows.column("Application"), pid = rows.column("ProcessID");
   std::vector<ProcessCount> out;
   std::map<std::pair<std::string, int64_t>, size_t> at;
   while (rows.next()) {
@@ -62,9 +62,9 @@ std::optional<double> refresh_period_ms(const std::filesystem::path& file) {
   const Generation g = detect_generation(h);
   if (!is_presentmon(g)) return std::nullopt;
   // v2 writes how long each frame stayed on screen instead of the change interval.
-  const auto change = g == Generation::v2 ? find_column(h, "DisplayedTime")
-                                          : find_column(h, g == Generation::v1 ? "msBetweenDisplayChange" : "MsBetweenDisplayChange");
-  const auto sync = find_column(h, "SyncInterval"), tearing = find_column(h, "AllowsTearing");
+  const auto change = g == Generation::v2 ? rows.column("DisplayedTime")
+                                          : rows.column(g == Generation::v1 ? "msBetweenDisplayChange" : "MsBetweenDisplayChange");
+  const auto sync = rows.column("SyncInterval"), tearing = rows.column("AllowsTearing");
   if (!change || !sync) return std::nullopt;
   std::vector<double> intervals;
   while (rows.next()) {

@@ -58,6 +58,27 @@ bool logcat_line(std::string_view line) {
 
 }  // namespace
 
+std::string shown(std::string_view v) {
+  std::string out;
+  for (char c : v.substr(0, 40)) out.push_back(static_cast<unsigned char>(c) < 0x20 || c == 0x7f ? '?' : c);
+  if (v.size() > 40) out += "...";
+  return out;
+}
+
+std::string name_list(const std::vector<std::string>& names) {
+  // Past this a list of names in a message is cut short: an error is one line.
+  constexpr size_t kListBudgetChars = 110;
+  std::string out;
+  size_t shown_count = 0;
+  for (const std::string& n : names) {
+    if (out.size() + n.size() > kListBudgetChars) break;
+    out += (shown_count ? ", " : "") + shown(n);
+    ++shown_count;
+  }
+  if (shown_count < names.size()) out += ", ... (" + std::to_string(names.size()) + " in all)";
+  return out;
+}
+
 RowSource::RowSource(const std::filesystem::path& file) : lines_(file) {
   std::string_view line;
   do {
@@ -75,10 +96,20 @@ RowSource::RowSource(const std::filesystem::path& file) : lines_(file) {
     for (std::string_view k : kv_.keys) header_.emplace_back(k);
     by_key_.assign(header_.size(), std::string_view());
     pending_first_ = true;
-    return;
+  } else {
+    if (!csv_.split(line)) fail("an unterminated quote in the header");
+    for (std::string_view f : csv_.fields()) header_.emplace_back(f);
   }
-  if (!csv_.split(line)) fail("an unterminated quote in the header");
-  for (std::string_view f : csv_.fields()) header_.emplace_back(f);
+}
+
+std::optional<size_t> RowSource::column(std::string_view name) const {
+  const auto at = find_column(header_, name);
+  // Two columns (or VrApi keys) of the name looked up: which one is meant
+  // cannot be told, whichever reader asks (the first was taken, silently).
+  // A column no reader asks for may repeat.
+  if (at && std::find(header_.begin() + static_cast<std::ptrdiff_t>(*at) + 1, header_.end(), name) != header_.end())
+    fail("column \"" + shown(name) + "\" appears twice in the header: which one is meant cannot be told");
+  return at;
 }
 
 bool RowSource::next(size_t max_fields) {

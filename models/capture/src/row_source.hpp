@@ -21,6 +21,14 @@ struct VrApiFields {
   std::vector<std::string_view> keys, values;
 };
 
+/// A capture's text as a message quotes it: control characters as '?', at
+/// most 40 characters (then "...").
+std::string shown(std::string_view v);
+
+/// "a, b, c, ... (N in all)": names shown as above, cut at a whole name
+/// within about 110 characters, so that an error stays one readable line.
+std::string name_list(const std::vector<std::string>& names);
+
 /// Where column `name` is in a header (none: it has no such column).
 std::optional<size_t> find_column(const std::vector<std::string>& header, std::string_view name);
 
@@ -39,6 +47,9 @@ class RowSource {
   explicit RowSource(const std::filesystem::path& file);
 
   const std::vector<std::string>& header() const { return header_; }
+  /// Where column `name` is (none: no such column); throws CaptureError when
+  /// the header names it twice.
+  std::optional<size_t> column(std::string_view name) const;
   bool vrapi() const { return vrapi_; }
   /// The next data row, split into at most `max_fields` fields; false at the end.
   bool next(size_t max_fields = SIZE_MAX);

@@ -34,9 +34,9 @@ class StatsReader {
 
  private:
   std::optional<size_t> column(std::string_view name, bool required = true) {
-    const auto at = find_column(rows_.header(), name);
+    const auto at = rows_.column(name);
     if (!at && required)
-      throw CaptureError(rows_.file(), 1, "no column \"" + std::string(name) + "\" in this " +
+      throw CaptureError(rows_.file(), 1, "no column \"" + shown(name) + "\" in this " +
                                               generation_name(out_.generation) + " file");
     return at;
   }
@@ -50,7 +50,7 @@ class StatsReader {
     if (not_available(out_.generation, v)) return std::nullopt;
     std::optional<double> x = out_.generation == Generation::vrapi ? vrapi_number(v) : parse_number(v);
     if (!x || !std::isfinite(*x))
-      rows_.fail("column " + rows_.header()[*c] + " holds '" + std::string(v.substr(0, 40)) + "', not a number");
+      rows_.fail("column " + shown(rows_.header()[*c]) + " holds '" + shown(v) + "', not a number");
     return x;
   }
 
