@@ -224,18 +224,22 @@ def _refuse_constant(name):
     raise ValueError(f"{name} is not a number a result holds")
 
 
-def read_json(path):
-    """A result file's JSON object; DamagedFile when it is not one (truncated, junk, NaN, 1e308)."""
+def read_json(path, expected=dict):
+    """A result file's JSON object (or `expected`: list); DamagedFile when it is not one (truncated, junk, NaN,
+    1e308)."""
     try:
         with open(path, encoding="utf-8") as f:
             doc = json.load(f, parse_float=checked_number, parse_int=lambda t: int(checked_number(t)),
                             parse_constant=_refuse_constant)
     except FileNotFoundError:
         raise DamagedFile(path, "missing (removed while the report read the directory?)") from None
+    except OSError as e:
+        # A folder where a file belongs, or no permission to read: an input that cannot be read, not a failed write.
+        raise DamagedFile(path, f"cannot be read ({e.strerror or e})") from None
     except (ValueError, UnicodeDecodeError, RecursionError) as e:
         raise DamagedFile(path, f"not a whole result file ({e})") from None
-    if not isinstance(doc, dict):
-        raise DamagedFile(path, f"expected a JSON object, found {type(doc).__name__}")
+    if not isinstance(doc, expected):
+        raise DamagedFile(path, f"expected a JSON {'object' if expected is dict else 'array'}, found {type(doc).__name__}")
     return doc
 
 
@@ -252,6 +256,9 @@ def read_csv(path, required=()):
         header = reader.fieldnames or []
     except FileNotFoundError:
         raise DamagedFile(path, "missing (removed while the report read the directory?)") from None
+    except OSError as e:
+        # A folder where a file belongs, or no permission to read: an input that cannot be read, not a failed write.
+        raise DamagedFile(path, f"cannot be read ({e.strerror or e})") from None
     except (ValueError, UnicodeDecodeError, csv.Error) as e:
         raise DamagedFile(path, f"not a whole result table ({e})") from None
     missing = [c for c in required if c not in header]
