@@ -4,12 +4,12 @@ Usage: fuzz_readers.py LATSIM SOURCE_DIR WORK_DIR --target report|compare
                        [--seconds S] [--runs N] [--seed K] [--replay-only] [--corpus-digest]
 
 Seeds are made here by latsim itself: for report a run (with its ledger and
-timeline), a directory of two runs and a sweep (kept runs and a results
-store); for compare, `latsim compare` on shipped captures (PresentMon, OVR
+timeline), a directory of two runs and two sweeps (one with kept runs, one
+with its results store alone); for compare, `latsim compare` on shipped captures (PresentMon, OVR
 Metrics) beside runs of the scenarios made for them. The inputs under
 tests/fuzz/regressions/py_<target>/ are replayed first (each must keep the
 contract, in this process and in one of its own), then every seed file
-unchanged, then mutated inputs until S seconds have passed since the start
+unchanged, then mutated inputs (of the files the reader opens) until S seconds have passed since the start
 (seeds included) or N executions are done. A finding
 (the contract broken in a process of its own too) is written to
 WORK_DIR/findings/<target>/<n>/ (case.json and input: copy it to the
@@ -41,7 +41,7 @@ def latsim(binary, *args):
 
 
 def report_seeds(binary, source, seeds):
-    """A run, a directory of runs and a sweep, as latsim writes them."""
+    """A run, a directory of runs and two sweeps, as latsim writes them."""
     base = os.path.join(source, "scenarios", "hmd_60hz_direct.json")
     run = os.path.join(seeds, "run")
     latsim(binary, "run", base, "--out", run, "--set", "/duration_s=0.5", "--ledger", "-q")
@@ -50,13 +50,15 @@ def report_seeds(binary, source, seeds):
     shutil.copytree(run, os.path.join(runs, "direct"))
     latsim(binary, "run", os.path.join(source, "scenarios", "hmd_60hz_tearing.json"), "--out",
            os.path.join(runs, "tearing"), "--set", "/duration_s=0.5", "-q")
-    sweep_file = os.path.join(seeds, "sweep.json")
-    with open(sweep_file, "w") as f:
-        json.dump({"base": base, "overrides": {"/duration_s": 0.5}, "keep": "first", "replications": 2,
-                   "axes": [{"pointer": "/tracker/rate_hz", "values": [60, 120], "label": "tracker rate"}]}, f)
-    latsim(binary, "sweep", sweep_file, "--out", os.path.join(seeds, "sweep"), "-j", "2")
-    os.remove(sweep_file)
-    return {name: os.path.join(seeds, name) for name in ("run", "runs", "sweep")}
+    # Kept runs (summary.json) and, with "keep": "figures", the results store's segments alone.
+    for name, keep in (("sweep", "first"), ("store", "figures")):
+        sweep_file = os.path.join(seeds, "sweep.json")
+        with open(sweep_file, "w") as f:
+            json.dump({"base": base, "overrides": {"/duration_s": 0.5}, "keep": keep, "replications": 2,
+                       "axes": [{"pointer": "/tracker/rate_hz", "values": [60, 120], "label": "tracker rate"}]}, f)
+        latsim(binary, "sweep", sweep_file, "--out", os.path.join(seeds, name), "-j", "2")
+        os.remove(sweep_file)
+    return {name: os.path.join(seeds, name) for name in ("run", "runs", "sweep", "store")}
 
 
 # compare's seeds: (name, capture under SOURCE_DIR, scenario made for it, compare's options).
@@ -140,8 +142,6 @@ def main():
     seeds = make(binary, source, seeds_dir)
     script = os.path.join(source, "analysis", f"{args.target}.py")
     target = ReaderTarget(args.target, script, seeds, work, binary)
-    if args.target == "compare":
-        target.files = lambda seed: [("compare_values.json", "json")]
     fuzzer = Fuzzer(target, args.seed, [os.path.join(source, "analysis")])
     failed = replay(target, fuzzer, os.path.join(source, "tests", "fuzz", "regressions", f"py_{args.target}"))
     spent = fuzzer.run(0 if args.replay_only else args.seconds - (time.monotonic() - started), args.runs)

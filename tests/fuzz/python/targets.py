@@ -68,6 +68,13 @@ def verdict(directory, code, stderr, before, after):
     return None
 
 
+class _Whole:
+    """A seed directory as latsim wrote it (no file replaced)."""
+
+    def __init__(self, seed):
+        self.seed, self.file = seed, None
+
+
 class ReaderTarget:
     """One reader: its script, its seed directories and which of their files are damaged."""
 
@@ -76,6 +83,9 @@ class ReaderTarget:
         self.work, self.latsim, self.time_limit_s = work, latsim, time_limit_s
         self.analysis = os.path.dirname(os.path.abspath(script))
         self._files = {}
+        self._opened = None  # while files() looks: every file the reader opened for reading
+        self._recording = False
+        sys.addaudithook(self._audit)
         sys.path.insert(0, self.analysis)
         import command
         import latsim_results
@@ -102,23 +112,39 @@ class ReaderTarget:
             self.plotting.plt.close(fig)
 
     def files(self, seed):
-        """The seed's files a reader opens, with their kind: result tables, JSON, store segments."""
+        """The seed's files the reader opens (seen by an audit hook while it reads the seed once), with
+        their kind: damaging a file it never opens would only run it again on a whole directory."""
         if seed not in self._files:
+            where = os.path.join(self.work, "exec", self.name)
+            self._opened = set()
+            try:
+                outcome = self.execute(_Whole(seed))
+            finally:
+                opened, self._opened = self._opened, None
+            if outcome is not None:
+                raise SystemExit(f"fuzz: the undamaged seed {seed} fails the contract: {outcome}")
+            pristine = snapshot(self.seeds[seed])
             found = []
-            for relative in sorted(snapshot(self.seeds[seed])):
-                if relative.endswith("/"):
-                    continue
-                kind = ("csv" if relative.endswith(".csv") else "json" if relative.endswith(".json")
-                        else "bytes" if relative.endswith(".seg") else None)
-                if kind:
+            for path in sorted(opened):
+                relative = os.path.relpath(path, where)
+                if relative in pristine and pristine[relative] is not None:
+                    kind = "csv" if relative.endswith(".csv") else "json" if relative.endswith(".json") else "bytes"
                     found.append((relative, kind))
             self._files[seed] = found
         return self._files[seed]
+
+    def _audit(self, event, args):
+        if self._recording and self._opened is not None and event == "open" and isinstance(args[0], str):
+            mode = args[1] if len(args) > 1 and isinstance(args[1], str) else "r"
+            if "r" in mode and "+" not in mode:
+                self._opened.add(os.path.abspath(args[0]))
 
     def materialise(self, item, where):
         """The seed directory copied to `where` with the input's file in place."""
         shutil.rmtree(where, ignore_errors=True)
         shutil.copytree(self.seeds[item.seed], where)
+        if item.file is None:
+            return where
         path = os.path.join(where, item.file)
         os.remove(path)
         if item.content is not None:
@@ -142,6 +168,7 @@ class ReaderTarget:
             with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
                 argv = self.argv(directory)
                 main = self.module.main
+                self._recording = True
                 code = self.command.run_main(self.name, (lambda a: main(a[1:])) if self.name == "compare" else main,
                                              argv)
         except Hang:
@@ -149,6 +176,7 @@ class ReaderTarget:
         except SystemExit as e:
             code = e.code
         finally:
+            self._recording = False
             signal.setitimer(signal.ITIMER_REAL, 0)
             signal.signal(signal.SIGALRM, previous)
             signal.signal(signal.SIGTERM, signal.SIG_DFL)
