@@ -23,8 +23,9 @@ def _one_line(text, limit=400):
     return text if len(text) <= limit else text[:limit] + "…"
 
 
-def run_main(name, main, argv):
-    """main(argv)'s exit code, under the contract above."""
+def run_main(name, main, argv, reads=None):
+    """main(argv)'s exit code, under the contract above. `reads`: the file or directory the command reads,
+    which the line names when what went wrong is a damage no check of the reader foresaw."""
     stopped_by = []
 
     def on_term(signum, _frame):
@@ -57,6 +58,7 @@ def run_main(name, main, argv):
         return 2
     except Exception as e:  # noqa: BLE001  (what no check foresaw: still one line, never a traceback)
         _take_back()
-        print(_one_line(f"{name}: a file read is not as latsim writes it ({type(e).__name__}: {e}); "
+        where = f"{reads}: " if reads else ""
+        print(_one_line(f"{name}: {where}a file read is not as latsim writes it ({type(e).__name__}: {e}); "
                         "nothing written"), file=sys.stderr)
         return 2

@@ -90,4 +90,5 @@ def main(argv):
 
 if __name__ == "__main__":
     import command
-    sys.exit(command.run_main("compare", main, sys.argv[1:]))
+    reads = os.path.join(sys.argv[1], "compare_values.json") if len(sys.argv) == 2 else None
+    sys.exit(command.run_main("compare", main, sys.argv[1:], reads=reads))

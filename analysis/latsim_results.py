@@ -10,6 +10,8 @@ import io
 import json
 import math
 import os
+import struct
+import zlib
 from fractions import Fraction
 
 import sweep_labels
@@ -123,7 +125,7 @@ class Row:
         self.axis_values = axis_values or {}
         self.table_rows = table_rows  # sweep only: this point's results.csv lines, by replication
         # A run's summary from its directory (a sweep's from its results store unless the run was kept).
-        self._read = read_summary or (lambda d: read_json(os.path.join(d, "summary.json")))
+        self._read = read_summary or (lambda d: read_summary_file(os.path.join(d, "summary.json")))
 
     @property
     def summaries(self):
@@ -243,6 +245,40 @@ def read_json(path, expected=dict):
     return doc
 
 
+def _is_number(value):
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def checked_distributions(path, node, pointer=""):
+    """`node` (a summary) when every distribution in it is as latsim writes one: its statistics numbers, its
+    histogram [lower edge, count] pairs with counts of 0 or more; DamagedFile naming the file and pointer."""
+    if isinstance(node, list):
+        for i, child in enumerate(node):
+            checked_distributions(path, child, f"{pointer}/{i}")
+    if not isinstance(node, dict):
+        return node
+    if "histogram" in node or "histogram_counts" in node:
+        for stat in STATISTICS:
+            if stat in node and not _is_number(node[stat]):
+                raise DamagedFile(path, f"{pointer}/{stat}: expected a number")
+        buckets = node.get("histogram", [])
+        if not isinstance(buckets, list):
+            raise DamagedFile(path, f"{pointer}/histogram: expected a list of [lower edge, count]")
+        for i, bucket in enumerate(buckets):
+            if not (isinstance(bucket, list) and len(bucket) == 2 and all(_is_number(v) for v in bucket)
+                    and bucket[1] >= 0):
+                raise DamagedFile(path, f"{pointer}/histogram/{i}: expected [lower edge, count of 0 or more]")
+        return node
+    for key, child in node.items():
+        checked_distributions(path, child, f"{pointer}/{key}")
+    return node
+
+
+def read_summary_file(path):
+    """A run's summary.json, its distributions checked (checked_distributions)."""
+    return checked_distributions(path, read_json(path))
+
+
 def read_csv(path, required=()):
     """A result table's rows as dicts, every row as wide as the header; DamagedFile otherwise."""
     try:
@@ -339,7 +375,7 @@ def load(directory):
     if os.path.isfile(os.path.join(directory, "results.csv")) and os.path.isdir(os.path.join(directory, "runs")):
         return _load_sweep(directory)
     if os.path.isfile(os.path.join(directory, "summary.json")):
-        summary = read_json(os.path.join(directory, "summary.json"))
+        summary = read_summary_file(os.path.join(directory, "summary.json"))
         name = os.path.basename(os.path.normpath(directory))
         return Collection("run", directory, [Row(name, [directory], [summary])])
     rows = []
@@ -347,7 +383,7 @@ def load(directory):
         run_dir = os.path.join(directory, entry)
         summary_file = os.path.join(run_dir, "summary.json")
         if os.path.isfile(summary_file):
-            rows.append(Row(entry, [run_dir], [read_json(summary_file)]))
+            rows.append(Row(entry, [run_dir], [read_summary_file(summary_file)]))
     if not rows:
         raise ValueError(f"{directory}: no summary.json, results.csv or run subdirectories found")
     return Collection("runs", directory, rows)
@@ -410,10 +446,18 @@ def sweep_summary_reader(directory):
     def read(run_dir):
         file = os.path.join(run_dir, "summary.json")
         if os.path.isfile(file):
-            return read_json(file)
-        if not store:
-            store.append(SweepStore(directory))
-        summary = store[0].summary(os.path.basename(run_dir))
+            return read_summary_file(file)
+        where = os.path.join(directory, "store")
+        try:
+            if not store:
+                store.append(SweepStore(directory))
+            summary = store[0].summary(os.path.basename(run_dir))
+        except (ValueError, LookupError, TypeError, AttributeError, RecursionError, zlib.error, struct.error) as e:
+            # A segment's frames are checked by their CRC: a record that still cannot be decoded was written so.
+            raise DamagedFile(where, f"run {os.path.basename(run_dir)}: not a whole record ({type(e).__name__}: "
+                                     f"{e})") from None
+        if isinstance(summary, dict):
+            checked_distributions(where, summary)
         if summary is None:
             raise ValueError(f"{directory}: run {os.path.basename(run_dir)} is in results.csv but not in the "
                              "results store (store/) nor in runs/")
