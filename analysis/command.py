@@ -67,8 +67,9 @@ def _main_flushed(main, argv):
         sys.stderr.flush()
 
 
-def run_main(name, main, argv):
-    """main(argv)'s exit code, under the contract above."""
+def run_main(name, main, argv, reads=None):
+    """main(argv)'s exit code, under the contract above. `reads`: the file or directory the command reads,
+    which the line names when what went wrong is a damage no check of the reader foresaw."""
     stopped_by = []
     sys.stderr = ReadableLines(sys.stderr)
 
@@ -102,6 +103,7 @@ def run_main(name, main, argv):
         return 2
     except Exception as e:  # noqa: BLE001  (what no check foresaw: still one line, never a traceback)
         _take_back()
-        print(_one_line(f"{name}: a file read is not as latsim writes it ({type(e).__name__}: {e}); "
+        where = f"{reads}: " if reads else ""
+        print(_one_line(f"{name}: {where}a file read is not as latsim writes it ({type(e).__name__}: {e}); "
                         "nothing written"), file=sys.stderr)
         return 2

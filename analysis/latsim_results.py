@@ -11,6 +11,8 @@ import json
 import math
 import os
 import re
+import struct
+import zlib
 from fractions import Fraction
 
 import sweep_labels
@@ -124,7 +126,7 @@ class Row:
         self.axis_values = axis_values or {}
         self.table_rows = table_rows  # sweep only: this point's results.csv lines, by replication
         # A run's summary from its directory (a sweep's from its results store unless the run was kept).
-        self._read = read_summary or (lambda d: read_json(os.path.join(d, "summary.json")))
+        self._read = read_summary or (lambda d: read_summary_file(os.path.join(d, "summary.json")))
 
     @property
     def summaries(self):
@@ -231,19 +233,23 @@ def _refuse_constant(name):
     raise ValueError(f"{name} is not a number a result holds")
 
 
-def read_json(path):
-    """A result file's JSON object; DamagedFile when it is not one (truncated, junk, NaN, 1e308)."""
+def read_json(path, expected=dict):
+    """A result file's JSON object (or `expected`: list); DamagedFile when it is not one (truncated, junk, NaN,
+    1e308)."""
     try:
         with open(path, encoding="utf-8") as f:
             doc = json.load(f, parse_float=checked_number, parse_int=lambda t: int(checked_number(t)),
                             parse_constant=_refuse_constant)
     except FileNotFoundError:
         raise DamagedFile(path, "missing (removed while the report read the directory?)") from None
+    except OSError as e:
+        # A folder where a file belongs, or no permission to read: an input that cannot be read, not a failed write.
+        raise DamagedFile(path, f"cannot be read ({e.strerror or e})") from None
     except (ValueError, UnicodeDecodeError, RecursionError) as e:
         raise DamagedFile(path, f"not a whole result file ({e})") from None
-    if not isinstance(doc, dict):
-        raise DamagedFile(path, f"expected a JSON object, found {type(doc).__name__}")
-    return ResultDoc(doc, path)
+    if not isinstance(doc, expected):
+        raise DamagedFile(path, f"expected a JSON {'object' if expected is dict else 'array'}, found {type(doc).__name__}")
+    return ResultDoc(doc, path) if isinstance(doc, dict) else doc
 
 
 class ResultDoc(dict):
@@ -255,6 +261,40 @@ class ResultDoc(dict):
 
 
 CONTROL_CHARACTER = re.compile("[\\x00-\\x08\\x0b\\x0c\\x0e-\\x1f\\x7f]")
+
+
+def _is_number(value):
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def checked_distributions(path, node, pointer=""):
+    """`node` (a summary) when every distribution in it is as latsim writes one: its statistics numbers, its
+    histogram [lower edge, count] pairs with counts of 0 or more; DamagedFile naming the file and pointer."""
+    if isinstance(node, list):
+        for i, child in enumerate(node):
+            checked_distributions(path, child, f"{pointer}/{i}")
+    if not isinstance(node, dict):
+        return node
+    if "histogram" in node or "histogram_counts" in node:
+        for stat in STATISTICS:
+            if stat in node and not _is_number(node[stat]):
+                raise DamagedFile(path, f"{pointer}/{stat}: expected a number")
+        buckets = node.get("histogram", [])
+        if not isinstance(buckets, list):
+            raise DamagedFile(path, f"{pointer}/histogram: expected a list of [lower edge, count]")
+        for i, bucket in enumerate(buckets):
+            if not (isinstance(bucket, list) and len(bucket) == 2 and all(_is_number(v) for v in bucket)
+                    and bucket[1] >= 0):
+                raise DamagedFile(path, f"{pointer}/histogram/{i}: expected [lower edge, count of 0 or more]")
+        return node
+    for key, child in node.items():
+        checked_distributions(path, child, f"{pointer}/{key}")
+    return node
+
+
+def read_summary_file(path):
+    """A run's summary.json, its distributions checked (checked_distributions)."""
+    return checked_distributions(path, read_json(path))
 
 
 def read_csv(path, required=()):
@@ -278,6 +318,9 @@ def read_csv(path, required=()):
         raise DamagedFile(path, "missing (removed while the report read the directory?)") from None
     except DamagedFile:
         raise
+    except OSError as e:
+        # A folder where a file belongs, or no permission to read: an input that cannot be read, not a failed write.
+        raise DamagedFile(path, f"cannot be read ({e.strerror or e})") from None
     except (ValueError, UnicodeDecodeError, csv.Error) as e:
         raise DamagedFile(path, f"not a whole result table ({e})") from None
     missing = [c for c in required if c not in header]
@@ -358,7 +401,7 @@ def load(directory):
     if os.path.isfile(os.path.join(directory, "results.csv")) and os.path.isdir(os.path.join(directory, "runs")):
         return _load_sweep(directory)
     if os.path.isfile(os.path.join(directory, "summary.json")):
-        summary = read_json(os.path.join(directory, "summary.json"))
+        summary = read_summary_file(os.path.join(directory, "summary.json"))
         name = os.path.basename(os.path.normpath(directory))
         return Collection("run", directory, [Row(name, [directory], [summary])])
     rows = []
@@ -366,7 +409,7 @@ def load(directory):
         run_dir = os.path.join(directory, entry)
         summary_file = os.path.join(run_dir, "summary.json")
         if os.path.isfile(summary_file):
-            rows.append(Row(entry, [run_dir], [read_json(summary_file)]))
+            rows.append(Row(entry, [run_dir], [read_summary_file(summary_file)]))
     if not rows:
         raise ValueError(f"{directory}: no summary.json, results.csv or run subdirectories found")
     return Collection("runs", directory, rows)
@@ -429,10 +472,18 @@ def sweep_summary_reader(directory):
     def read(run_dir):
         file = os.path.join(run_dir, "summary.json")
         if os.path.isfile(file):
-            return read_json(file)
-        if not store:
-            store.append(SweepStore(directory))
-        summary = store[0].summary(os.path.basename(run_dir))
+            return read_summary_file(file)
+        where = os.path.join(directory, "store")
+        try:
+            if not store:
+                store.append(SweepStore(directory))
+            summary = store[0].summary(os.path.basename(run_dir))
+        except (ValueError, LookupError, TypeError, AttributeError, RecursionError, zlib.error, struct.error) as e:
+            # A segment's frames are checked by their CRC: a record that still cannot be decoded was written so.
+            raise DamagedFile(where, f"run {os.path.basename(run_dir)}: not a whole record ({type(e).__name__}: "
+                                     f"{e})") from None
+        if isinstance(summary, dict):
+            checked_distributions(where, summary)
         if summary is None:
             raise ValueError(f"{directory}: run {os.path.basename(run_dir)} is in results.csv but not in the "
                              "results store (store/) nor in runs/")

@@ -468,4 +468,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    sys.exit(command.run_main("report", main, sys.argv))
+    sys.exit(command.run_main("report", main, sys.argv, reads=sys.argv[1] if len(sys.argv) > 1 else None))

@@ -192,7 +192,19 @@ int command_sweep(int argc, char** argv) {
     }
   }
   try {
-    if (request.mpi) return sweep_mpi(request);
+    if (request.mpi) {
+      const StopSignals& signals = StopSignals::installed();
+      SweepRequest stoppable = request;
+      stoppable.stop = &signals.flag();
+      return sweep_mpi(stoppable, [&signals](bool lead) {
+        if (lead && StopSignals::first_word())
+          std::fprintf(stderr, "sweep: stopped by %s: no run started since, none partly written; run the same "
+                               "command again to finish\n", signals.name());
+        else
+          (void)StopSignals::first_word();  // the other ranks stay silent, their watchdog too
+        return signals.exit_code();
+      });
+    }
     const auto start = std::chrono::steady_clock::now();
     const auto plan = load_plan(request);
     if (!plan || !settle_keep(request, *plan)) return kExitBadInput;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "stop_signals.hpp"
 #include "latsim/run/prepared_run.hpp"
 #include "latsim/run/runner.hpp"
 #include "latsim/scenario/config.hpp"
@@ -27,11 +28,13 @@ int command_validate(int argc, char** argv) {
   add_max_events_option(app, max_events);
   if (const auto rc = parse_options(app, argc, argv)) return *rc;
   int rc = kExitOk;
+  const StopSignals& signals = StopSignals::installed();
   for (const auto& file : files) {
+    if (signals.requested()) break;
     const std::string name = scenario::readable(file, 2 * scenario::kQuotedChars);
     try {
       if (sweep::is_sweep_file(file)) {
-        rc = std::max(rc, sweep::validate_sweep(file, max_events));
+        rc = std::max(rc, sweep::validate_sweep(file, max_events, &signals.flag()));
         continue;
       }
       const auto doc = run::load_scenario(file, sets);
@@ -47,6 +50,12 @@ int command_validate(int argc, char** argv) {
       std::fprintf(stderr, "%s: %s\n", name.c_str(), scenario::readable(e.what()).c_str());
       rc = kExitBadInput;
     }
+  }
+  // A sweep's points are built until a stop request; a scenario, whose build
+  // looks at no flag, is ended by StopSignals' watchdog.
+  if (signals.requested()) {
+    if (StopSignals::first_word()) std::fprintf(stderr, "validate: stopped by %s; nothing written\n", signals.name());
+    return signals.exit_code();
   }
   return rc;
 }

@@ -3,6 +3,7 @@
 #include <sched.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -44,8 +45,9 @@ unsigned available_cpus() {
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
-SweepPlan read_plan(const std::string& sweep_file, const std::optional<std::string>& text) {
-  if (!text) return SweepPlan::load(sweep_file, run::resolve_defaults);
+SweepPlan read_plan(const std::string& sweep_file, const std::optional<std::string>& text,
+                    const std::atomic<bool>* stop) {
+  if (!text) return SweepPlan::load(sweep_file, run::resolve_defaults, stop);
   Json sweep;
   try {
     sweep = scenario::parse_json(*text, sweep_file);
@@ -57,7 +59,9 @@ SweepPlan read_plan(const std::string& sweep_file, const std::optional<std::stri
 
 std::optional<SweepPlan> load_plan(const SweepRequest& request) {
   try {
-    return read_plan(request.sweep_file);
+    return read_plan(request.sweep_file, std::nullopt, request.stop);
+  } catch (const PlanStopped&) {
+    return std::nullopt;  // not a problem of the file: the caller, seeing the stop, says so
   } catch (const SweepError& e) {
     std::cerr << e.what() << "\n";
     return std::nullopt;
@@ -92,14 +96,16 @@ bool is_sweep_file(const std::string& file) {
   }
 }
 
-int validate_sweep(const std::string& file, double max_events) {
+int validate_sweep(const std::string& file, double max_events, const std::atomic<bool>* stop) {
   SweepRequest request;
   request.sweep_file = file;
+  request.stop = stop;
   const auto plan = load_plan(request);
-  if (!plan) return 2;
+  if (!plan) return stop && stop->load() ? 0 : 2;
   std::vector<size_t> all(plan->runs().size());
   for (size_t i = 0; i < all.size(); ++i) all[i] = i;
-  const PointCheck check = check_points(*plan, all, available_cpus(), max_events);
+  const PointCheck check = check_points(*plan, all, available_cpus(), max_events, stop);
+  if (check.stopped) return 0;
   const std::string name = scenario::readable(file, 2 * scenario::kQuotedChars);
   if (check.problem) {
     std::cerr << name << ": " << *check.problem << "\n";
@@ -110,7 +116,7 @@ int validate_sweep(const std::string& file, double max_events) {
 }
 
 PointCheck check_points(const SweepPlan& plan, const std::vector<size_t>& run_indices, unsigned jobs,
-                        double max_events) {
+                        double max_events, const std::atomic<bool>* stop) {
   const auto start = std::chrono::steady_clock::now();
   // One run per point stands for all its replications: they share the scenario.
   std::vector<size_t> firsts;
@@ -119,7 +125,12 @@ PointCheck check_points(const SweepPlan& plan, const std::vector<size_t>& run_in
     if (seen_points.insert(plan.runs()[i].point).second) firsts.push_back(i);
   std::vector<std::optional<std::string>> problems(firsts.size());
   std::vector<double> point_cost(plan.point_count(), 0.0);
+  std::atomic<bool> stopped{false};
   parallel_for(firsts.size(), jobs, [&](size_t i) {
+    if (stop && stop->load(std::memory_order_relaxed)) {
+      stopped.store(true, std::memory_order_relaxed);
+      return;
+    }
     const SweepRun& run = plan.runs()[firsts[i]];
     try {
       auto doc = scenario::ScenarioDocument::from_json(plan.scenario(run), plan.base_dir());
@@ -134,6 +145,7 @@ PointCheck check_points(const SweepPlan& plan, const std::vector<size_t>& run_in
     }
   });
   PointCheck check;
+  check.stopped = stopped.load();
   for (size_t i = 0; i < firsts.size() && !check.problem; ++i)
     if (problems[i]) check.problem = problems[i];
   check.cost_of_run.assign(plan.runs().size(), 0.0);

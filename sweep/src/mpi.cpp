@@ -130,7 +130,7 @@ void quiet_barrier() {
 /// MPI from initialisation to finalisation.
 class MpiSession {
  public:
-  MpiSession() {
+  explicit MpiSession(const std::atomic<bool>* stop) : stop_(stop) {
     int provided = 0;
     // Only the main thread of each rank calls MPI; run threads never do.
     MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
@@ -140,6 +140,9 @@ class MpiSession {
   MpiSession(const MpiSession&) = delete;
   MpiSession& operator=(const MpiSession&) = delete;
   ~MpiSession() {
+    // Stopped: mpiexec is ending the job, and finalising would wait for it
+    // (every rank hung there until its stop watchdog ended it, 800 ms on).
+    if (stop_ && stop_->load()) return;
     quiet_barrier();
     MPI_Finalize();
   }
@@ -147,11 +150,16 @@ class MpiSession {
   int size() const { return size_; }
 
  private:
+  const std::atomic<bool>* stop_;
   int rank_ = 0, size_ = 1;
 };
 
-// Every rank but 0: run what rank 0 hands out until it says stop.
-int serve(const SweepRequest& request) {
+bool stop_requested(const SweepRequest& request) { return request.stop && request.stop->load(); }
+
+// Every rank but 0: run what rank 0 hands out until it says stop. Once a stop
+// is requested, the runs in hand are dropped (rank 0 is told, so that it does
+// not wait for them) and the rank waits only for rank 0's word.
+int serve(const SweepRequest& request, const std::function<int(bool)>& on_stop) {
   Outbox outbox;
   outbox.post(0, kToRankZero, {{"ready", true}});
   std::optional<SweepWorkspace> work;  // created with the first run: bad input writes nothing
@@ -164,8 +172,13 @@ int serve(const SweepRequest& request) {
   while (true) {
     outbox.progress();
     while (auto m = try_receive(0, kToRank)) take(*m);
+    if (stop_requested(request) && !inbox.empty()) {
+      outbox.post(0, kToRankZero, {{"dropped", inbox.size()}});
+      inbox.clear();
+    }
     if (inbox.empty()) {
-      if (stopped) return kExitOk;  // the outbox delivers the last report before it goes
+      // The outbox delivers the last report before it goes.
+      if (stopped) return stop_requested(request) ? on_stop(false) : kExitOk;
       take(receive(0, kToRank));
       continue;
     }
@@ -197,8 +210,9 @@ void stop_all(int size) {
 class Dispatcher {
  public:
   Dispatcher(const SweepPlan& plan, KeepPolicy keep, std::vector<size_t> order, SweepWorkspace& work,
-             unsigned threads, int ranks)
-      : plan_(plan), keep_(std::move(keep)), order_(std::move(order)), work_(work), threads_(threads), ranks_(ranks),
+             unsigned threads, int ranks, const std::atomic<bool>* stop)
+      : stop_(stop),
+        plan_(plan), keep_(std::move(keep)), order_(std::move(order)), work_(work), threads_(threads), ranks_(ranks),
         attempts_(order_.size()), in_hand_(static_cast<size_t>(ranks), 0), stopped_(static_cast<size_t>(ranks), false) {
     for (size_t p = 0; p < order_.size(); ++p) position_of_[order_[p]] = p;
     stopped_[0] = true;  // rank 0's share is taken by its threads
@@ -233,6 +247,7 @@ class Dispatcher {
 
  private:
   std::optional<size_t> next() {
+    if (stop_ && stop_->load()) return std::nullopt;  // stopping: nothing more is handed out or started
     const size_t p = next_.fetch_add(1);
     if (p < order_.size()) return p;
     return std::nullopt;
@@ -248,6 +263,7 @@ class Dispatcher {
       --in_hand_[r];
       progress.advance();
     }
+    if (message.body.contains("dropped")) in_hand_[r] -= message.body["dropped"].get<size_t>();
     while (!stopped_[r] && in_hand_[r] < kRunsInHand) {
       if (const auto p = next()) {
         outbox_.post(message.source, kToRank, {{"run", task(*p).to_json()}});
@@ -265,6 +281,7 @@ class Dispatcher {
     return threads_done_ == threads_;
   }
 
+  const std::atomic<bool>* stop_;
   const SweepPlan& plan_;
   KeepPolicy keep_;
   std::vector<size_t> order_;
@@ -282,18 +299,22 @@ class Dispatcher {
 };
 
 // Rank 0: check the plan, hand the runs out, write the tables.
-int lead(SweepRequest request, int size) {
+int lead(SweepRequest request, int size, const std::function<int(bool)>& on_stop) {
   const auto start = std::chrono::steady_clock::now();
   const auto plan = load_plan(request);
   if (!plan || !settle_keep(request, *plan)) {
     stop_all(size);
-    return kExitBadInput;
+    return stop_requested(request) ? on_stop(true) : kExitBadInput;
   }
   PhaseTimes phases;
   phases.plan_s = seconds_since(start);
   std::vector<size_t> all(plan->runs().size());
   for (size_t i = 0; i < all.size(); ++i) all[i] = i;
-  const PointCheck check = check_points(*plan, all, request.jobs, request.max_events);
+  const PointCheck check = check_points(*plan, all, request.jobs, request.max_events, request.stop);
+  if (check.stopped) {
+    stop_all(size);
+    return on_stop(true);
+  }
   phases.check_s = check.wall_s;
   phases.points = check.points;
   if (check.problem) {
@@ -314,9 +335,11 @@ int lead(SweepRequest request, int size) {
   pending = longest_first(pending, check.cost_of_run);
   const auto runs_start = std::chrono::steady_clock::now();
   ProgressLine progress("sweep", plan->runs().size(), tally.resumed);
-  Dispatcher dispatcher(*plan, request.keep, pending, work, request.jobs, size);
+  Dispatcher dispatcher(*plan, request.keep, pending, work, request.jobs, size, request.stop);
   const auto attempts = dispatcher.run(progress);
   progress.finish();
+  // Stopped: what finished is in the store and the claims, for the same command to resume; no tables.
+  if (stop_requested(request)) return on_stop(true);
   phases.runs_s = seconds_since(runs_start);
   tally.add(*plan, pending, attempts);
 
@@ -335,10 +358,10 @@ int lead(SweepRequest request, int size) {
 
 }  // namespace
 
-int sweep_mpi(const SweepRequest& request) {
-  MpiSession mpi;
+int sweep_mpi(const SweepRequest& request, const std::function<int(bool lead)>& stopped) {
+  MpiSession mpi(request.stop);
   try {
-    return mpi.rank() == 0 ? lead(request, mpi.size()) : serve(request);
+    return mpi.rank() == 0 ? lead(request, mpi.size(), stopped) : serve(request, stopped);
   } catch (const std::exception& e) {
     // The other ranks would wait for this one for ever.
     std::cerr << "sweep: MPI rank " << mpi.rank() << ": " << e.what() << "\n";
@@ -353,7 +376,7 @@ int sweep_mpi(const SweepRequest& request) {
 
 namespace latsim::sweep {
 
-int sweep_mpi(const SweepRequest&) {
+int sweep_mpi(const SweepRequest&, const std::function<int(bool)>&) {
   std::cerr << "latsim sweep: --mpi: this latsim was built without MPI (install libopenmpi-dev and configure with "
                "-DLATSIM_MPI=ON)\n";
   return 2;

@@ -169,14 +169,14 @@ std::string value_text(const Json& value) {
   return value.is_string() ? value.get<std::string>() : value.dump();
 }
 
-SweepPlan SweepPlan::load(const fs::path& sweep_file, const ResolveDefaults& resolve) {
+SweepPlan SweepPlan::load(const fs::path& sweep_file, const ResolveDefaults& resolve, const std::atomic<bool>* stop) {
   Json sweep;
   try {
     sweep = scenario::read_json_file(sweep_file, "sweep file");
   } catch (const scenario::ScenarioError& e) {
     throw SweepError(sweep_file, e.pointer(), e.message());
   }
-  return from_json(sweep, sweep_file, resolve);
+  return from_json(sweep, sweep_file, resolve, stop);
 }
 
 namespace {
@@ -231,7 +231,8 @@ std::vector<SweepAxis> read_axes(const SweepFile& f, const Json& doc, const fs::
 
 }  // namespace
 
-SweepPlan SweepPlan::from_json(const Json& sweep, const fs::path& sweep_file, const ResolveDefaults& resolve) {
+SweepPlan SweepPlan::from_json(const Json& sweep, const fs::path& sweep_file, const ResolveDefaults& resolve,
+                               const std::atomic<bool>* stop) {
   const fs::path& file = sweep_file;
   const SweepFile f = read_sweep_file(sweep, file);
   SweepPlan plan;
@@ -262,6 +263,7 @@ SweepPlan SweepPlan::from_json(const Json& sweep, const fs::path& sweep_file, co
   plan.runs_.reserve(points.size() * plan.replications_);
   std::map<std::string, size_t> seen_ids;
   for (size_t p = 0; p < points.size(); ++p) {
+    if (stop && stop->load(std::memory_order_relaxed)) throw PlanStopped();
     Json scenario = doc;
     for (size_t a = 0; a < plan.axes_.size(); ++a)
       scenario[Json::json_pointer(plan.axes_[a].pointer)] = plan.axes_[a].values[points[p][a]];

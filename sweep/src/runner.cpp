@@ -23,9 +23,14 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepRequest& request, const
                        bool write_tables, ProgressLine* progress) {
   SweepOutcome out;
   out.selected = selected.size();
-  const PointCheck check = check_points(plan, selected, request.jobs, request.max_events);
+  const PointCheck check = check_points(plan, selected, request.jobs, request.max_events, request.stop);
   out.phases.check_s = check.wall_s;
   out.phases.points = check.points;
+  // Stopped while checking: nothing is written, not even the directory (the caller says it stopped).
+  if (check.stopped) {
+    out.stopped = true;
+    return out;
+  }
   if (check.problem) {
     out.problem = check.problem;
     return out;

@@ -24,19 +24,16 @@ import pandas
 
 import latsim
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import module_checks  # noqa: E402
+from module_checks import check  # noqa: E402
+
 LATSIM, SOURCE_DIR, SCRATCH = sys.argv[1:4]
 BASE = os.path.join(SOURCE_DIR, "scenarios", "hmd_60hz_direct.json")
-failures = []
-
-
-def check(ok, what):
-    if not ok:
-        failures.append(what)
-        print(f"FAIL: {what}")
 
 
 def cli(*args):
-    return subprocess.run([LATSIM, *args], capture_output=True, text=True)
+    return module_checks.cli(LATSIM, *args)
 
 
 def read(path, mode="rb"):
@@ -248,7 +245,4 @@ except latsim.ScenarioError as e:
 check(latsim.schema() == json.loads(cli("schema").stdout), "schema differs from latsim schema")
 check(latsim.schema("markdown") == cli("schema", "--format", "markdown").stdout, "markdown differs")
 
-if failures:
-    print(f"FAIL: {len(failures)} check(s)")
-    sys.exit(1)
-print("ok: the module gives the command line's files, figures, errors, sweep table and schema")
+module_checks.finish("ok: the module gives the command line's files, figures, errors, sweep table and schema")

@@ -11,27 +11,23 @@ import json
 import math
 import os
 import shutil
-import subprocess
 import sys
 
 import pandas
 
 import latsim
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import module_checks  # noqa: E402
+from module_checks import check  # noqa: E402
+
 LATSIM, SOURCE, SCRATCH = sys.argv[1:4]
 shutil.rmtree(SCRATCH, ignore_errors=True)
 os.makedirs(SCRATCH)
-failures = []
-
-
-def check(ok, what):
-    if not ok:
-        failures.append(what)
-        print(f"FAIL: {what}")
 
 
 def cli(*args):
-    return subprocess.run([LATSIM, *args], capture_output=True, text=True, cwd=SOURCE)
+    return module_checks.cli(LATSIM, *args, cwd=SOURCE)
 
 
 # --- 1. The interval helper against a hand computation -----------------------
@@ -160,7 +156,4 @@ except latsim.ScenarioError as e:
     check(all(n in header or "." in n or n.isidentifier() for n in names), f"whole names: {names}")
     check(listed.split(", \u2026")[0].endswith('"'), f"the list ends at a whole name: {listed}")
 
-if failures:
-    print(f"{len(failures)} check(s) failed")
-    sys.exit(1)
-print("ok: tidy tables, intervals, presentmon, compare, repr and chosen figures")
+module_checks.finish("ok: tidy tables, intervals, presentmon, compare, repr and chosen figures")

@@ -26,3 +26,23 @@ def table(directory):
         rows = list(csv.reader(f))
     drop = rows[0].index("wall_s")
     return [[c for i, c in enumerate(r) if i != drop] for r in rows]
+
+
+def write_report_fixture(root, axis, points, headline):
+    """A sweep directory as latsim writes one, made by hand for a report test: `points` is a list of (axis
+    value, [(summary, results.csv values by column) for each replication]); each run's summary.json under
+    runs/<run id>/, and results.csv with the `headline` columns (values a run lacks left empty)."""
+    import json
+    rows = []
+    for point, (value, replications) in enumerate(points):
+        for rep, (summary, values) in enumerate(replications):
+            run_id = f"{point:08x}{rep:08x}"
+            run_dir = os.path.join(root, "runs", run_id)
+            os.makedirs(run_dir)
+            with open(os.path.join(run_dir, "summary.json"), "w") as f:
+                json.dump(summary, f)
+            rows.append([run_id, point, value, 1, rep] + [values.get(c, "") for c in headline])
+    with open(os.path.join(root, "results.csv"), "w", newline="") as f:
+        w = csv.writer(f, lineterminator="\n")
+        w.writerow(["run_id", "point", axis, "seed", "replication"] + headline)
+        w.writerows(rows)

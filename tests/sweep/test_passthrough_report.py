@@ -16,21 +16,15 @@ import sys
 SOURCE_DIR, SCRATCH = sys.argv[1], sys.argv[2]
 REPORT = os.path.join(SOURCE_DIR, "analysis", "report.py")
 sys.path.insert(0, os.path.join(SOURCE_DIR, "analysis"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import latsim_results  # noqa: E402
-
-failures = []
+from sweep_checks import check, finish, write_report_fixture  # noqa: E402
 
 STAGES = ["camera", "isp", "reprojection_queue", "reprojection", "display_wait", "scanout"]
 # A 100 Hz display: camera 5, ISP 4, queue 0.5, composition 2.5, wait 3, scanout 6.21 ms, added up 21.21 ms.
 STAGE_MS = [5.0, 4.0, 0.5, 2.5, 3.0, 6.21]
 REFRESH_MS = 10.0
-
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
-        print("FAILED:", message)
 
 
 def summary(showings, dropped, rig):
@@ -64,22 +58,15 @@ shutil.rmtree(SCRATCH, ignore_errors=True)
 root = os.path.join(SCRATCH, "sweep")
 headline = [c for c, _, _ in latsim_results.HEADLINE]
 check("photon_to_photon_mean_ms" in headline, "photon_to_photon_mean_ms is a results.csv column")
-rows = []
-for point, (showings, rig, drops) in enumerate(POINTS):
-    for rep in range(2):
-        run_id = f"{point:08x}{rep:08x}"
-        run_dir = os.path.join(root, "runs", run_id)
-        os.makedirs(run_dir)
-        s = summary(showings, drops[rep], rig)
-        with open(os.path.join(run_dir, "summary.json"), "w") as f:
-            json.dump(s, f)
-        values = {"mtp_mean_ms": 3.0, "mtp_p50_ms": 3.0, "mtp_p99_ms": 3.0, "mtp_max_ms": 3.0,
-                  "photon_to_photon_mean_ms": s["figures"]["photon_to_photon_ms"]["mean"]}
-        rows.append([run_id, point, showings, 1, rep] + [values.get(c, "") for c in headline])
-with open(os.path.join(root, "results.csv"), "w", newline="") as f:
-    w = csv.writer(f, lineterminator="\n")
-    w.writerow(["run_id", "point", "/pipeline/camera/refreshes_per_frame", "seed", "replication"] + headline)
-    w.writerows(rows)
+points = []
+for showings, rig, drops in POINTS:
+    replications = []
+    for dropped in drops:
+        s = summary(showings, dropped, rig)
+        replications.append((s, {"mtp_mean_ms": 3.0, "mtp_p50_ms": 3.0, "mtp_p99_ms": 3.0, "mtp_max_ms": 3.0,
+                                 "photon_to_photon_mean_ms": s["figures"]["photon_to_photon_ms"]["mean"]}))
+    points.append((showings, replications))
+write_report_fixture(root, "/pipeline/camera/refreshes_per_frame", points, headline)
 
 proc = subprocess.run([sys.executable, REPORT, root], capture_output=True, text=True)
 check(proc.returncode == 0, f"report.py exited {proc.returncode}: {proc.stderr}")
@@ -129,6 +116,5 @@ with open(os.path.join(plain, "report.md"), encoding="utf-8") as f:
 check("Passthrough stages" not in md, "no passthrough section without see-through runs")
 check("photon-to-photon mean (ms)" not in md, "no photon-to-photon column where no row has it")
 
-if failures:
-    sys.exit(f"{len(failures)} check(s) failed")
+finish("passthrough report")
 print("passthrough report: all checks passed")

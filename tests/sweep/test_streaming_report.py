@@ -16,20 +16,14 @@ import sys
 SOURCE_DIR, SCRATCH = sys.argv[1], sys.argv[2]
 REPORT = os.path.join(SOURCE_DIR, "analysis", "report.py")
 sys.path.insert(0, os.path.join(SOURCE_DIR, "analysis"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import latsim_results  # noqa: E402
 import sweep_plots  # noqa: E402
-
-failures = []
+from sweep_checks import check, finish, write_report_fixture  # noqa: E402
 
 STAGES = ["game", "server_compositor", "encoder", "network", "decoder", "decoder_queue", "client_compositor",
           "vsync_queue"]
-
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
-        print("FAILED:", message)
 
 
 def summary(mtp, dropped):
@@ -56,22 +50,13 @@ POINTS = [(100, 0, 50.0), (200, 0, 52.0), (300, 5, 45.0), (400, 10, 60.0)]
 shutil.rmtree(SCRATCH, ignore_errors=True)
 root = os.path.join(SCRATCH, "sweep")
 headline = [c for c, _, _ in latsim_results.HEADLINE]
-rows = []
-for point, (bitrate, dropped, mtp) in enumerate(POINTS):
-    for rep in range(2):
-        run_id = f"{point:08x}{rep:08x}"
-        run_dir = os.path.join(root, "runs", run_id)
-        os.makedirs(run_dir)
-        with open(os.path.join(run_dir, "summary.json"), "w") as f:
-            json.dump(summary(mtp, dropped), f)
-        values = {"mtp_mean_ms": mtp, "mtp_p50_ms": mtp, "mtp_p99_ms": mtp + 5, "mtp_max_ms": mtp + 6,
-                  "reported_total_mean_ms": 37.0 + 2.0 + dropped / 10, "frames_dropped": dropped,
-                  "frames_late": 1, "frames_rewarped": dropped}
-        rows.append([run_id, point, bitrate, 1, rep] + [values.get(c, "") for c in headline])
-with open(os.path.join(root, "results.csv"), "w", newline="") as f:
-    w = csv.writer(f, lineterminator="\n")
-    w.writerow(["run_id", "point", "/pipeline/encoder/bitrate_mbps", "seed", "replication"] + headline)
-    w.writerows(rows)
+points = []
+for bitrate, dropped, mtp in POINTS:
+    values = {"mtp_mean_ms": mtp, "mtp_p50_ms": mtp, "mtp_p99_ms": mtp + 5, "mtp_max_ms": mtp + 6,
+              "reported_total_mean_ms": 37.0 + 2.0 + dropped / 10, "frames_dropped": dropped,
+              "frames_late": 1, "frames_rewarped": dropped}
+    points.append((bitrate, [(summary(mtp, dropped), values)] * 2))
+write_report_fixture(root, "/pipeline/encoder/bitrate_mbps", points, headline)
 
 proc = subprocess.run([sys.executable, REPORT, root], capture_output=True, text=True)
 check(proc.returncode == 0, f"report.py exited {proc.returncode}: {proc.stderr}")
@@ -114,6 +99,5 @@ with open(os.path.join(plain, "report.md"), encoding="utf-8") as f:
 check("Streaming stages" not in md and "streaming_pareto" not in md, "no streaming section without streamed runs")
 check(not os.path.exists(os.path.join(plain, "streaming_pareto.png")), "no Pareto plot without streamed runs")
 
-if failures:
-    sys.exit(f"{len(failures)} check(s) failed")
+finish("streaming report")
 print("streaming report: all checks passed")

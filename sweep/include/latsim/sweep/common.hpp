@@ -41,9 +41,11 @@ unsigned available_cpus();
 
 /// Reads a sweep file (or `text`, the sweep as JSON text, `sweep_file`
 /// standing for its file in messages); throws SweepError.
-SweepPlan read_plan(const std::string& sweep_file, const std::optional<std::string>& text = std::nullopt);
+SweepPlan read_plan(const std::string& sweep_file, const std::optional<std::string>& text = std::nullopt,
+                    const std::atomic<bool>* stop = nullptr);
 
-/// Reads the sweep file; on bad input prints the one-line error and returns nothing.
+/// Reads the sweep file; on bad input prints the one-line error and returns nothing
+/// (nothing either, without a word, once *request.stop is set).
 std::optional<SweepPlan> load_plan(const SweepRequest& request);
 
 /// Settles request.keep from --keep or else the plan's "keep" key; on a bad
@@ -58,8 +60,11 @@ bool is_sweep_file(const std::string& file);
 
 /// `latsim validate` of a sweep file: reads it and builds every distinct
 /// point without running or writing anything; prints "FILE: ok (sweep of N
-/// runs, M points)" or the first problem in one line. Returns the exit code.
-int validate_sweep(const std::string& file, double max_events = run::kDefaultMaxEvents);
+/// runs, M points)" or the first problem in one line. Returns the exit code;
+/// once *stop is set it stops building points and returns 0 without a word
+/// (the caller says that it stopped).
+int validate_sweep(const std::string& file, double max_events = run::kDefaultMaxEvents,
+                   const std::atomic<bool>* stop = nullptr);
 
 /// The outcome of building the scenarios of some runs without running them.
 struct PointCheck {
@@ -67,14 +72,16 @@ struct PointCheck {
   std::vector<double> cost_of_run;     ///< expected cost by plan index (0 for runs not checked)
   size_t points = 0;                   ///< distinct points built
   double wall_s = 0.0;                 ///< building them took
+  bool stopped = false;                ///< a stop signal came first: the points are not all built
 };
 
 /// Builds every distinct scenario among `run_indices` (once per point) on
 /// `jobs` threads, so that a bad value is reported before anything is written,
 /// and estimates each run's cost from the resolved scenario; a point whose
-/// event estimate is above max_events (0: no limit) is a problem.
+/// event estimate is above max_events (0: no limit) is a problem. Once *stop
+/// is set no further point is built (a sweep of 1e5 points takes seconds).
 PointCheck check_points(const SweepPlan& plan, const std::vector<size_t>& run_indices, unsigned jobs,
-                        double max_events = run::kDefaultMaxEvents);
+                        double max_events = run::kDefaultMaxEvents, const std::atomic<bool>* stop = nullptr);
 
 /// What each run records and writes: the command line recorded is the sweep
 /// as invoked less -j, --shard, --mpi and the like, which must not make one

@@ -2,6 +2,7 @@
 // list of runs (sweep point x replication) they expand to.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -50,10 +51,12 @@ using ResolveDefaults = std::function<nlohmann::json(const nlohmann::json& scena
 /// SweepError naming the sweep file and the JSON pointer inside it.
 class SweepPlan {
  public:
-  static SweepPlan load(const std::filesystem::path& sweep_file, const ResolveDefaults& resolve);
+  /// Once *stop is set, expanding the points ends with PlanStopped (1e5 points take seconds).
+  static SweepPlan load(const std::filesystem::path& sweep_file, const ResolveDefaults& resolve,
+                        const std::atomic<bool>* stop = nullptr);
   /// `sweep` is the content of `sweep_file`; a relative base path resolves against its directory.
   static SweepPlan from_json(const nlohmann::json& sweep, const std::filesystem::path& sweep_file,
-                             const ResolveDefaults& resolve);
+                             const ResolveDefaults& resolve, const std::atomic<bool>* stop = nullptr);
 
   const std::vector<SweepAxis>& axes() const { return axes_; }
   const std::vector<SweepRun>& runs() const { return runs_; }
@@ -89,6 +92,12 @@ class SweepPlan {
   uint64_t replications_ = 1;
   std::vector<std::string> figures_;
   std::optional<KeepPolicy> keep_;
+};
+
+/// A stop request came while the plan was being made: there is no plan, and nothing is wrong with the file.
+class PlanStopped : public std::runtime_error {
+ public:
+  PlanStopped() : std::runtime_error("stopped while planning the sweep") {}
 };
 
 /// Bad sweep input: which file, which JSON pointer inside it, and what is wrong.
