@@ -76,6 +76,16 @@ std::vector<std::string> FigureBook::headline(const nlohmann::json& all) const {
   return present;
 }
 
+std::vector<std::string> FigureBook::headline(const FigureTree& all) const {
+  std::vector<std::string> present;
+  for (const std::string& name : registry_.headline(headline_set_)) {
+    const FigureTree::Top top = all.top(name);
+    if (!top.present || (top.count && *top.count == 0)) continue;
+    present.push_back(name);
+  }
+  return present;
+}
+
 // ---- FigureWriter ------------------------------------------------------------
 
 void FigureWriter::add(const std::string& name, double value) {

@@ -33,12 +33,15 @@ std::string format_seconds(des::Time t) {
 
 // Legal input whose run says little or nothing: the warnings channel tells
 // (stderr and summary.json "warnings") instead of an exit 0 in silence.
-void warn_about_outcome(Run& run, const Json& figures) {
+void warn_about_outcome(Run& run, const RunFigures& figures) {
   FigureBook& rec = run.recording->book();
   const std::string span = format_seconds(run.duration);
   // (A run that shows no image at all is warned of by the recorder.)
-  const Json* mtp = figures.contains("motion_to_photon_ms") ? &figures["motion_to_photon_ms"] : nullptr;
-  if (mtp == nullptr || mtp->value("count", int64_t{0}) == 0)
+  const char* const kMtp = "motion_to_photon_ms";
+  int64_t mtp_count = 0;
+  if (figures.tree) mtp_count = figures.tree->top(kMtp).count.value_or(0);
+  else if (figures.json.contains(kMtp)) mtp_count = figures.json[kMtp].value("count", int64_t{0});
+  if (mtp_count == 0)
     rec.warn("no motion-to-photon latency figure: no tracker sample reached a displayed pixel in the " + span +
              " simulated");
   // A sample jittered past the end of the run ends the tracker's chain of samples early.
@@ -93,18 +96,20 @@ RunTotals totals_of(const Run& run) {
   return t;
 }
 
-Json figures_of(Run& run) {
+RunFigures figures_of(Run& run, bool as_text) {
   RunRecording& rec = *run.recording;
   run.pipeline->finish(*run.ctx);
   run.app_frames.finish(rec.book().writer("application frames"), run.duration);
   if (run.frames) run.frames->finish();
   rec.finish(totals_of(run));
-  Json figures = rec.book().figures();
+  RunFigures figures;
+  if (as_text) figures.tree = rec.book().figure_tree();
+  if (!figures.tree) figures.json = rec.book().figures();
   warn_about_outcome(run, figures);
   return figures;
 }
 
-Json write_results(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& options, Json figures,
+Json write_results(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& options, RunFigures figures,
                    double wall_s, std::chrono::steady_clock::time_point command_start) {
   Json models = Json::object(), events_per_model = Json::object();
   for (const auto& m : run.sim.model_stats()) {
@@ -115,12 +120,14 @@ Json write_results(Run& run, const scenario::ScenarioDocument& doc, const RunOpt
   // figures.json holds only what the scenario and seed determine: byte-identical
   // across runs. summary.json adds wall time, memory and the command line: the
   // same object, once figures.json is written from it (no copy of the figures).
-  std::vector<std::string> headline = run.recording->book().headline(figures);
+  const FigureBook& book = run.recording->book();
+  std::vector<std::string> headline = figures.tree ? book.headline(*figures.tree) : book.headline(figures.json);
+  if (figures.tree && options.figures_text) figures.tree->write(*options.figures_text);
   Json summary{{"latsim", {{"version", latsim_version()}, {"git_revision", latsim_git_revision()}}},
                {"seed", run.seed},
                {"replication", options.replication},
                {"scenario", resolved_with_defaults(run, doc)},
-               {"figures", std::move(figures)},
+               {"figures", std::move(figures.json)},
                {"headline", std::move(headline)},
                {"warnings", run.recording->book().warnings()},
                {"events", run.sim.events_executed()},

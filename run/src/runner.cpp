@@ -168,8 +168,9 @@ Json PreparedRun::run() {
   simulate(run);
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   try {
-    Json figures = figures_of(run);
-    Json summary = write_results(run, doc_, options, figures, wall_s, command_start);
+    // As text only for a run that writes no figures.json (which is made from the JSON tree).
+    RunFigures figures = figures_of(run, options.figures_text != nullptr && !run.files.enabled());
+    Json summary = write_results(run, doc_, options, std::move(figures), wall_s, command_start);
     if (options.tables) keep_tables(run, *options.tables);
     return summary;
   } catch (const des::StopRequested&) {

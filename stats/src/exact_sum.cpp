@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace latsim::stats {
 
@@ -57,6 +58,8 @@ BigUint BigUint::times(uint64_t k) const {
 BigUint BigUint::times(const BigUint& o) const {
   std::vector<uint32_t> out(d_.size() + o.d_.size() + 1, 0);
   for (size_t i = 0; i < d_.size(); ++i) {
+    // A sum's low digits are mostly zero (its unit is 2^-1074): a zero row adds nothing.
+    if (d_[i] == 0) continue;
     uint64_t carry = 0;
     for (size_t j = 0; j < o.d_.size(); ++j) {
       // (2^32-1)^2 + 2 (2^32-1) = 2^64 - 1: never overflows.
@@ -95,6 +98,18 @@ BigUint BigUint::minus(const BigUint& o) const {
 
 uint64_t BigUint::divide(uint64_t k) {
   if (k == 0) throw std::domain_error("BigUint::divide by zero");
+  if (k <= UINT32_MAX) {
+    // The same digits by 64-bit division (a count, by far the usual divisor):
+    // rem < k < 2^32, so rem * 2^32 + digit fits in 64 bits.
+    uint64_t rem = 0;
+    for (size_t i = d_.size(); i-- > 0;) {
+      const uint64_t cur = (rem << 32) | d_[i];
+      d_[i] = static_cast<uint32_t>(cur / k);
+      rem = cur % k;
+    }
+    trim();
+    return rem;
+  }
   u128 rem = 0;
   for (size_t i = d_.size(); i-- > 0;) {
     const u128 cur = (rem << 32) | d_[i];  // rem < k < 2^64: fits in 96 bits

@@ -157,6 +157,10 @@ RunAttempt RunExecutor::run_claimed(const RunTask& task, unsigned worker) {
   options.command_line = settings_.command_line;
   options.stop = settings_.stop;
   options.max_events = settings_.max_events;
+  Worker& w = *workers_.at(worker);
+  // The figures straight to the record's text, without their JSON tree (a kept run writes figures.json from it).
+  w.figures_text.clear();
+  options.figures_text = &w.figures_text;
   try {
     auto t0 = Clock::now();
     const auto doc = scenario::ScenarioDocument::from_json(*task.scenario, task.base_dir);
@@ -166,10 +170,9 @@ RunAttempt RunExecutor::run_claimed(const RunTask& task, unsigned worker) {
     attempt.run_s = seconds_since(t0);
     attempt.simulate_s = summary.value("wall_s", 0.0);
     t0 = Clock::now();
-    Worker& w = *workers_.at(worker);
     // The scenario as a patch of the one of its segment's first record, which is written whole.
     const bool first = w.segment.starts_segment();
-    EncodedRecord record = encode_record(std::move(summary), first ? nullptr : &w.base_scenario);
+    EncodedRecord record = encode_record(std::move(summary), first ? nullptr : &w.base_scenario, w.figures_text);
     w.segment.append(task.run_id, record.text);
     if (first) w.base_scenario = std::move(record.scenario);
     mark_finished(task.run_id, w);

@@ -1,9 +1,8 @@
 #include "latsim/sweep/record.hpp"
 
-#include <charconv>
-#include <cmath>
 #include <stdexcept>
 
+#include "latsim/results/json_text.hpp"
 #include "latsim/scenario/config.hpp"
 
 namespace latsim::sweep {
@@ -17,7 +16,9 @@ using Json = nlohmann::json;
 /// histograms on the way: a run's summary is written once and never copied.
 class Writer {
  public:
-  explicit Writer(std::string& out) : out_(out) {}
+  /// `figures`, when not empty, is written as the value of the top-level
+  /// object's "figures" (a FigureTree's text).
+  explicit Writer(std::string& out, std::string_view figures = {}) : out_(out), figures_(figures) {}
 
   void value(const Json& v) {
     switch (v.type()) {
@@ -59,7 +60,13 @@ class Writer {
       }
       string(it.key());
       out_ += ':';
+      if (!figures_.empty() && depth_ == 0 && it.key() == "figures") {
+        out_ += figures_;
+        continue;
+      }
+      ++depth_;
       value(it.value());
+      --depth_;
     }
     out_ += '}';
   }
@@ -77,37 +84,16 @@ class Writer {
     }
     return &*h;
   }
-  void string(const std::string& s) {
-    for (unsigned char c : s) {
-      if (c < 0x20 || c == '"' || c == '\\' || c >= 0x80) {
-        // Escapes and whatever is not plain ASCII: as dump writes it.
-        out_ += Json(s).dump(-1, ' ', false, Json::error_handler_t::replace);
-        return;
-      }
-    }
-    out_ += '"';
-    out_ += s;
-    out_ += '"';
-  }
-  void real(double x) {
-    if (!std::isfinite(x)) {
-      out_ += "null";  // as dump writes them
-      return;
-    }
-    char buf[32];
-    const auto end = std::to_chars(buf, buf + sizeof buf, x).ptr;
-    const std::string_view text(buf, static_cast<size_t>(end - buf));
-    out_ += text;
-    // Shortest text that reads back as the same double, and still a real.
-    if (text.find_first_of(".e") == std::string_view::npos) out_ += ".0";
-  }
+  void string(const std::string& s) { results::json_text::append_string(out_, s); }
+  void real(double x) { results::json_text::append_real(out_, x); }
   template <class I>
   void integer(I x) {
-    char buf[24];
-    out_.append(buf, static_cast<size_t>(std::to_chars(buf, buf + sizeof buf, x).ptr - buf));
+    results::json_text::append_integer(out_, x);
   }
 
   std::string& out_;
+  std::string_view figures_;
+  int depth_ = 0;  // objects entered below the top level's
 };
 
 void expand_histograms(Json& node) {
@@ -163,16 +149,16 @@ std::string_view first_line(std::string_view record) {
 
 }  // namespace
 
-EncodedRecord encode_record(Json&& summary, const Json* base) {
+EncodedRecord encode_record(Json&& summary, const Json* base, std::string_view figures) {
   EncodedRecord out;
   if (const auto it = summary.find("scenario"); it != summary.end()) {
     out.scenario = std::move(*it);
     summary.erase(it);
   }
   out.text.reserve(8192);
-  Writer w(out.text);
-  w.value(summary);
+  Writer(out.text, figures).value(summary);
   out.text += '\n';
+  Writer w(out.text);
   if (base && base->is_object()) {
     Json ops = Json::array();
     diff(*base, out.scenario, "", ops);

@@ -15,6 +15,7 @@
 
 #include "latsim/des/simulator.hpp"
 #include "latsim/results/figure_registry.hpp"
+#include "latsim/results/figure_tree.hpp"
 #include "latsim/results/figures.hpp"
 #include "latsim/results/ledger.hpp"
 #include "latsim/stats/stats.hpp"
@@ -54,6 +55,8 @@ class FigureBook {
   const std::map<std::string, int64_t>& counters() const { return counters_; }
   /// Every figure in the one serialisation of figures.json.
   nlohmann::json figures() const { return table_.to_json(distributions(), counters_); }
+  /// The same figures as a FigureTree, to be written as text (nullopt: ask figures()).
+  std::optional<FigureTree> figure_tree() const { return FigureTree::of(table_, distributions(), counters_); }
 
   /// The headline set the pipeline's reader means first (the registry ranks
   /// its figures); "default" unless the pipeline names one.
@@ -62,6 +65,7 @@ class FigureBook {
   std::vector<std::string> headline() const { return headline(figures()); }
   /// The same, from the run's figures() already in hand (they take a while to make).
   std::vector<std::string> headline(const nlohmann::json& figures) const;
+  std::vector<std::string> headline(const FigureTree& figures) const;
   /// Legal but doubtful: reported on stderr and in summary.json's "warnings".
   void warn(std::string text) { table_.warn(std::move(text)); }
   const std::vector<std::string>& warnings() const { return table_.warnings(); }

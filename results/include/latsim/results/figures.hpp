@@ -14,6 +14,8 @@
 
 namespace latsim::results {
 
+class FigureTree;
+
 /// A figure's value: a count, a number, a flag or a word.
 using FigureValue = std::variant<int64_t, double, bool, std::string>;
 
@@ -40,6 +42,8 @@ class FigureTable {
   static nlohmann::json distribution_json(const stats::Distribution& d);
 
  private:
+  friend class FigureTree;  // arranges the same figures without a JSON tree
+
   std::map<std::string, FigureValue> values_;
   std::map<std::string, bool> containers_;  // name -> true: list, false: object
   std::map<std::string, stats::Distribution> published_;

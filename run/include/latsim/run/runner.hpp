@@ -89,6 +89,11 @@ struct RunOptions {
   const pipelines::PipelineRegistry* pipelines = nullptr;
   /// When set, receives the run's tables once it has finished (RunTables).
   RunTables* tables = nullptr;
+  /// When set and the run writes no files, receives the run's figures as the
+  /// text a results-store record holds (results::FigureTree), built without
+  /// their JSON tree, and the summary's "figures" is null; left empty where
+  /// the figures need their JSON tree (the summary then holds them).
+  std::string* figures_text = nullptr;
 };
 
 /// The simulation failed, not the input: which model's event, when, and why.

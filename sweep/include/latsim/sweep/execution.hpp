@@ -97,6 +97,7 @@ class RunExecutor {
     std::string stem;
     std::filesystem::path mark;  ///< empty until the first mark
     int marks_made = 0;
+    std::string figures_text;  ///< a run's figures as text (RunOptions::figures_text), its capacity reused
   };
 
   RunAttempt claim_and_run(const RunTask& task, unsigned worker);

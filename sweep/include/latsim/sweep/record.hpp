@@ -24,7 +24,11 @@ struct EncodedRecord {
 
 /// Encodes a summary, its scenario against `base` (the scenario of the
 /// segment's first record; null for that first record). Consumes the summary.
-EncodedRecord encode_record(nlohmann::json&& summary, const nlohmann::json* base = nullptr);
+/// `figures`, when not empty, is the text of the summary's "figures" (a run
+/// asked for it as text, run::RunOptions::figures_text), written in the
+/// place of that key's value, the same bytes as its JSON tree's would be.
+EncodedRecord encode_record(nlohmann::json&& summary, const nlohmann::json* base = nullptr,
+                            std::string_view figures = {});
 
 /// How much of a record to read back.
 enum class RecordRead {
