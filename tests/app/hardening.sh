@@ -370,6 +370,12 @@ for key in /apparent_latency/step_ms /display/persistence/lit_ms /motion_phases/
   expect_bad "rounds_to_zero_${key//\//_}" "$key: rounds to 0 in the time unit, 1 ps (1e-09 ms), got 1e-308" \
     scenarios/measurement/min_jerk_rig.json --set "$key=1e-308"
 done
+# A frame-to-frame correlation is a property of a normal variation's draws:
+# with a uniform variation it is refused at its key, not silently ignored.
+expect_bad correlated_uniform "/pipeline/stages/0/cost/variation_correlation_frames: only a normal variation" \
+  scenarios/pacing/base.json --set /pipeline/stages/0/cost/variation=uniform \
+  --set /pipeline/stages/0/cost/variation_correlation_frames=90
+
 # Number options are read whole, in range, as given: an unsigned -1 was
 # 18446744073709551615, "" was 0, 2^64 was clamped, 1e-400 (a --max-events of
 # 0) lifted the event budget.
