@@ -46,7 +46,9 @@ import sys
 import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "sweep"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from sweep_checks import check, finish, table  # noqa: E402
+from stop_checks import cpu_seconds  # noqa: E402
 
 LATSIM, SOURCE_DIR, SCRATCH = sys.argv[1:4]
 FULL = "--full" in sys.argv[4:]
@@ -328,15 +330,6 @@ def attack_results():
 
 
 # ---------------------------------------------------------------- signals
-def cpu_seconds(pid):
-    try:
-        with open(f"/proc/{pid}/stat") as f:
-            fields = f.read().rsplit(")", 1)[1].split()
-    except OSError:
-        return 0.0
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
-
-
 def stop_while_busy(what, argv, out, sig, busy_cpu_s=0.2):
     """Starts argv, waits until it has spent busy_cpu_s of CPU (in the phase), signals it, checks the contract."""
     count("signals/" + os.path.basename(argv[1]))
