@@ -157,19 +157,30 @@ INTEGER_OPTIONS = {"--seed", "--replication", "--max", "-j", "--stale-after", "-
 TEXT_VALUES = ["", "\x1b[31m", "9" * 3000]
 
 
-def attack_options():
-    work = os.path.join(SCRATCH, "options")
+def corpus(kind, duration_s, ledger=False, sweep_keep=None):
+    """A scratch folder for one attack with a run of BASE in it (and, given sweep_keep, a sweep of two points
+    whose `keep` is sweep_keep, "" for none): (folder, run directory, sweep directory or None)."""
+    work = os.path.join(SCRATCH, kind)
     os.makedirs(work)
     run_dir = os.path.join(work, "run")
-    proc = latsim("run", BASE, "--set", "/duration_s=0.5", "-q", "--out", run_dir)
-    check(proc.returncode == 0, f"options corpus run: {proc.stderr[-300:]!r}")
+    proc = latsim("run", BASE, "--set", f"/duration_s={duration_s}", *(["--ledger"] if ledger else []), "-q",
+                  "--out", run_dir)
+    check(proc.returncode == 0, f"{kind} corpus run: {proc.stderr[-300:]!r}")
+    if sweep_keep is None:
+        return work, run_dir, None
     sweep_file = os.path.join(work, "sweep.json")
     with open(sweep_file, "w") as f:
-        json.dump({"base": BASE, "overrides": {"/duration_s": 0.5}, "axes": [{"pointer": "/tracker/rate_hz",
-                                                                             "values": [60, 120]}]}, f)
+        json.dump({"base": BASE, "overrides": {"/duration_s": duration_s}, **({"keep": sweep_keep} if sweep_keep else {}),
+                   "axes": [{"pointer": "/tracker/rate_hz", "values": [60, 120]}]}, f)
     sweep_dir = os.path.join(work, "sweep")
     proc = latsim("sweep", sweep_file, "--out", sweep_dir, "-j", "2")
-    check(proc.returncode == 0, f"options corpus sweep: {proc.stderr[-300:]!r}")
+    check(proc.returncode == 0, f"{kind} corpus sweep: {proc.stderr[-300:]!r}")
+    return work, run_dir, sweep_dir
+
+
+def attack_options():
+    work, run_dir, sweep_dir = corpus("options", 0.5, sweep_keep="")
+    sweep_file = os.path.join(work, "sweep.json")
     capture = source("scenarios", "measured", "captures", "test_case_0.csv")
     out = os.path.join(work, "out")
     vary = ["--vary", "/pipeline/render/fixed_ms=1:10", "--minimise", "motion_to_photon_ms.mean"]
@@ -238,11 +249,7 @@ def damaged_captures(data):
 
 
 def attack_captures():
-    work = os.path.join(SCRATCH, "captures")
-    os.makedirs(work)
-    run_dir = os.path.join(work, "run")
-    proc = latsim("run", BASE, "--set", "/duration_s=1", "-q", "--out", run_dir)
-    check(proc.returncode == 0, f"captures corpus run: {proc.stderr[-300:]!r}")
+    work, run_dir, _ = corpus("captures", 1)
     files = {k: source("scenarios", "measured", "captures", v) for k, v in CAPTURES.items()}
     files["steamvr"] = source("tests", "models", "capture", "data", "steamvr_frame_timing.csv")
     for kind, path in files.items():
@@ -286,18 +293,7 @@ def to_directory(path):
 
 
 def attack_results():
-    work = os.path.join(SCRATCH, "results")
-    os.makedirs(work)
-    run_dir = os.path.join(work, "run")
-    proc = latsim("run", BASE, "--set", "/duration_s=1", "--ledger", "-q", "--out", run_dir)
-    check(proc.returncode == 0, f"results corpus run: {proc.stderr[-300:]!r}")
-    sweep_file = os.path.join(work, "sweep.json")
-    with open(sweep_file, "w") as f:
-        json.dump({"base": BASE, "overrides": {"/duration_s": 1}, "keep": "first",
-                   "axes": [{"pointer": "/tracker/rate_hz", "values": [60, 120]}]}, f)
-    sweep_dir = os.path.join(work, "sweep")
-    proc = latsim("sweep", sweep_file, "--out", sweep_dir, "-j", "2")
-    check(proc.returncode == 0, f"results corpus sweep: {proc.stderr[-300:]!r}")
+    work, run_dir, sweep_dir = corpus("results", 1, ledger=True, sweep_keep="first")
     nul = lambda d: d[:200] + b"\x00" + d[200:]  # noqa: E731
     escape = lambda d: d.replace(b"e", b"\x1b[2J", 3)  # noqa: E731
     utf16 = lambda d: d.decode("utf-8").encode("utf-16")  # noqa: E731
