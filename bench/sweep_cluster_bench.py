@@ -155,7 +155,7 @@ print()
 print(timings.strip())
 phase = re.search(r"checking (\d+) point\(s\) [\d.]+ s \(([\d.]+) ms each.*runs ([\d.]+) s, tables ([\d.]+) s", timings)
 per = re.search(r"per run: ([\d.]+) ms simulating, ([\d.]+) ms building models and figures \(and a kept run's files\), "
-                r"([\d.]+) ms recording, ([\d.]+) ms reading the scenario, ([\d.]+) ms claiming", timings)
+                r"([\d.]+) ms recording, ([\d.]+) ms reading and binding the scenario, ([\d.]+) ms claiming", timings)
 build_ms = float(phase[2])
 simulate, build_figures, record, read, claim = (float(x) for x in per.groups())
 starts = []

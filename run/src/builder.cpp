@@ -6,6 +6,7 @@
 #include <string>
 #include <stdexcept>
 
+#include "built_from.hpp"
 #include "latsim/des/stop_token.hpp"
 #include "latsim/run/builtin_pipelines.hpp"
 #include "latsim/tracker/motion_and_transport.hpp"
@@ -14,8 +15,6 @@
 namespace latsim::run {
 
 using namespace results;
-using pipelines::PipelineFactory;
-using pipelines::PipelineRegistry;
 using pipelines::RunContext;
 using Json = nlohmann::json;
 
@@ -35,29 +34,6 @@ ProbeSet default_probes(const tracker::Pose& start, double hfov_deg) {
   return p;
 }
 
-/// Declares (reading mode: reads) the whole scenario: the shared sections,
-/// then /pipeline through the declaration of the pipeline its "type" names.
-PipelineFactory bind_scenario(scenario::Section& root, sections::SharedParams& shared, const PipelineRegistry& registry) {
-  sections::bind(root, shared);
-  PipelineFactory factory;
-  std::vector<scenario::ModeDecl> modes;
-  for (const auto& named : registry.entries()) {
-    // A reference, not a structured binding: clang before 16 cannot capture bindings in a lambda.
-    const auto& entry = named.second;
-    modes.push_back(
-        {named.first, entry.doc, [&factory, &shared, &entry](scenario::Section& p) { factory = entry.bind(p, shared); }});
-  }
-  int unused = 0;
-  root.object("pipeline", unused,
-              [&modes](scenario::Section& p, int&) {
-                p.doc("The display strategy: which pose each image is computed from, when it is ready, and when it "
-                      "goes into a front buffer. `type` selects the pipeline; each reads its own keys.");
-                p.modes("type", "", modes, {.doc = "which pipeline"});
-              },
-              {.required = true, .doc = "the display strategy"});
-  return factory;
-}
-
 // Every clock of the shared models gets the phase the scenario fixes or one
 // drawn for this replication. The parameters keep the nominal periods; the
 // display's raster is built with the display clock's actual period (the
@@ -71,7 +47,7 @@ PipelineFactory bind_scenario(scenario::Section& root, sections::SharedParams& s
 // fixed phase is the user's choice), neither clock drifts (rate error,
 // display clock noise) nor jitters, and the spread is at least 0.5 ms.
 std::optional<std::string> phase_luck(const Run& run) {
-  const sections::SharedParams& p = run.shared;
+  const sections::SharedParams& p = run.shared();
   const des::Clock* tracker = run.clocks->find("tracker");
   const des::Clock* display = run.clocks->find("display");
   if (!tracker || !display || !tracker->drawn || !display->drawn) return std::nullopt;
@@ -110,7 +86,7 @@ std::optional<std::string> phase_luck(const Run& run) {
 // on is the resolved clock's (RunClocks), never written back into the bound
 // scenario, which stays as the scenario file and the defaults make it.
 void resolve_clocks(Run& run, uint64_t replication) {
-  const sections::SharedParams& p = run.shared;
+  const sections::SharedParams& p = run.shared();
   run.clocks = std::make_unique<des::RunClocks>(run.seed, replication);
   // A rate error that leaves a period no 64-bit fraction holds is the scenario's problem, at its key.
   auto resolve = [&run](const char* name, const std::string& prefix, des::RationalSeconds period,
@@ -161,24 +137,6 @@ tracker::TransportParams transport_as_resolved(const Run& run, tracker::Transpor
   return t;
 }
 
-// Builds one part of a run. Building depends on the scenario alone, so
-// anything it throws is a problem of the scenario at `pointer`: `validate`
-// reports it exactly as `run` does, exit 2, and never a library's raw text.
-template <class F>
-void built_from(const char* pointer, const char* what, F&& make) {
-  try {
-    make();
-  } catch (const scenario::ScenarioError&) {
-    throw;
-  } catch (const des::StopRequested&) {
-    throw;  // a signal while reading a file the scenario names: no problem of the scenario
-  } catch (const std::bad_alloc&) {
-    throw scenario::ScenarioError(pointer, std::string("not enough memory to build the ") + what);
-  } catch (const std::exception& e) {
-    throw scenario::ScenarioError(pointer, std::string("cannot build the ") + what + ": " + e.what());
-  }
-}
-
 // The display clock's jitter and wander for every field of the run (and a
 // few beyond), from the run's stream "display.clock_noise".
 std::shared_ptr<const display::ClockNoise> clock_noise(const display::RasterTiming& timing,
@@ -199,7 +157,7 @@ std::shared_ptr<const display::ClockNoise> clock_noise(const display::RasterTimi
 // The controller's own chain: its tracker (IMU and reports), its link, the
 // runtime's fusion of it and a predictor of /host/prediction's settings.
 void track_controller_chain(Run& run, const RunOptions& options) {
-  const sections::ControllerParams& c = *run.shared.controller;
+  const sections::ControllerParams& c = *run.shared().controller;
   const des::RandomStream stream(run.seed, "controller", options.replication);
   const tracker::TrackerParams chain = tracker_as_resolved(run, *c.tracker, "controller", "controller_reference");
   auto device = std::make_unique<tracker::Tracker>(chain, *run.controller_motion, stream.substream("tracker"));
@@ -208,49 +166,32 @@ void track_controller_chain(Run& run, const RunOptions& options) {
   std::unique_ptr<tracker::RuntimeFusion> fusion;
   if (chain.imu)
     fusion = std::make_unique<tracker::RuntimeFusion>(*chain.imu, *run.controller_motion, stream.substream("reference"));
-  const tracker::PredictionParams prediction = run.shared.host.prediction.value_or(tracker::PredictionParams{});
+  const tracker::PredictionParams prediction = run.shared().host.prediction.value_or(tracker::PredictionParams{});
   run.host->track_controller(std::make_unique<DeviceFeed>(run.sim, std::move(device), std::move(link),
                                                           std::move(fusion), prediction, "controller"));
 }
 
 }  // namespace
 
-scenario::ObjectSchema schema_of(const PipelineRegistry& registry) {
-  scenario::ObjectSchema root;
-  scenario::Section s(root);
-  sections::SharedParams shared;
-  (void)bind_scenario(s, shared, registry);
-  return root;
-}
-
 ProbeSet probes_of(const Run& run) {
-  const double hfov_deg = run.shared.display.hfov_deg;
-  if (!run.shared.probes) return default_probes(run.motion->pose_at(des::Time::zero()), hfov_deg);
-  return ProbeSet{run.shared.probes->points_m, hfov_deg};
+  const double hfov_deg = run.shared().display.hfov_deg;
+  if (!run.shared().probes) return default_probes(run.motion->pose_at(des::Time::zero()), hfov_deg);
+  return ProbeSet{run.shared().probes->points_m, hfov_deg};
 }
 
 void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& options) {
-  const PipelineRegistry builtin = options.pipelines ? PipelineRegistry{} : builtin_pipelines();
-  const PipelineRegistry& registry = options.pipelines ? *options.pipelines : builtin;
-  PipelineFactory make_pipeline;
-  built_from("", "scenario", [&] {
-    scenario::Section root(doc.root());
-    make_pipeline = bind_scenario(root, run.shared, registry);
-    if (options.pipelines) {
-      const scenario::ObjectSchema schema = schema_of(registry);
-      doc.check_unknown_keys(&schema, &run.input_warnings);
-    } else {
-      doc.check_unknown_keys(&scenario_schema(), &run.input_warnings);
-    }
-  });
+  build(run, BoundScenario::of(doc, options.pipelines), options);
+}
 
-  run.duration = des::Time::from_seconds(run.shared.duration_s);
-  run.seed = options.seed ? *options.seed : static_cast<uint64_t>(run.shared.seed);
+void build(Run& run, std::shared_ptr<const BoundScenario> bound, const RunOptions& options) {
+  run.bound = std::move(bound);
+  const sections::SharedParams& p = run.shared();
+  run.duration = des::Time::from_seconds(p.duration_s);
+  run.seed = options.seed ? *options.seed : static_cast<uint64_t>(p.seed);
   resolve_clocks(run, options.replication);
-  const sections::SharedParams& p = run.shared;
   // A run that could never finish is refused before anything is built.
   built_from("/pipeline", "pipeline", [&] {
-    run.pipeline = make_pipeline();
+    run.pipeline = run.bound->make_pipeline();
     run.estimate = estimate_events(p, *run.pipeline);
   });
   check_event_budget(run.estimate, options.max_events);
@@ -295,7 +236,7 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
                                                    probes_of(run), p.host.ipd_m, stereo, p.output.keep_samples);
   });
   RunRecording& rec = *run.recording;
-  for (const auto& w : run.input_warnings) rec.book().warn(w);
+  for (const auto& w : run.bound->input_warnings()) rec.book().warn(w);
   if (auto luck = phase_luck(run)) rec.book().warn(*luck);
   rec.prediction().enable(p.host.prediction.has_value());
   if (p.motion_phases) rec.split_by_phase(*p.motion_phases);
@@ -353,8 +294,8 @@ void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& op
   });
 }
 
-Json resolved_scenario(const Run& run, const scenario::ScenarioDocument& doc) {
-  Json resolved = doc.resolved();
+Json resolved_scenario(const Run& run) {
+  Json resolved = run.bound->doc().resolved();
   // The phases used, drawn or fixed, make the resolved scenario reproduce this
   // run: read from the run's clocks, where they were decided.
   for (const auto& [pointer, ms] : run.clocks->phases_ms()) resolved[Json::json_pointer(pointer)] = ms;

@@ -64,8 +64,8 @@ std::string dump(const Json& j, bool compact) {
 
 // The resolved scenario with the defaults that are not single values: the
 // probe points used when the scenario names none (the ring around the start).
-Json resolved_with_defaults(const Run& run, const scenario::ScenarioDocument& doc) {
-  Json resolved = resolved_scenario(run, doc);
+Json resolved_with_defaults(const Run& run) {
+  Json resolved = resolved_scenario(run);
   if (!resolved.contains("probes")) {
     Json points = Json::array();
     for (const glm::dvec3& p : probes_of(run).points_m) points.push_back({p.x, p.y, p.z});
@@ -109,7 +109,7 @@ RunFigures figures_of(Run& run, bool as_text) {
   return figures;
 }
 
-Json write_results(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& options, RunFigures figures,
+Json write_results(Run& run, const RunOptions& options, RunFigures figures,
                    double wall_s, std::chrono::steady_clock::time_point command_start) {
   Json models = Json::object(), events_per_model = Json::object();
   for (const auto& m : run.sim.model_stats()) {
@@ -126,7 +126,7 @@ Json write_results(Run& run, const scenario::ScenarioDocument& doc, const RunOpt
   Json summary{{"latsim", {{"version", latsim_version()}, {"git_revision", latsim_git_revision()}}},
                {"seed", run.seed},
                {"replication", options.replication},
-               {"scenario", resolved_with_defaults(run, doc)},
+               {"scenario", resolved_with_defaults(run)},
                {"figures", std::move(figures.json)},
                {"headline", std::move(headline)},
                {"warnings", run.recording->book().warnings()},

@@ -130,8 +130,11 @@ Json run_scenario(const scenario::ScenarioDocument& doc, const RunOptions& optio
 }
 
 PreparedRun::PreparedRun(const scenario::ScenarioDocument& doc, RunOptions options)
-    : doc_(doc), options_(std::move(options)), run_(std::make_unique<Run>()) {
-  build(*run_, doc_, options_);
+    : PreparedRun(BoundScenario::of(doc, options.pipelines), std::move(options)) {}
+
+PreparedRun::PreparedRun(std::shared_ptr<const BoundScenario> bound, RunOptions options)
+    : options_(std::move(options)), run_(std::make_unique<Run>()) {
+  build(*run_, std::move(bound), options_);
   builds_made_.fetch_add(1, std::memory_order_relaxed);
 }
 
@@ -141,7 +144,7 @@ const std::vector<std::string>& PreparedRun::warnings() const { return run_->rec
 
 const EventEstimate& PreparedRun::estimate() const { return run_->estimate; }
 
-Json PreparedRun::resolved() const { return resolved_scenario(*run_, doc_); }
+Json PreparedRun::resolved() const { return resolved_scenario(*run_); }
 
 Json PreparedRun::run() {
   if (ran_) throw std::logic_error("a prepared run runs once");
@@ -156,7 +159,7 @@ Json PreparedRun::run() {
   // Written as it is produced: memory does not grow with the run's length.
   if (run.files.enabled()) run.timeline.stream_to(run.files);
   if (run.files.enabled() && options.write_presentmon)
-    run.app_frames.log_presentmon(run.files, doc_.resolved()["pipeline"].value("type", std::string("latsim")));
+    run.app_frames.log_presentmon(run.files, run.bound->doc().resolved()["pipeline"].value("type", std::string("latsim")));
   // Per-event timing costs two clock reads per event: only when asked.
   run.sim.set_profiling(options.profile);
   run.sim.watch_stop_flag(options.stop);
@@ -170,7 +173,7 @@ Json PreparedRun::run() {
   try {
     // As text only for a run that writes no figures.json (which is made from the JSON tree).
     RunFigures figures = figures_of(run, options.figures_text != nullptr && !run.files.enabled());
-    Json summary = write_results(run, doc_, options, std::move(figures), wall_s, command_start);
+    Json summary = write_results(run, options, std::move(figures), wall_s, command_start);
     if (options.tables) keep_tables(run, *options.tables);
     return summary;
   } catch (const des::StopRequested&) {

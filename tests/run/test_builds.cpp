@@ -100,9 +100,9 @@ TEST_CASE("a clock's phase is decided once, by the run's clocks, and never writt
     run::Run run;
     run::build(run, doc, options);
     // The bound scenario is what the file and the defaults make it: no phase.
-    CHECK_FALSE(run.shared.tracker.clock.phase.has_value());
-    CHECK_FALSE(run.shared.display.clock.phase.has_value());
-    CHECK_FALSE(run.shared.transport.serial.poll_clock.phase.has_value());
+    CHECK_FALSE(run.shared().tracker.clock.phase.has_value());
+    CHECK_FALSE(run.shared().display.clock.phase.has_value());
+    CHECK_FALSE(run.shared().transport.serial.poll_clock.phase.has_value());
     // Each model runs on the phase its clock drew: report 0 of the tracker,
     // field 0 of the display and the poll timer all start at that phase.
     const des::Clock& tracker = *run.clocks->find("tracker");

@@ -21,6 +21,7 @@
 #include "latsim/results/run_files.hpp"
 #include "latsim/results/smear_recorder.hpp"
 #include "latsim/results/timeline.hpp"
+#include "latsim/run/bound_scenario.hpp"
 #include "latsim/run/event_budget.hpp"
 #include "latsim/run/runner.hpp"
 #include "latsim/run/tracker_host.hpp"
@@ -35,8 +36,8 @@ namespace latsim::run {
 /// Everything one run builds from its scenario.
 struct Run {
   des::Simulator sim;
-  sections::SharedParams shared;
-  std::vector<std::string> input_warnings;
+  /// The scenario as bound: its parameters, shared with every run built from it.
+  std::shared_ptr<const BoundScenario> bound;
   std::unique_ptr<tracker::MotionSource> motion;
   std::unique_ptr<tracker::MotionSource> controller_motion;  ///< /controller's (null without one)
   std::unique_ptr<tracker::Tracker> tracker;
@@ -58,6 +59,8 @@ struct Run {
   /// (then where it ended); the pipeline reads this one value (RunContext::duration).
   des::Time duration;
   EventEstimate estimate;  ///< the events the run is expected to execute
+
+  const sections::SharedParams& shared() const { return bound->shared(); }
 };
 
 /// Reads every key first, so that bad and unknown keys are reported before
@@ -66,13 +69,14 @@ struct Run {
 /// schedule its first events. Throws scenario::ScenarioError naming the pointer of
 /// whatever could not be built.
 void build(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& options);
+/// The same from a scenario already bound (a sweep point's replications
+/// share one): the keys are not read again; the clocks, the models and the
+/// pipeline are the run's own.
+void build(Run& run, std::shared_ptr<const BoundScenario> bound, const RunOptions& options);
 
-/// The scenario as built run `run` takes it: `doc` resolved, with the phase
-/// of every clock the run decided (drawn or fixed), read from its clocks.
-nlohmann::json resolved_scenario(const Run& run, const scenario::ScenarioDocument& doc);
-
-/// The declaration of every key of a scenario whose pipelines are `registry`'s.
-scenario::ObjectSchema schema_of(const pipelines::PipelineRegistry& registry);
+/// The scenario as built run `run` takes it: its document resolved, with the
+/// phase of every clock the run decided (drawn or fixed), read from its clocks.
+nlohmann::json resolved_scenario(const Run& run);
 
 /// The registration probes of a built run: the scenario's, or a ring around the start pose.
 results::ProbeSet probes_of(const Run& run);

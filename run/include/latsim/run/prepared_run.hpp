@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "latsim/run/bound_scenario.hpp"
 #include "latsim/run/event_budget.hpp"
 #include "latsim/run/runner.hpp"
 #include "latsim/scenario/config.hpp"
@@ -26,7 +27,11 @@ struct Run;
 /// whatever could not be built.
 class PreparedRun {
  public:
+  /// Binds `doc` (which must outlive this) and builds the run.
   PreparedRun(const scenario::ScenarioDocument& doc, RunOptions options);
+  /// Builds the run from a scenario already bound (a sweep point's
+  /// replications share one), reading no key again.
+  PreparedRun(std::shared_ptr<const BoundScenario> bound, RunOptions options);
   ~PreparedRun();
   PreparedRun(const PreparedRun&) = delete;
   PreparedRun& operator=(const PreparedRun&) = delete;
@@ -44,7 +49,6 @@ class PreparedRun {
   nlohmann::json run();
 
  private:
-  const scenario::ScenarioDocument& doc_;
   RunOptions options_;
   std::unique_ptr<Run> run_;
   bool ran_ = false;

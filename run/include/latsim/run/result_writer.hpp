@@ -32,8 +32,7 @@ RunFigures figures_of(Run& run, bool as_text = false);
 /// summary.json's content for a run whose simulation took `wall_s`; when the
 /// run writes files, writes every result file and commits the run directory
 /// (summary.json last).
-nlohmann::json write_results(Run& run, const scenario::ScenarioDocument& doc, const RunOptions& options,
-                             RunFigures figures, double wall_s,
+nlohmann::json write_results(Run& run, const RunOptions& options, RunFigures figures, double wall_s,
                              std::chrono::steady_clock::time_point command_start);
 
 }  // namespace latsim::run

@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "latsim/run/bound_scenario.hpp"
 #include "latsim/run/runner.hpp"
 #include "latsim/sweep/claims.hpp"
 #include "latsim/sweep/journal.hpp"
@@ -49,7 +50,7 @@ struct RunAttempt {
   /// failed because the sweep directory cannot be written (full, read-only):
   /// the runs after it would fail the same way.
   bool storage_unusable = false;
-  double resolve_s = 0.0;  ///< reading the scenario into a document
+  double resolve_s = 0.0;  ///< reading and binding the scenario (once a point on each thread)
   double run_s = 0.0;      ///< run_scenario: building the models, simulating, the figures (and a kept run's files)
   double simulate_s = 0.0; ///< of which simulating (the run's own wall_s)
   double record_s = 0.0;   ///< writing the run's record into the results store, and its mark
@@ -98,6 +99,11 @@ class RunExecutor {
     std::filesystem::path mark;  ///< empty until the first mark
     int marks_made = 0;
     std::string figures_text;  ///< a run's figures as text (RunOptions::figures_text), its capacity reused
+    /// The scenario this worker bound last and its binding: the next
+    /// replication of the same point builds from it without reading a key.
+    std::shared_ptr<const nlohmann::json> bound_json;
+    std::filesystem::path bound_dir;
+    std::shared_ptr<const run::BoundScenario> bound;
   };
 
   RunAttempt claim_and_run(const RunTask& task, unsigned worker);
