@@ -164,7 +164,10 @@ RunAttempt RunExecutor::run_claimed(const RunTask& task, unsigned worker) {
   options.figures_text = &w.figures_text;
   try {
     auto t0 = Clock::now();
-    if (w.bound_json != task.scenario || w.bound_dir != task.base_dir) {
+    // The same point (its plan's scenario), or an equal scenario (an MPI rank's task carries a copy).
+    const bool same = w.bound && w.bound_dir == task.base_dir &&
+                      (w.bound_json == task.scenario || *w.bound_json == *task.scenario);
+    if (!same) {
       w.bound.reset();  // a scenario that cannot be bound leaves nothing to reuse
       w.bound = std::make_shared<const run::BoundScenario>(
           std::make_shared<const scenario::ScenarioDocument>(
