@@ -4,6 +4,7 @@
 #include <string_view>
 
 #include "cursor_text.hpp"
+#include "latsim/results/csv_text.hpp"
 
 namespace latsim::results {
 
@@ -33,17 +34,6 @@ void put_s(char*& p, des::Time t) {
 }
 
 void put_na(char*& p) { put(p, ",NA"); }
-
-// A CSV field: quoted when it holds a comma, a quote or a line break.
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (const char c : s) {
-    if (c == '"') q += '"';
-    q += c;
-  }
-  return q + '"';
-}
 
 // The PresentMode cell with the comma before it (NA when the pipeline models none).
 std::string mode_cell(const std::string& mode) {
