@@ -129,7 +129,7 @@ int command_optimise(int argc, char** argv) {
     auto evaluate = [&](double probe) {
       const double x = *sweep::setting_in_steps(probe, range->lo, range->hi, decimals);
       std::vector<std::string> s = sets;
-      s.push_back(range->pointer + "=" + sweep::format_number(x));
+      s.push_back(range->pointer + "=" + scenario::number_text(x));
       const scenario::ScenarioDocument doc = run::load_scenario(file, s);
       sweep::Trial t;
       t.x = x;
@@ -160,9 +160,9 @@ int command_optimise(int argc, char** argv) {
     const sweep::SearchResult result = sweep::golden_section(evaluate, range->lo, range->hi, tolerance);
     const sweep::Trial& best = result.best;
     std::printf("%s=%s: %s %s (%zu settings of %d replication%s, tolerance %s)%s\n", range->pointer.c_str(),
-                sweep::format_number(best.x).c_str(), objective.c_str(),
-                sweep::format_number(best.figures[objective].get<double>()).c_str(), result.tried.size(), replications,
-                replications == 1 ? "" : "s", sweep::format_number(tolerance).c_str(),
+                scenario::number_text(best.x).c_str(), objective.c_str(),
+                scenario::number_text(best.figures[objective].get<double>()).c_str(), result.tried.size(), replications,
+                replications == 1 ? "" : "s", scenario::number_text(tolerance).c_str(),
                 best.violation > 0 ? "; no setting kept every constraint: this one breaks them least" : "");
     if (!out_dir.empty()) {
       std::filesystem::create_directories(out_dir);

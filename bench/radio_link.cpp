@@ -13,8 +13,10 @@
 #include <cstring>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "delivery_line.hpp"
 #include "latsim/des/simulator.hpp"
 #include "latsim/radio/bss.hpp"
 #include "latsim/radio/traffic.hpp"
@@ -115,13 +117,7 @@ int main(int argc, char** argv) {
     if (frames[n].done < des::Time::zero()) ++incomplete;
     else ms.push_back((frames[n].done - frames[n].queued).to_ms());
   }
-  std::sort(ms.begin(), ms.end());
-  double sum = 0;
-  for (double v : ms) sum += v;
-  auto q = [&](double p) { return ms.empty() ? 0.0 : ms[std::min(ms.size() - 1, static_cast<size_t>(p * ms.size()))]; };
-  std::printf("frames=%zu mean_ms=%.4f p50_ms=%.4f p99_ms=%.4f max_ms=%.4f incomplete=%ld\n", ms.size(),
-              ms.empty() ? 0.0 : sum / static_cast<double>(ms.size()), q(0.5), q(0.99), ms.empty() ? 0.0 : ms.back(),
-              incomplete);
+  bench::print_delivery_line(std::move(ms), static_cast<unsigned long long>(incomplete));
   std::fprintf(stderr, "collisions=%lld ppdus=%lld retransmissions=%lld busy_s=%.4f\n",
                static_cast<long long>(bss.counts().collisions), static_cast<long long>(bss.counts().ppdus),
                static_cast<long long>(bss.counts().retransmissions), bss.counts().busy.to_seconds());

@@ -18,8 +18,10 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <utility>
 #include <vector>
 
+#include "delivery_line.hpp"
 #include "ns3/ap-wifi-mac.h"
 #include "ns3/core-module.h"
 #include "ns3/mobility-module.h"
@@ -221,13 +223,7 @@ int main(int argc, char** argv) {
     if (g_frames[n].done_s < 0) ++incomplete;
     else ms.push_back((g_frames[n].done_s - g_frames[n].queued_s) * 1e3);
   }
-  std::sort(ms.begin(), ms.end());
-  double sum = 0;
-  for (double v : ms) sum += v;
-  auto q = [&](double p) { return ms.empty() ? 0.0 : ms[std::min(ms.size() - 1, static_cast<size_t>(p * ms.size()))]; };
-  std::printf("frames=%zu mean_ms=%.4f p50_ms=%.4f p99_ms=%.4f max_ms=%.4f incomplete=%llu\n", ms.size(),
-              ms.empty() ? 0.0 : sum / ms.size(), q(0.5), q(0.99), ms.empty() ? 0.0 : ms.back(),
-              static_cast<unsigned long long>(incomplete));
+  bench::print_delivery_line(std::move(ms), incomplete);
   std::fprintf(stderr, "packets_missing=%llu dropped_enqueue=%llu dropped_lifetime=%llu dropped_retry_limit=%llu dropped_old=%llu\n",
                static_cast<unsigned long long>(missing), static_cast<unsigned long long>(g_dropped[0]),
                static_cast<unsigned long long>(g_dropped[1]), static_cast<unsigned long long>(g_dropped[2]),

@@ -1,13 +1,18 @@
 #include "latsim/results/presentmon_log.hpp"
 
-#include <charconv>
-#include <cstring>
 #include <limits>
 #include <string_view>
+
+#include "cursor_text.hpp"
+#include "latsim/results/csv_text.hpp"
 
 namespace latsim::results {
 
 namespace {
+
+using cursor::put;
+using cursor::put_fixed;
+using cursor::put_int;
 
 constexpr int64_t kPsPerMs = 1'000'000'000;
 constexpr int64_t kPsPerS = 1'000'000'000'000;
@@ -17,40 +22,6 @@ constexpr size_t kBatchBytes = size_t{60} << 10;
 // can be: 17 numbers of at most 20 digits, a sign, a point and 12 decimals
 // each, the fixed text.
 constexpr size_t kRowBytes = 17 * 40 + 128;
-
-void put(char*& p, std::string_view s) {
-  std::memcpy(p, s.data(), s.size());
-  p += s.size();
-}
-
-void put_int(char*& p, int64_t v) { p = std::to_chars(p, p + 24, v).ptr; }
-
-// Exactly `digits` decimal digits of v (leading zeros kept), two at a time.
-void put_digits(char*& p, uint64_t v, int digits) {
-  static constexpr char kPairs[] =
-      "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
-      "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
-      "8081828384858687888990919293949596979899";
-  char* const end = p + digits;
-  char* q = end;
-  for (; digits >= 2; digits -= 2, v /= 100) {
-    q -= 2;
-    std::memcpy(q, kPairs + 2 * (v % 100), 2);
-  }
-  if (digits == 1) *--q = static_cast<char>('0' + v % 10);
-  p = end;
-}
-
-// ticks / PerUnit as a decimal with Digits digits after the point, from
-// integers: exact, and the same bytes everywhere.
-template <int64_t PerUnit, int Digits>
-void put_fixed(char*& p, int64_t ticks) {
-  const uint64_t mag = ticks < 0 ? uint64_t{0} - static_cast<uint64_t>(ticks) : static_cast<uint64_t>(ticks);
-  if (ticks < 0) *p++ = '-';
-  p = std::to_chars(p, p + 24, mag / static_cast<uint64_t>(PerUnit)).ptr;
-  *p++ = '.';
-  put_digits(p, mag % static_cast<uint64_t>(PerUnit), Digits);
-}
 
 void put_ms(char*& p, des::Time t) {
   *p++ = ',';
@@ -63,17 +34,6 @@ void put_s(char*& p, des::Time t) {
 }
 
 void put_na(char*& p) { put(p, ",NA"); }
-
-// A CSV field: quoted when it holds a comma, a quote or a line break.
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (const char c : s) {
-    if (c == '"') q += '"';
-    q += c;
-  }
-  return q + '"';
-}
 
 // The PresentMode cell with the comma before it (NA when the pipeline models none).
 std::string mode_cell(const std::string& mode) {

@@ -4,39 +4,22 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <stdexcept>
 #include <string_view>
+
+#include "cursor_text.hpp"
 
 namespace latsim::results {
 
 namespace {
 
-// The formatters write at a cursor into a buffer sized beforehand for the
-// longest possible entry (entry_bytes()): no bounds checks, no string growth.
-void put(char*& p, std::string_view s) {
-  std::memcpy(p, s.data(), s.size());
-  p += s.size();
-}
-
-void put_int(char*& p, int64_t v) { p = std::to_chars(p, p + 24, v).ptr; }
-
-// ticks / per_unit as a decimal with six digits after the point, from
-// integers: identical bytes on every platform, no rounding.
-void put_fixed6(char*& p, int64_t ticks, int64_t per_unit) {
-  const uint64_t mag = ticks < 0 ? uint64_t{0} - static_cast<uint64_t>(ticks) : static_cast<uint64_t>(ticks);
-  if (ticks < 0) *p++ = '-';
-  p = std::to_chars(p, p + 24, mag / static_cast<uint64_t>(per_unit)).ptr;
-  *p++ = '.';
-  uint64_t frac = mag % static_cast<uint64_t>(per_unit);
-  for (int i = 5; i >= 0; --i, frac /= 10) p[i] = static_cast<char>('0' + frac % 10);
-  p += 6;
-}
+using cursor::put;
+using cursor::put_int;
 
 // Milliseconds with nanosecond resolution (the CSV's established format).
-void put_ms(char*& p, des::Time t) { put_fixed6(p, t.ticks() / 1000, 1'000'000); }
+void put_ms(char*& p, des::Time t) { cursor::put_fixed<1'000'000, 6>(p, t.ticks() / 1000); }
 // Microseconds with picosecond resolution: exact.
-void put_us(char*& p, des::Time t) { put_fixed6(p, t.ticks(), 1'000'000); }
+void put_us(char*& p, des::Time t) { cursor::put_fixed<1'000'000, 6>(p, t.ticks()); }
 
 // The characters of s as the inside of a JSON string literal.
 void put_json_chars(char*& p, std::string_view s) {

@@ -43,12 +43,6 @@ std::string join_pointer(std::string_view pointer, std::string_view key) {
   return out;
 }
 
-namespace {
-
-std::string format_number(double x) { return number_text(x); }
-
-}  // namespace
-
 ConfigNode::ConfigNode(const Json* node, std::string pointer, std::shared_ptr<ReadLog> log)
     : node_(node), pointer_(std::move(pointer)), log_(std::move(log)) {
   if (!node_->is_object()) throw ScenarioError(pointer_, "expected an object, got " + json_type_name(*node_));
@@ -114,13 +108,13 @@ double ConfigNode::number(std::string_view key, double def) const {
 
 double ConfigNode::positive(std::string_view key) const {
   const double x = number(key);
-  if (!(x > 0)) fail(key, "must be greater than zero, got " + format_number(x));
+  if (!(x > 0)) fail(key, "must be greater than zero, got " + number_text(x));
   return x;
 }
 
 double ConfigNode::positive(std::string_view key, double def) const {
   const double x = number(key, def);
-  if (!(x > 0)) fail(key, "must be greater than zero, got " + format_number(x));
+  if (!(x > 0)) fail(key, "must be greater than zero, got " + number_text(x));
   return x;
 }
 
@@ -271,11 +265,11 @@ des::RationalSeconds ConfigNode::rate_as_period(std::string_view key, std::strin
   }
   if (v.is_number()) {
     const double hz = as_number(key, v);
-    if (!(hz > 0)) fail(key, "frequency must be greater than zero, got " + format_number(hz));
+    if (!(hz > 0)) fail(key, "frequency must be greater than zero, got " + number_text(hz));
     // Represent the decimal exactly enough: micro-hertz resolution.
     const double scaled = std::nearbyint(hz * 1e6);
     if (scaled < 1.0)
-      fail(key, "a frequency given as a number must be at least 1e-06 Hz (its resolution), got " + format_number(hz) +
+      fail(key, "a frequency given as a number must be at least 1e-06 Hz (its resolution), got " + number_text(hz) +
                     "; a slower one as an exact fraction \"num/den\"");
     if (std::fabs(scaled - hz * 1e6) > 1e-3 || scaled > 9e15)
       fail(key, "give frequencies with at most 6 decimals, or as an exact fraction \"num/den\"");
@@ -306,7 +300,7 @@ des::RationalSeconds ConfigNode::rate_as_period(std::string_view key, std::strin
 
 des::Time ConfigNode::duration_ms(std::string_view key) const {
   const double ms = number(key);
-  if (ms < 0) fail(key, "duration must not be negative, got " + format_number(ms));
+  if (ms < 0) fail(key, "duration must not be negative, got " + number_text(ms));
   try {
     return des::Time::from_ms(ms);
   } catch (const des::TimeOverflow&) {

@@ -56,8 +56,6 @@ KeySpec bounded_rate(const KeySpec& spec) {
 
 }  // namespace
 
-std::string format_number(double x) { return number_text(x); }
-
 KeySpec bounded_number(const KeySpec& spec) {
   KeySpec b = spec;
   if (!b.min) b.min = -kLargestNumber;
@@ -105,15 +103,15 @@ std::optional<std::string> range_problem(double x, const KeySpec& spec) {
   const bool below = spec.min && (spec.above_min ? !(x > *spec.min) : x < *spec.min);
   const bool above = spec.max && x > *spec.max;
   if (!below && !above) return std::nullopt;
-  const std::string got = ", got " + format_number(x);
+  const std::string got = ", got " + number_text(x);
   if (spec.min && spec.max)
-    return "must lie in " + std::string(spec.above_min ? "(" : "[") + format_number(*spec.min) + ", " +
-           format_number(*spec.max) + "]" + got;
+    return "must lie in " + std::string(spec.above_min ? "(" : "[") + number_text(*spec.min) + ", " +
+           number_text(*spec.max) + "]" + got;
   if (spec.min && *spec.min == 0.0)
     return std::string(spec.above_min ? "must be greater than zero" : "must not be negative") + got;
   if (spec.min)
-    return std::string(spec.above_min ? "must be greater than " : "must be at least ") + format_number(*spec.min) + got;
-  return "must be at most " + format_number(*spec.max) + got;
+    return std::string(spec.above_min ? "must be greater than " : "must be at least ") + number_text(*spec.min) + got;
+  return "must be at most " + number_text(*spec.max) + got;
 }
 
 void Section::check_range(std::string_view key, double x, const KeySpec& spec) const {
@@ -215,7 +213,7 @@ void Section::rate(std::string_view key, des::RationalSeconds& period, const Key
   const double hz = static_cast<double>(period.den) / static_cast<double>(period.num);
   check_range(key, hz, spec);
   if (ticks_num < static_cast<__int128>(period.den))
-    fail(key, "the period of " + format_number(hz) + " Hz is shorter than the time unit, 1 ps");
+    fail(key, "the period of " + number_text(hz) + " Hz is shorter than the time unit, 1 ps");
 }
 
 void Section::duration(std::string_view key, des::Time& v, const KeySpec& spec) {
@@ -228,7 +226,7 @@ void Section::duration(std::string_view key, des::Time& v, const KeySpec& spec) 
     return;
   }
   const double x = spec.required ? node_->number(key) : node_->number(key, def);
-  if (!spec.min && x < 0) fail(key, "duration must not be negative, got " + format_number(x));
+  if (!spec.min && x < 0) fail(key, "duration must not be negative, got " + number_text(x));
   check_range(key, x, bounded);
   try {
     if (spec.unit == "s") v = des::Time::from_seconds(x);
@@ -241,8 +239,8 @@ void Section::duration(std::string_view key, des::Time& v, const KeySpec& spec) 
   // range that excludes 0 (a step of 1e-308 ms passed the range check, then
   // never advanced; a window of it failed with no pointer).
   if (x > 0 && v == des::Time::zero() && bounded.min && (*bounded.min > 0 || bounded.above_min))
-    fail(key, "rounds to 0 in the time unit, 1 ps (" + format_number(1.0 / scale) + " " + std::string(spec.unit) + "), got " +
-                  format_number(x));
+    fail(key, "rounds to 0 in the time unit, 1 ps (" + number_text(1.0 / scale) + " " + std::string(spec.unit) + "), got " +
+                  number_text(x));
 }
 
 void Section::duration(std::string_view key, std::optional<des::Time>& v, const KeySpec& spec) {

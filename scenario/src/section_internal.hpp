@@ -14,8 +14,6 @@ namespace latsim::scenario {
 // picoseconds (about 9.2e6 s).
 constexpr double kLongestSpanSeconds = 1e6;
 
-std::string format_number(double x);
-
 // The declared range, or the default bounds on the sides it leaves open.
 KeySpec bounded_number(const KeySpec& spec);
 

@@ -5,6 +5,7 @@
 
 #include "latsim/des/stop_token.hpp"
 #include "latsim/des/time.hpp"
+#include "latsim/scenario/readable.hpp"
 #include "section_internal.hpp"
 
 namespace latsim::scenario {
@@ -184,8 +185,8 @@ void Section::check_pointer(std::string_view pointer, bool ok, std::string_view 
 void check_span_at(std::string_view pointer, double per_item_s, double items, std::string_view items_text) {
   const double total_s = per_item_s * items;
   if (total_s <= kLongestSpanSeconds) return;
-  throw ScenarioError(std::string(pointer), format_number(per_item_s) + " s × " + std::string(items_text) + " (" +
-                                                format_number(items) + ") = " + format_number(total_s) +
+  throw ScenarioError(std::string(pointer), number_text(per_item_s) + " s × " + std::string(items_text) + " (" +
+                                                number_text(items) + ") = " + number_text(total_s) +
                                                 " s, more than the 1e6 s a run may last");
 }
 

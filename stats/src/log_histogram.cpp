@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "finite_sample.hpp"
 #include "latsim/stats/stats.hpp"
 
 namespace latsim::stats {
@@ -12,13 +13,6 @@ namespace latsim::stats {
 namespace {
 
 constexpr uint64_t kHidden = uint64_t{1} << 52;
-
-void require_finite(double x, const char* where) {
-  if (!std::isfinite(x)) {
-    throw std::invalid_argument(std::string(where) + ": sample is " + std::to_string(x) +
-                                "; a model emitted a non-finite value, which is a bug in that model");
-  }
-}
 
 // The first 52-bit fraction of sub-bucket k of S in a binade: ceil(k 2^52 / S),
 // so that floor(fraction S / 2^52) = k exactly from there to the next one.
@@ -29,10 +23,7 @@ uint64_t lower_fraction(int32_t k, int32_t per_binade) {
 
 }  // namespace
 
-void LogHistogram::reject_non_finite(double x) {
-  throw std::invalid_argument("LogHistogram::add: sample is " + std::to_string(x) +
-                              "; a model emitted a non-finite value, which is a bug in that model");
-}
+void LogHistogram::reject_non_finite(double x) { throw_non_finite(x, "LogHistogram::add"); }
 
 void LogHistogram::DenseCounts::grow_and_add(int32_t index, uint64_t weight) {
   if (counts_.empty()) {

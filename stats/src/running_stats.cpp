@@ -5,18 +5,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "finite_sample.hpp"
 #include "latsim/stats/stats.hpp"
 
 namespace latsim::stats {
 
 namespace {
-
-void require_finite(double x, const char* where) {
-  if (!std::isfinite(x)) {
-    throw std::invalid_argument(std::string(where) + ": sample is " + std::to_string(x) +
-                                "; a model emitted a non-finite value, which is a bug in that model");
-  }
-}
 
 // x = (negative ? -1 : 1) * mantissa * 2^exponent with an integer mantissa.
 struct Decomposed {

@@ -6,27 +6,20 @@
 
 #include <nlohmann/json.hpp>
 
+#include "latsim/results/csv_text.hpp"
 #include "latsim/sweep/compare.hpp"
 
 namespace latsim::sweep {
 
 namespace {
 
+using results::csv_field;
+
 std::string num(const std::optional<double>& v, const char* format = "%.4f") {
   if (!v) return "";
   char buf[48];
   std::snprintf(buf, sizeof buf, format, *v);
   return buf;
-}
-
-std::string cell(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (const char c : s) {
-    if (c == '"') q += '"';
-    q += c;
-  }
-  return q + '"';
 }
 
 // Appends the parts to `out` (no temporary strings: GCC 12 warns of some).
@@ -75,10 +68,11 @@ std::string compare_csv(const Comparison& c) {
   for (const CompareRow& r : c.rows) {
     const auto& a = r.capture.stats;
     const auto& b = r.run.stats;
-    put(out, {r.key, ",", cell(standing_name(r.standing)), ",", cell(r.capture.column), ",", std::to_string(a.count),
-              ",", num(a.mean, "%.9g"), ",", num(a.p50, "%.9g"), ",", num(a.p99, "%.9g"), ",", cell(r.run.column), ",",
-              std::to_string(b.count), ",", num(b.mean, "%.9g"), ",", num(b.p50, "%.9g"), ",", num(b.p99, "%.9g"), ",",
-              num(r.ks, "%.9g"), ",", r.agrees ? (*r.agrees ? "1" : "0") : "", ",", cell(r.verdict), "\n"});
+    put(out, {r.key, ",", csv_field(standing_name(r.standing)), ",", csv_field(r.capture.column), ",",
+              std::to_string(a.count), ",", num(a.mean, "%.9g"), ",", num(a.p50, "%.9g"), ",", num(a.p99, "%.9g"), ",",
+              csv_field(r.run.column), ",", std::to_string(b.count), ",", num(b.mean, "%.9g"), ",", num(b.p50, "%.9g"),
+              ",", num(b.p99, "%.9g"), ",",
+              num(r.ks, "%.9g"), ",", r.agrees ? (*r.agrees ? "1" : "0") : "", ",", csv_field(r.verdict), "\n"});
   }
   return out;
 }

@@ -6,10 +6,14 @@
 #include <limits>
 #include <stdexcept>
 
+#include "latsim/results/csv_text.hpp"
 #include "latsim/scenario/readable.hpp"
 #include "latsim/sweep/run_table.hpp"
 
 namespace latsim::sweep {
+
+using results::csv_field;
+using scenario::number_text;
 
 FidelityAxis parse_vary(const std::string& text) {
   const auto eq = text.find('=');
@@ -48,9 +52,9 @@ std::string fidelity_csv(const FidelityAxis& axis, const std::string& metric, co
   for (size_t i = 0; i < levels.size(); ++i) {
     const auto& l = levels[i];
     text += std::to_string(i);
-    for (const std::string& cell : {csv_field(l.value), format_number(l.metric), format_number(l.abs_error),
-                                    format_number(l.rel_error), format_number(l.wall_s), std::to_string(l.events),
-                                    format_number(l.peak_rss_mb)}) {
+    for (const std::string& cell : {csv_field(l.value), number_text(l.metric), number_text(l.abs_error),
+                                    number_text(l.rel_error), number_text(l.wall_s), std::to_string(l.events),
+                                    number_text(l.peak_rss_mb)}) {
       text += ',';
       text += cell;
     }

@@ -1,11 +1,12 @@
 #include "latsim/sweep/run_table.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <set>
 
+#include "latsim/results/csv_text.hpp"
 #include "latsim/results/figure_registry.hpp"
+#include "latsim/scenario/readable.hpp"
 #include "latsim/sweep/plan.hpp"
 #include "latsim/sweep/run_row.hpp"
 
@@ -131,28 +132,13 @@ std::optional<double> find_figure(const Json& summary, const std::string& path) 
   return as_number(walk(summary, path));
 }
 
-std::string format_number(double value) {
-  if (std::isnan(value)) return "nan";
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  char buf[64];
-  const auto result = std::to_chars(buf, buf + sizeof buf, value);
-  return std::string(buf, result.ptr);
-}
-
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return quoted + "\"";
-}
-
 std::string results_csv_header(const std::vector<std::string>& axis_pointers, const std::vector<std::string>& chosen) {
   // Cells are appended one by one: building "," + cell temporaries trips
   // GCC 12's -Wrestrict false positive at -O2.
   std::string text = "run_id,point";
   for (const auto& pointer : axis_pointers) {
     text += ',';
-    text += csv_field(pointer);
+    text += results::csv_field(pointer);
   }
   text += ",seed,replication";
   for (const auto& column : table_columns(chosen)) {
@@ -175,12 +161,12 @@ void append_results_csv_row(std::string& text, const RunRow& row, const std::vec
   };
   text += row.run_id;
   cell(std::to_string(row.point));
-  for (const auto& value : row.values) cell(csv_field(value_text(value)));
+  for (const auto& value : row.values) cell(results::csv_field(value_text(value)));
   cell(std::to_string(row.seed));
   cell(std::to_string(row.replication));
   for (const auto& column : columns) {
     const auto v = row.figure(column.figure);
-    cell(v ? format_number(*v) : std::string());
+    cell(v ? scenario::number_text(*v) : std::string());
   }
   text += '\n';
 }

@@ -14,14 +14,16 @@
 #include <sstream>
 #include <string>
 
+#include "latsim/results/csv_text.hpp"
+#include "latsim/scenario/readable.hpp"
 #include "latsim/sweep/results_db.hpp"
 #include "scratch_dir.hpp"
 #include "latsim/sweep/run_table.hpp"
 #include "latsim/sweep/store.hpp"
 
-using latsim::sweep::csv_field;
+using latsim::results::csv_field;
+using latsim::scenario::number_text;
 using latsim::sweep::find_figure;
-using latsim::sweep::format_number;
 using latsim::sweep::is_temporary_name;
 using latsim::sweep::results_csv;
 using latsim::sweep::RunRow;
@@ -104,12 +106,15 @@ TEST_CASE("a run's row, read from its summary's text, finds every figure find_fi
 }
 
 TEST_CASE("numbers print in their shortest exact form and CSV fields are quoted when needed", "[sweep]") {
-  CHECK(format_number(0.1) == "0.1");
-  CHECK(format_number(60) == "60");
-  CHECK(std::stod(format_number(1.0 / 3.0)) == 1.0 / 3.0);
+  CHECK(number_text(0.1) == "0.1");
+  CHECK(number_text(60) == "60");
+  CHECK(std::stod(number_text(1.0 / 3.0)) == 1.0 / 3.0);
   CHECK(csv_field("60000/1001") == "60000/1001");
   CHECK(csv_field("a,b") == "\"a,b\"");
   CHECK(csv_field("say \"hi\"") == "\"say \"\"hi\"\"\"");
+  // RFC 4180: a field holding a line break, CR or LF, is quoted.
+  CHECK(csv_field("a\rb") == "\"a\rb\"");
+  CHECK(csv_field("a\nb") == "\"a\nb\"");
 }
 
 TEST_CASE("results.csv has one row per run in the given order with the headline figures", "[sweep]") {

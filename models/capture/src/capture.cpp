@@ -8,21 +8,11 @@ namespace latsim::capture {
 
 namespace {
 
-// "file:line: reason", or "file: reason" for a problem of the whole file (line 0).
-std::string located_in(const std::filesystem::path& file, int64_t line, const std::string& reason) {
-  std::string text = file.string();
-  if (line > 0) text.append(":").append(std::to_string(line));
-  return text.append(": ").append(reason);
-}
-
 bool has(const std::vector<std::string>& header, const char* name) {
   return std::find(header.begin(), header.end(), name) != header.end();
 }
 
 }  // namespace
-
-CaptureError::CaptureError(const std::filesystem::path& file, int64_t line, const std::string& reason)
-    : std::runtime_error(located_in(file, line, reason)), line_(line) {}
 
 const char* generation_name(Generation g) {
   switch (g) {

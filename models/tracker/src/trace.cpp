@@ -15,20 +15,6 @@ namespace latsim::tracker {
 
 namespace {
 
-// "file:line: reason", or "file: reason" for a problem of the whole file (line 0).
-std::string located_in(const std::filesystem::path& file, int64_t line, const std::string& reason) {
-  std::string text = file.string();
-  if (line > 0) text.append(":").append(std::to_string(line));
-  return text.append(": ").append(reason);
-}
-
-}  // namespace
-
-TraceError::TraceError(const std::filesystem::path& file, int64_t line, const std::string& reason)
-    : std::runtime_error(located_in(file, line, reason)), line_(line) {}
-
-namespace {
-
 enum class TraceFormat { LatsimCsv, Corbillon };
 
 constexpr std::string_view kCsvHeader = "t_s,px,py,pz,qw,qx,qy,qz";

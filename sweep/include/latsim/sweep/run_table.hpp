@@ -27,12 +27,6 @@ std::vector<HeadlineColumn> headline_columns();
 /// ("render_latency_ms") means its mean. Empty when absent or not a number.
 std::optional<double> find_figure(const nlohmann::json& summary, const std::string& path);
 
-/// Shortest text that reads back as the same double (std::to_chars).
-std::string format_number(double value);
-
-/// A CSV field, quoted when it holds a comma, quote or line break.
-std::string csv_field(const std::string& text);
-
 /// Every name a sweep file's "figures" (and `latsim report --figures`) may
 /// choose: the results.csv columns (but events and wall_s), then every
 /// figure the registry declares that a table can hold, by its figures.json

@@ -11,18 +11,15 @@
 #include <vector>
 
 #include "latsim/des/time.hpp"
+#include "latsim/io/line_error.hpp"
 
 namespace latsim::capture {
 
 /// A capture that cannot be used; what() is exactly "<file>:<line>: <reason>"
 /// ("<file>: <reason>" for a problem of the whole file, line 0).
-class CaptureError : public std::runtime_error {
+class CaptureError : public io::LineError {
  public:
-  CaptureError(const std::filesystem::path& file, int64_t line, const std::string& reason);
-  int64_t line() const { return line_; }
-
- private:
-  int64_t line_;
+  using io::LineError::LineError;
 };
 
 /// Which of PresentMon's column sets a header is, which runtime statistics a

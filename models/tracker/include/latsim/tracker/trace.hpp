@@ -9,18 +9,15 @@
 #include <vector>
 
 #include "latsim/des/time.hpp"
+#include "latsim/io/line_error.hpp"
 #include "latsim/tracker/pose.hpp"
 
 namespace latsim::tracker {
 
 /// A malformed trace file; what() is exactly "<file>:<line>: <reason>".
-class TraceError : public std::runtime_error {
+class TraceError : public io::LineError {
  public:
-  TraceError(const std::filesystem::path& file, int64_t line, const std::string& reason);
-  int64_t line() const { return line_; }
-
- private:
-  int64_t line_;
+  using io::LineError::LineError;
 };
 
 /// One recorded pose and the trace time it was recorded at.
