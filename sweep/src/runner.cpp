@@ -1,5 +1,6 @@
 #include "latsim/sweep/runner.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <set>
@@ -50,14 +51,20 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepRequest& request, const
   // Once a stop signal came or the directory cannot take results, starting more runs only fails more.
   std::atomic<bool> storage_unusable{false};
   const auto runs_start = std::chrono::steady_clock::now();
-  parallel_for(pending.size(), request.jobs, [&](size_t i, unsigned worker) {
-    if (storage_unusable.load(std::memory_order_relaxed) || (request.stop && request.stop->load())) {
-      attempts[i].result = RunAttempt::Result::not_started;
-      return;
+  // A thread takes a point's replications a few at a time: they share its binding.
+  std::vector<size_t> point_of_run(pending.size());
+  for (size_t i = 0; i < pending.size(); ++i) point_of_run[i] = plan.runs()[pending[i]].point;
+  const std::vector<RunChunk> chunks = point_chunks(point_of_run, request.jobs);
+  parallel_for(chunks.size(), request.jobs, [&](size_t c, unsigned worker) {
+    for (size_t i = chunks[c].begin; i < chunks[c].end; ++i) {
+      if (storage_unusable.load(std::memory_order_relaxed) || (request.stop && request.stop->load())) {
+        attempts[i].result = RunAttempt::Result::not_started;
+        continue;
+      }
+      attempts[i] = work.executor.execute(RunTask::of(plan, plan.runs()[pending[i]], request.keep), worker);
+      if (attempts[i].storage_unusable) storage_unusable.store(true);
+      if (progress) progress->advance();
     }
-    attempts[i] = work.executor.execute(RunTask::of(plan, plan.runs()[pending[i]], request.keep), worker);
-    if (attempts[i].storage_unusable) storage_unusable.store(true);
-    if (progress) progress->advance();
   });
   if (progress) progress->finish();
   out.phases.runs_s = seconds_since(runs_start);
@@ -67,7 +74,8 @@ SweepOutcome run_sweep(const SweepPlan& plan, const SweepRequest& request, const
   if (out.stopped || out.tally.storage_problem || !write_tables) return out;
   const auto tables_start = std::chrono::steady_clock::now();
   try {
-    out.tabled = sweep::write_tables(plan, work.store, request.jobs, out.temporaries);
+    // Reading the records is split in parts, one a thread: never more than can run at once.
+    out.tabled = sweep::write_tables(plan, work.store, std::min(request.jobs, available_cpus()), out.temporaries);
     out.tables_written = true;
   } catch (const std::exception& e) {
     out.tables_problem = scenario::readable(e.what());

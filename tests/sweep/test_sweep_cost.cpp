@@ -3,6 +3,9 @@
 // BENCHMARKS.md measured for scanout at field, line and pixel level.
 #include <catch2/catch.hpp>
 
+#include <utility>
+#include <vector>
+
 #include "latsim/run/prepared_run.hpp"
 #include "latsim/scenario/config.hpp"
 #include "latsim/sweep/cost.hpp"
@@ -74,4 +77,50 @@ TEST_CASE("runs start longest first, ties in plan order", "[sweep][cost]") {
   CHECK(longest_first({4, 3, 0}, cost) == std::vector<size_t>{3, 4, 0});
   const std::vector<double> flat(6, 5.0);
   CHECK(longest_first({0, 1, 2, 3, 4, 5}, flat) == std::vector<size_t>{0, 1, 2, 3, 4, 5});
+}
+
+namespace {
+
+using latsim::sweep::point_chunks;
+
+// The chunks as [begin, end) pairs.
+std::vector<std::pair<size_t, size_t>> ranges(const std::vector<size_t>& points, unsigned threads) {
+  std::vector<std::pair<size_t, size_t>> out;
+  for (const auto& c : point_chunks(points, threads)) out.emplace_back(c.begin, c.end);
+  return out;
+}
+
+// `runs` replications of each of `points` points, replications innermost (a plan's order).
+std::vector<size_t> plan_order(size_t points, size_t runs) {
+  std::vector<size_t> order;
+  for (size_t p = 0; p < points; ++p) order.insert(order.end(), runs, p);
+  return order;
+}
+
+}  // namespace
+
+TEST_CASE("a thread takes a point's replications together, in pieces that leave every thread work", "[sweep][cost]") {
+  // 200 points x 10 on 16 threads: pieces up to 2000 / 64 = 31 runs, so each
+  // point is one piece of 10 runs.
+  const auto shape = point_chunks(plan_order(200, 10), 16);
+  REQUIRE(shape.size() == 200);
+  for (size_t p = 0; p < 200; ++p) {
+    CHECK(shape[p].begin == 10 * p);
+    CHECK(shape[p].end == 10 * p + 10);
+  }
+  // One point of 100 replications on 2 threads: pieces up to 100 / 8 = 12
+  // runs, eight of 12 and one of the last 4.
+  const auto one_point = ranges(plan_order(1, 100), 2);
+  REQUIRE(one_point.size() == 9);
+  for (size_t k = 0; k < 8; ++k) CHECK(one_point[k] == std::make_pair(12 * k, 12 * k + 12));
+  CHECK(one_point[8] == std::make_pair(size_t{96}, size_t{100}));
+  // On 16 threads 100 / 64 is 1: every run alone, as many pieces as runs.
+  CHECK(point_chunks(plan_order(1, 100), 16).size() == 100);
+  // Pieces end where the point changes: 3 runs of point 0 and 5 of point 1
+  // on one thread, pieces up to 8 / 4 = 2 runs.
+  using R = std::vector<std::pair<size_t, size_t>>;
+  CHECK(ranges({0, 0, 0, 1, 1, 1, 1, 1}, 1) == R{{0, 2}, {2, 3}, {3, 5}, {5, 7}, {7, 8}});
+  // A point met again later (resumed runs, costs in another order) starts a new piece.
+  CHECK(ranges({4, 4, 7, 4, 4, 4, 4, 4}, 1) == R{{0, 2}, {2, 3}, {3, 5}, {5, 7}, {7, 8}});
+  CHECK(point_chunks({}, 4).empty());
 }
