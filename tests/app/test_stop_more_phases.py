@@ -11,7 +11,9 @@ the other phases and says what is checked).
 - sweep --mpi under mpiexec (two ranks), stopped while both ranks run, the
   signal sent to every rank (as a batch scheduler sends it) or to mpiexec
   (as a terminal does; Open MPI passes it on a second later): every rank is
-  gone within the second of getting it, one line in all, no temporary left.
+  gone within the second of getting it, one line in all (signalled through
+  mpiexec: that line, or none when mpiexec's teardown drops it), no
+  temporary left.
   Skipped, with the reason, when latsim was built without MPI or mpiexec is
   missing.
 
@@ -138,7 +140,13 @@ else:
             lines = [line for line in err.splitlines() if line.strip()]
             # mpiexec passes the stop on as SIGTERM whichever it got; a scheduler's signal reaches the ranks as sent.
             said = sig if to_ranks else signal.SIGTERM
-            check(len(lines) == 1 and f"sweep: stopped by {said.name}" in lines[0], f"{what}: stderr {lines}")
+            said_it = all(f"sweep: stopped by {said.name}" in line for line in lines)
+            if to_ranks:
+                check(len(lines) == 1 and said_it, f"{what}: stderr {lines}")
+            else:
+                # mpiexec, ending the job of its own accord, may stop forwarding the ranks' output before rank 0's
+                # line reaches it (Open MPI's teardown, seen once in a loaded CI run): that line or nothing.
+                check(len(lines) <= 1 and said_it, f"{what}: stderr {lines}")
             if to_ranks:
                 check(child.returncode == 128 + sig, f"{what}: mpiexec's exit {child.returncode}, want {128 + sig}")
             check(not leftovers(out) and not glob.glob(os.path.join(out, "runs", "*.tmp*")),
